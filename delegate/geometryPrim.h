@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: Apache-2.0
+// GeometryPrim: what every Embree rprim shares: its geometry record, its instance in the
+// top-level scene, and the sync of transform, visibility, sidedness and material binding.
+// Subclasses only build their bottom-level geometry.
+#pragma once
+
+#include "delegate/embreeInstance.h"
+#include "delegate/hd/prim.h"
+#include "delegate/renderParam.h"
+
+namespace principled::embree {
+
+class GeometryPrim : public hd::Rprim, public GeometrySource {
+public:
+    using Rprim::Rprim;
+
+    void sync(hd::SceneDelegate* delegate, hd::RenderParam* param, hd::DirtyBits* bits) final;
+    void finalize(hd::RenderParam* param) override;
+
+    unsigned instanceId() const override { return _instance.instanceId(); }
+    GeometryRecord* record() override { return &_record; }
+    void bindMaterials(const std::unordered_map<hd::Path, int>& materialIndex) override;
+
+protected:
+    /// The dirty bits that make rebuildGeometry() run.
+    virtual hd::DirtyBits geometryBits() const = 0;
+    /// Rebuilds _record's geometry; returns the new Embree geometry (uncommitted) or nullptr
+    /// when the prim cannot be rendered (after param->warn()).
+    virtual RTCGeometry rebuildGeometry(hd::SceneDelegate* delegate, EmbreeRenderParam* param) = 0;
+
+    GeometryRecord _record;
+
+private:
+    EmbreeInstance _instance;
+    hd::Path _materialId;
+    bool _registered = false;
+    bool _visible = true;
+};
+
+}  // namespace principled::embree

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/hd/camera.h"
+
+#include <algorithm>
+
+#include "delegate/hd/sceneDelegate.h"
+
+namespace principled::hd {
+
+void Camera::sync(SceneDelegate* delegate, RenderParam*, DirtyBits* dirtyBits) {
+    if (*dirtyBits & SprimDirty::Transform) _transform = delegate->getTransform(id());
+    if (*dirtyBits & SprimDirty::Params) {
+        auto param = [&](const char* name, float fallback) {
+            auto v = getFloat(delegate->getCameraParamValue(id(), Token(name)));
+            return v ? *v : fallback;
+        };
+        _focalLength = param("focalLength", _focalLength);
+        _hAperture = param("horizontalAperture", _hAperture);
+        _vAperture = param("verticalAperture", _vAperture);
+        _hOffset = param("horizontalApertureOffset", 0.0f);
+        _vOffset = param("verticalApertureOffset", 0.0f);
+        Value clip = delegate->getCameraParamValue(id(), Token("clippingRange"));
+        if (auto* c = getIf<glm::vec2>(clip)) _clipping = *c;
+        auto proj = getString(delegate->getCameraParamValue(id(), Token("projection")));
+        _projection = (proj && *proj == "orthographic") ? Projection::Orthographic
+                                                        : Projection::Perspective;
+    }
+    *dirtyBits = SprimDirty::Clean;
+}
+
+void Camera::set(const glm::dmat4& xform, float focalLength, float hAperture, float vAperture,
+                 Projection projection) {
+    _transform = xform;
+    _focalLength = focalLength;
+    _hAperture = hAperture;
+    _vAperture = vAperture;
+    _projection = projection;
+}
+
+glm::vec4 Camera::screenWindow(double imageAspect) const {
+    // Perspective: the window at unit distance is aperture / focal length.
+    double scale = _projection == Projection::Perspective
+                       ? 1.0 / std::max(1e-6, static_cast<double>(_focalLength))
+                       : 1.0;
+    double w = std::max(1e-6, static_cast<double>(_hAperture)) * scale;
+    double h = std::max(1e-6, static_cast<double>(_vAperture)) * scale;
+    double cx = _hOffset * scale, cy = _vOffset * scale;
+    // Fit: grow whichever side the image aspect needs so the aperture stays fully visible.
+    if (w / h > imageAspect)
+        h = w / imageAspect;
+    else
+        w = h * imageAspect;
+    return glm::vec4(cx - 0.5 * w, cx + 0.5 * w, cy - 0.5 * h, cy + 0.5 * h);
+}
+
+}  // namespace principled::hd

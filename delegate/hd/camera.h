@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: Apache-2.0
+// Camera: the generic camera sprim (Hydra's HdCamera). Holds the camera's transform and
+// projection parameters in scene units; render delegates turn it into rays.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "delegate/hd/prim.h"
+#include "delegate/hd/token.h"
+
+namespace principled::hd {
+
+class Camera : public Sprim {
+public:
+    enum class Projection { Perspective, Orthographic };
+
+    using Sprim::Sprim;
+    void sync(SceneDelegate* delegate, RenderParam* param, DirtyBits* dirtyBits) override;
+
+    /// Camera-to-world (column-vector convention); the camera looks down -Z with +Y up.
+    const glm::dmat4& transform() const { return _transform; }
+    Projection projection() const { return _projection; }
+    float focalLength() const { return _focalLength; }
+    float horizontalAperture() const { return _hAperture; }
+    float verticalAperture() const { return _vAperture; }
+    float horizontalApertureOffset() const { return _hOffset; }
+    float verticalApertureOffset() const { return _vOffset; }
+    glm::vec2 clippingRange() const { return _clipping; }
+
+    /// The image-plane window at distance 1 (perspective) or in scene units (orthographic)
+    /// for an image of the given aspect ratio: {xmin, xmax, ymin, ymax}. The aperture is fitted
+    /// to the image the way USD's conformWindow "fit" policy does: the whole aperture stays visible.
+    glm::vec4 screenWindow(double imageAspect) const;
+
+    /// Sets parameters directly (hosts and tests that build cameras without a scene delegate).
+    void set(const glm::dmat4& xform, float focalLength, float hAperture, float vAperture,
+             Projection projection = Projection::Perspective);
+
+private:
+    glm::dmat4 _transform{1.0};
+    Projection _projection = Projection::Perspective;
+    // USD fallbacks (usdGeom schema), converted to scene units (tenths): 50 mm, 20.955 mm, 15.2908 mm.
+    float _focalLength = 5.0f;
+    float _hAperture = 2.0955f;
+    float _vAperture = 1.52908f;
+    float _hOffset = 0.0f;
+    float _vOffset = 0.0f;
+    glm::vec2 _clipping{1.0f, 1e6f};
+};
+
+}  // namespace principled::hd

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: Apache-2.0
+// SceneDelegate: the pull interface a scene adapter serves. Prims call it during sync for the
+// data their dirty bits name (Hydra's HdSceneDelegate, hydra.md section 2.5).
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "delegate/hd/materialNetwork.h"
+#include "delegate/hd/meshTopology.h"
+#include "delegate/hd/path.h"
+#include "delegate/hd/primvar.h"
+#include "delegate/hd/value.h"
+
+namespace principled::hd {
+
+/// Answers queries about the prims it inserted into a render index. Every method may be called
+/// concurrently from rprim sync workers, so implementations must be safe for concurrent reads.
+class SceneDelegate {
+public:
+    virtual ~SceneDelegate() = default;
+
+    virtual MeshTopology getMeshTopology(const Path& id) const = 0;
+    virtual SubdivTags getSubdivTags(const Path& id) const = 0;
+    /// Object-to-world, column-vector convention (glm): p_world = M * p_object.
+    virtual glm::dmat4 getTransform(const Path& id) const = 0;
+    virtual bool getVisible(const Path& id) const = 0;
+    virtual bool getDoubleSided(const Path& id) const = 0;
+    /// A named value: geometry ("points", "radius"), primvars by name.
+    virtual Value get(const Path& id, const Token& key) const = 0;
+    /// An indexed primvar: values plus indices (indices empty if not indexed).
+    virtual Value getIndexedPrimvar(const Path& id, const Token& key,
+                                    std::vector<int>* indices) const = 0;
+    virtual std::vector<PrimvarDescriptor> getPrimvarDescriptors(const Path& id,
+                                                                 Interpolation interp) const = 0;
+    /// The material bound to an rprim (empty path: none).
+    virtual Path getMaterialId(const Path& id) const = 0;
+    /// Per-face material assignments (GeomSubset); each pair is (material, face indices).
+    virtual std::vector<std::pair<Path, std::vector<int>>> getMaterialSubsets(const Path& id) const {
+        (void)id;
+        return {};
+    }
+    virtual MaterialNetwork getMaterialResource(const Path& materialId) const = 0;
+    /// Light parameters by USD input name without the "inputs:" prefix ("intensity", "color").
+    virtual Value getLightParamValue(const Path& id, const Token& param) const = 0;
+    /// Camera parameters in scene units (apertures already converted from tenths of a unit).
+    virtual Value getCameraParamValue(const Path& id, const Token& param) const = 0;
+};
+
+}  // namespace principled::hd

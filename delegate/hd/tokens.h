@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: Apache-2.0
+// Well-known tokens: prim types, AOV names and parameter keys shared by adapters and delegates.
+#pragma once
+
+#include "delegate/hd/token.h"
+
+namespace principled::hd::tokens {
+
+// Rprim types.
+inline const Token& mesh() { static const Token t("mesh"); return t; }
+inline const Token& sphere() { static const Token t("sphere"); return t; }
+// Sprim types.
+inline const Token& camera() { static const Token t("camera"); return t; }
+inline const Token& material() { static const Token t("material"); return t; }
+inline const Token& distantLight() { static const Token t("distantLight"); return t; }
+inline const Token& domeLight() { static const Token t("domeLight"); return t; }
+inline const Token& sphereLight() { static const Token t("sphereLight"); return t; }
+inline const Token& rectLight() { static const Token t("rectLight"); return t; }
+inline const Token& diskLight() { static const Token t("diskLight"); return t; }
+// Bprim types.
+inline const Token& renderBuffer() { static const Token t("renderBuffer"); return t; }
+
+// Geometry keys for SceneDelegate::get().
+inline const Token& points() { static const Token t("points"); return t; }
+inline const Token& normals() { static const Token t("normals"); return t; }
+inline const Token& radius() { static const Token t("radius"); return t; }
+inline const Token& displayColor() { static const Token t("displayColor"); return t; }
+
+// AOV names.
+inline const Token& color() { static const Token t("color"); return t; }
+inline const Token& depth() { static const Token t("depth"); return t; }
+inline const Token& primId() { static const Token t("primId"); return t; }
+
+}  // namespace principled::hd::tokens

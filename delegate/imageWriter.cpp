@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/imageWriter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <OpenImageIO/imageio.h>
+
+namespace principled::embree {
+
+float linearToSrgb(float v) {
+    if (!(v > 0.0f)) return 0.0f;
+    if (v >= 1.0f) return 1.0f;
+    // IEC 61966-2-1 sRGB encoding.
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    auto dot = path.rfind('.');
+    std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+}  // namespace
+
+bool writeImage(const std::string& path, int width, int height,
+                const std::vector<ImageLayer>& layers, std::string* error) {
+    if (layers.empty() || !layers[0].pixels) {
+        *error = path + ": nothing to write";
+        return false;
+    }
+    std::string ext = lowerExtension(path);
+    size_t n = size_t(width) * size_t(height);
+    std::vector<float> floats;
+    std::vector<unsigned char> bytes;
+    OIIO::ImageSpec spec;
+    const void* data = nullptr;
+    if (ext == "exr") {
+        std::vector<std::string> names;
+        for (const auto& l : layers)
+            for (const auto& c : l.channels) names.push_back(l.name.empty() ? c : l.name + "." + c);
+        spec = OIIO::ImageSpec(width, height, int(names.size()), OIIO::TypeDesc::FLOAT);
+        spec.channelnames = names;
+        spec.alpha_channel = -1;
+        for (size_t i = 0; i < names.size(); ++i)
+            if (names[i] == "A") spec.alpha_channel = int(i);
+        spec.attribute("compression", "zip");
+        floats.resize(n * names.size());
+        size_t offset = 0;
+        for (const auto& l : layers) {
+            size_t c = l.channels.size();
+            for (size_t p = 0; p < n; ++p)
+                for (size_t k = 0; k < c; ++k) {
+                    float v = l.pixels[p * c + k];
+                    floats[p * names.size() + offset + k] = std::isfinite(v) ? v : 0.0f;
+                }
+            offset += c;
+        }
+        data = floats.data();
+    } else if (ext == "png") {
+        const ImageLayer& l = layers[0];
+        int c = int(std::min<size_t>(l.channels.size(), 4));
+        if (c < 3) {
+            *error = path + ": PNG needs a colour layer with 3 or 4 channels";
+            return false;
+        }
+        spec = OIIO::ImageSpec(width, height, c, OIIO::TypeDesc::UINT8);
+        bytes.resize(n * c);
+        for (size_t p = 0; p < n; ++p)
+            for (int k = 0; k < c; ++k) {
+                float v = l.pixels[p * l.channels.size() + k];
+                float e = k < 3 ? linearToSrgb(v) : std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f);
+                bytes[p * c + k] = static_cast<unsigned char>(std::lround(e * 255.0f));
+            }
+        data = bytes.data();
+    } else {
+        *error = path + ": unsupported output format '." + ext + "' (expected .exr or .png)";
+        return false;
+    }
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) {
+        *error = path + ": " + OIIO::geterror();
+        return false;
+    }
+    if (!out->open(path, spec) || !out->write_image(spec.format, data) || !out->close()) {
+        *error = path + ": " + out->geterror();
+        return false;
+    }
+    return true;
+}
+
+}  // namespace principled::embree

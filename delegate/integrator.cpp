@@ -1,0 +1,281 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/integrator.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace principled::embree {
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+constexpr float kInf = 1e30f;
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1), listing 3.
+void orthonormalBasis(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
+    float sign = std::copysign(1.0f, n.z);
+    float a = -1.0f / (sign + n.z);
+    float c = n.x * n.y * a;
+    *t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    *b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+}
+
+struct Frame {
+    glm::vec3 t, b, n;
+    explicit Frame(const glm::vec3& normal) : n(normal) { orthonormalBasis(n, &t, &b); }
+    glm::vec3 toLocal(const glm::vec3& v) const {
+        return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)};
+    }
+    glm::vec3 toWorld(const glm::vec3& v) const { return v.x * t + v.y * b + v.z * n; }
+};
+
+// Veach 1997, "Robust Monte Carlo Methods for Light Transport Simulation", eq. 9.13 (beta 2).
+float powerHeuristic(float a, float b) {
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+// Malley's method: cosine-weighted direction about +z; pdf = cos(theta) / pi.
+glm::vec3 cosineHemisphere(const glm::vec2& u) {
+    float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x))};
+}
+
+// Uniform direction in the cone of half-angle acos(cosMax) about +z; pdf = 1/(2 pi (1-cosMax)).
+glm::vec3 uniformCone(const glm::vec2& u, float cosMax) {
+    float c = 1.0f - u.x * (1.0f - cosMax);
+    float s = std::sqrt(std::max(0.0f, 1.0f - c * c)), phi = 2.0f * kPi * u.y;
+    return {s * std::cos(phi), s * std::sin(phi), c};
+}
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+float maxComponent(const glm::vec3& v) { return std::max({v.x, v.y, v.z}); }
+
+struct Hit {
+    glm::vec3 p;   ///< world position
+    glm::vec3 ng;  ///< geometric normal, facing the incoming ray
+    glm::vec3 ns;  ///< shading normal, same hemisphere as ng
+    const GeometryRecord* record;
+};
+
+bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
+    rh.ray.dir_x = ray.direction.x, rh.ray.dir_y = ray.direction.y, rh.ray.dir_z = ray.direction.z;
+    rh.ray.tnear = ray.tnear;
+    rh.ray.tfar = ray.tfar;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene.scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    unsigned inst = rh.hit.instID[0];
+    if (inst >= scene.geometryByInstance.size() || !scene.geometryByInstance[inst]) return false;
+    const GeometryRecord& rec = *scene.geometryByInstance[inst];
+    hit->record = &rec;
+    hit->p = ray.origin + rh.ray.tfar * ray.direction;
+    glm::vec3 ngObj, nsObj;
+    if (rec.kind == GeometryRecord::Kind::Sphere) {
+        glm::vec3 pObj = glm::vec3(rec.worldToObject * glm::vec4(hit->p, 1.0f));
+        ngObj = nsObj = pObj - rec.center;
+    } else {
+        const glm::uvec3& t = rec.triangles[rh.hit.primID];
+        const glm::vec3 &p0 = rec.points[t.x], &p1 = rec.points[t.y], &p2 = rec.points[t.z];
+        ngObj = glm::cross(p1 - p0, p2 - p0);
+        nsObj = ngObj;
+        if (!rec.cornerNormals.empty()) {
+            float u = rh.hit.u, v = rh.hit.v;
+            const glm::vec3* n = &rec.cornerNormals[3 * size_t(rh.hit.primID)];
+            nsObj = (1.0f - u - v) * n[0] + u * n[1] + v * n[2];
+        }
+    }
+    glm::vec3 ng = rec.normalToWorld * ngObj;
+    glm::vec3 ns = rec.normalToWorld * nsObj;
+    float lg = glm::length(ng), ls = glm::length(ns);
+    if (!(lg > 0.0f) || !std::isfinite(lg)) return false;  // degenerate triangle
+    ng /= lg;
+    ns = (ls > 0.0f && std::isfinite(ls)) ? ns / ls : ng;
+    // Shade both sides: face the normals toward the incoming ray.
+    if (glm::dot(ng, ray.direction) > 0.0f) ng = -ng;
+    if (glm::dot(ns, ng) < 0.0f) ns = -ns;
+    hit->ng = ng;
+    hit->ns = ns;
+    return true;
+}
+
+bool occluded(const SceneSnapshot& scene, const glm::vec3& origin, const glm::vec3& dir,
+              float tfar) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = origin.x, r.org_y = origin.y, r.org_z = origin.z;
+    r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
+    r.tnear = 0.0f;
+    r.tfar = tfar;
+    r.time = 0.0f;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(scene.scene, &ctx, &r);
+    return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+// Offset a ray origin off the surface along the geometric normal, scaled to the position's
+// magnitude so large and small scenes both avoid self-intersection.
+glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir) {
+    float scale = 1e-4f * std::max(1.0f, maxComponent(glm::abs(p)));
+    return p + (glm::dot(dir, ng) >= 0.0f ? scale : -scale) * ng;
+}
+
+}  // namespace
+
+PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
+    PathSample out;
+    const auto& lights = _scene.lights;
+    const float lightPick = lights.empty() ? 0.0f : 1.0f / static_cast<float>(lights.size());
+    glm::vec3 L(0.0f), beta(1.0f);
+    Ray ray = cameraRay;
+    bool prevDelta = true;     // the camera "lobe" is a delta: no MIS on direct hits
+    float prevBsdfPdf = 0.0f;
+    glm::vec3 prevNg(0.0f);
+
+    for (int depth = 0;; ++depth) {
+        Hit hit;
+        ++out.rays;
+        if (!intersect(_scene, ray, &hit)) {
+            // Escaped: add the lights one could see along this direction, MIS-weighted
+            // against the light sampling that would also have found them.
+            for (const LightRecord& light : lights) {
+                glm::vec3 Le(0.0f);
+                float lightPdf = 0.0f;
+                if (light.kind == LightRecord::Kind::Dome) {
+                    if (depth == 0 && !_settings.domeVisible) continue;
+                    Le = light.radiance;
+                    lightPdf = lightPick * std::max(0.0f, glm::dot(prevNg, ray.direction)) / kPi;
+                } else if (light.cosHalfAngle < 1.0f && depth > 0 &&
+                           glm::dot(ray.direction, -light.direction) >= light.cosHalfAngle) {
+                    Le = light.radiance;
+                    lightPdf = lightPick / (2.0f * kPi * (1.0f - light.cosHalfAngle));
+                }
+                float w = prevDelta ? 1.0f : powerHeuristic(prevBsdfPdf, lightPdf);
+                glm::vec3 c = beta * Le * w;
+                if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
+                    c *= _settings.clampIndirect / maxComponent(c);
+                L += c;
+            }
+            break;
+        }
+        if (depth == 0) out.alpha = 1.0f;
+
+        // Material: the bound one, or UsdPreviewSurface defaults with displayColor.
+        const GeometryRecord& rec = *hit.record;
+        MaterialRecord fallback;
+        const MaterialRecord* mat = &fallback;
+        if (rec.materialIndex >= 0 && rec.materialIndex < int(_scene.materials.size()))
+            mat = &_scene.materials[rec.materialIndex];
+        else {
+            fallback.params.baseColor = rec.displayColor;
+            fallback.params.roughness = 0.5f;
+            fallback.params.specular = 0.5f;
+        }
+        if (mat->emission != glm::vec3(0.0f)) L += beta * mat->emission;
+
+        glm::vec3 wo = -ray.direction;
+        // A shading normal that puts the viewer below the surface is replaced by the geometric
+        // one (no black rims); the BSDF then sees a consistent upper hemisphere.
+        glm::vec3 ns = glm::dot(hit.ns, wo) > 1e-4f ? hit.ns : hit.ng;
+        Frame frame(ns);
+        glm::vec3 woLocal = frame.toLocal(wo);
+        bsdf::Bsdf bsdf(mat->params, _settings.bsdf);
+
+        if (depth >= _settings.maxDepth) break;
+
+        // Next-event estimation: one light picked uniformly.
+        if (!lights.empty() && !bsdf.isDeltaOnly()) {
+            float ul = sampler.next1D();
+            glm::vec2 u = sampler.next2D();
+            size_t li = std::min(lights.size() - 1, size_t(ul * float(lights.size())));
+            const LightRecord& light = lights[li];
+            glm::vec3 wi, Li;
+            float lightPdf = 0.0f;
+            bool deltaLight = false;
+            if (light.kind == LightRecord::Kind::Dome) {
+                Frame gframe(hit.ng);
+                glm::vec3 d = cosineHemisphere(u);
+                wi = gframe.toWorld(d);
+                lightPdf = d.z / kPi;
+                Li = light.radiance;
+            } else if (light.cosHalfAngle >= 1.0f) {
+                wi = -light.direction;
+                Li = light.irradiance;
+                lightPdf = 1.0f;
+                deltaLight = true;
+            } else {
+                Frame lframe(-light.direction);
+                wi = lframe.toWorld(uniformCone(u, light.cosHalfAngle));
+                lightPdf = 1.0f / (2.0f * kPi * (1.0f - light.cosHalfAngle));
+                Li = light.radiance;
+            }
+            if (lightPdf > 0.0f && glm::dot(wi, hit.ng) > 0.0f) {
+                float bsdfPdf = 0.0f;
+                glm::vec3 f = bsdf.eval(woLocal, frame.toLocal(wi), &bsdfPdf);
+                if (maxComponent(f) > 0.0f) {
+                    ++out.rays;
+                    if (!occluded(_scene, offsetOrigin(hit.p, hit.ng, wi), wi, kInf)) {
+                        float w = deltaLight ? 1.0f : powerHeuristic(lightPdf * lightPick, bsdfPdf);
+                        glm::vec3 c = beta * f * Li * w / (lightPdf * lightPick);
+                        if (depth > 0 && _settings.clampIndirect > 0.0f &&
+                            maxComponent(c) > _settings.clampIndirect)
+                            c *= _settings.clampIndirect / maxComponent(c);
+                        L += c;
+                    }
+                }
+            }
+        }
+
+        // Continue the path by sampling the BSDF.
+        float ulobe = sampler.next1D();
+        glm::vec2 u = sampler.next2D();
+        auto s = bsdf.sample(woLocal, ulobe, u);
+        if (!s || !(s->pdf > 0.0f)) break;
+        glm::vec3 wi = frame.toWorld(s->wi);
+        // Reject directions on the wrong side of the geometric surface (light leaks).
+        bool transmit = s->wi.z < 0.0f;
+        if ((glm::dot(wi, hit.ng) > 0.0f) == transmit) break;
+        beta *= s->f / s->pdf;
+        if (!finite(beta)) {
+            out.invalid = true;
+            return out;
+        }
+        prevDelta = s->delta;
+        prevBsdfPdf = s->pdf;
+        prevNg = hit.ng;
+        ray.origin = offsetOrigin(hit.p, hit.ng, wi);
+        ray.direction = wi;
+        ray.tnear = 0.0f;
+        ray.tfar = kInf;
+
+        // Russian roulette (Arvo & Kirk 1990): survive with probability q, reweight by 1/q.
+        if (depth + 1 >= _settings.rouletteDepth) {
+            float q = std::min(0.95f, maxComponent(beta));
+            if (sampler.next1D() >= q) break;
+            beta /= q;
+        }
+    }
+    if (!finite(L)) {
+        out.invalid = true;
+        out.radiance = glm::vec3(0.0f);
+        return out;
+    }
+    out.radiance = glm::max(L, glm::vec3(0.0f));
+    return out;
+}
+
+}  // namespace principled::embree

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: Apache-2.0
+// Integrator: unidirectional path tracing with next-event estimation and multiple importance
+// sampling (power heuristic) over the scene snapshot's lights.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "bsdf/bsdf.h"
+#include "delegate/sampler.h"
+#include "delegate/sceneData.h"
+
+namespace principled::embree {
+
+struct IntegratorSettings {
+    int maxDepth = 8;         ///< path vertices after the camera hit (0 = direct light only)
+    int rouletteDepth = 3;    ///< Russian roulette starts at this depth
+    float clampIndirect = 0;  ///< max channel of an indirect contribution; 0 = off
+    bool domeVisible = true;  ///< camera rays that escape see the dome light
+    bsdf::Options bsdf;
+};
+
+struct Ray {
+    glm::vec3 origin;
+    glm::vec3 direction;  ///< unit length
+    float tnear = 0.0f;
+    float tfar = 1e30f;
+};
+
+/// What a camera path returns for one sample.
+struct PathSample {
+    glm::vec3 radiance{0.0f};
+    float alpha = 0.0f;     ///< 1 when the camera ray hit geometry
+    uint32_t rays = 0;      ///< rays cast (for stats)
+    bool invalid = false;   ///< a NaN/Inf was produced and the sample dropped
+};
+
+class Integrator {
+public:
+    Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings)
+        : _scene(scene), _settings(settings) {}
+
+    PathSample trace(const Ray& cameraRay, Sampler& sampler) const;
+
+private:
+    const SceneSnapshot& _scene;
+    IntegratorSettings _settings;
+};
+
+}  // namespace principled::embree

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/material.h"
+
+#include "delegate/hd/sceneDelegate.h"
+#include "delegate/previewSurface.h"
+
+namespace principled::embree {
+
+using namespace hd;
+
+void Material::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* bits) {
+    auto* param = static_cast<EmbreeRenderParam*>(renderParam);
+    if (!_registered) {
+        param->add(static_cast<MaterialSource*>(this));
+        _registered = true;
+    }
+    if (*bits & (SprimDirty::MaterialParams | SprimDirty::Resource | SprimDirty::Params)) {
+        std::vector<std::string> notes;
+        _record = mapPreviewSurface(delegate->getMaterialResource(id()), &notes);
+        for (const auto& n : notes) param->warn(id(), n);
+        param->markTablesDirty();
+    }
+    *bits = SprimDirty::Clean;
+}
+
+void Material::finalize(RenderParam* renderParam) {
+    auto* param = static_cast<EmbreeRenderParam*>(renderParam);
+    if (_registered) param->remove(static_cast<MaterialSource*>(this));
+    _registered = false;
+    param->markTablesDirty();
+}
+
+}  // namespace principled::embree

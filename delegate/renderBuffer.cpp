@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/renderBuffer.h"
+
+#include <cmath>
+
+namespace principled::embree {
+
+bool EmbreeRenderBuffer::allocate(int width, int height, hd::Format format, bool multiSampled) {
+    int c = hd::componentCount(format);
+    if (width <= 0 || height <= 0 || c == 0 || size_t(width) * size_t(height) > (size_t(1) << 28))
+        return false;
+    _width = width;
+    _height = height;
+    _format = format;
+    _components = c;
+    _multiSampled = multiSampled && format != hd::Format::Int32;
+    size_t n = size_t(width) * size_t(height);
+    _sum.assign(format == hd::Format::Int32 ? 0 : n * c, 0.0);
+    _ints.assign(format == hd::Format::Int32 ? n : 0, -1);
+    _count.assign(n, 0);
+    _resolved.assign(format == hd::Format::Int32 ? 0 : n * c, 0.0f);
+    _converged = false;
+    return true;
+}
+
+void EmbreeRenderBuffer::clear() {
+    std::fill(_sum.begin(), _sum.end(), 0.0);
+    std::fill(_ints.begin(), _ints.end(), -1);
+    std::fill(_count.begin(), _count.end(), 0);
+    _converged = false;
+}
+
+void EmbreeRenderBuffer::addSample(int x, int y, const float* values) {
+    size_t p = size_t(y) * _width + x;
+    double* s = &_sum[p * _components];
+    if (_multiSampled) {
+        for (int i = 0; i < _components; ++i) s[i] += values[i];
+    } else if (_count[p] == 0) {
+        for (int i = 0; i < _components; ++i) s[i] = values[i];
+    }
+    ++_count[p];
+}
+
+void EmbreeRenderBuffer::addSample(int x, int y, int32_t value) {
+    size_t p = size_t(y) * _width + x;
+    if (_count[p] == 0) _ints[p] = value;
+    ++_count[p];
+}
+
+void EmbreeRenderBuffer::resolve() {
+    if (_format == hd::Format::Int32) return;
+    size_t n = size_t(_width) * _height;
+    for (size_t p = 0; p < n; ++p) {
+        double inv = (_multiSampled && _count[p] > 0) ? 1.0 / _count[p] : 1.0;
+        for (int i = 0; i < _components; ++i) {
+            float v = static_cast<float>(_sum[p * _components + i] * inv);
+            _resolved[p * _components + i] = std::isfinite(v) ? v : 0.0f;  // never NaN/Inf
+        }
+    }
+}
+
+const void* EmbreeRenderBuffer::map() {
+    if (_format == hd::Format::Int32) return _ints.data();
+    return _resolved.data();
+}
+
+}  // namespace principled::embree

@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/renderDelegate.h"
+
+#include <algorithm>
+
+#include "delegate/hd/camera.h"
+#include "delegate/hd/tokens.h"
+#include "delegate/light.h"
+#include "delegate/material.h"
+#include "delegate/mesh.h"
+#include "delegate/renderBuffer.h"
+#include "delegate/renderPass.h"
+#include "delegate/sphere.h"
+
+namespace principled::embree {
+
+using namespace hd;
+
+EmbreeRenderDelegate::EmbreeRenderDelegate() {
+    _scene = rtcNewScene(_device.get());
+    // Two-level BVH: a dynamic, fast-to-rebuild top level over per-prim instances.
+    rtcSetSceneFlags(_scene, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(_scene, RTC_BUILD_QUALITY_LOW);
+    _param = std::make_unique<EmbreeRenderParam>(_device.get(), _scene);
+    for (const auto& d : renderSettingDescriptors()) _settings[d.key] = d.defaultValue;
+    _snapshot.scene = _scene;
+}
+
+EmbreeRenderDelegate::~EmbreeRenderDelegate() { rtcReleaseScene(_scene); }
+
+const std::vector<Token>& EmbreeRenderDelegate::supportedRprimTypes() const {
+    static const std::vector<Token> t{tokens::mesh(), tokens::sphere()};
+    return t;
+}
+const std::vector<Token>& EmbreeRenderDelegate::supportedSprimTypes() const {
+    static const std::vector<Token> t{tokens::camera(), tokens::material(), tokens::distantLight(),
+                                      tokens::domeLight()};
+    return t;
+}
+const std::vector<Token>& EmbreeRenderDelegate::supportedBprimTypes() const {
+    static const std::vector<Token> t{tokens::renderBuffer()};
+    return t;
+}
+
+std::unique_ptr<Rprim> EmbreeRenderDelegate::createRprim(const Token& typeId, const Path& id) {
+    if (typeId == tokens::mesh()) return std::make_unique<Mesh>(id);
+    if (typeId == tokens::sphere()) return std::make_unique<Sphere>(id);
+    return nullptr;
+}
+
+std::unique_ptr<Sprim> EmbreeRenderDelegate::createSprim(const Token& typeId, const Path& id) {
+    if (typeId == tokens::camera()) return std::make_unique<Camera>(id);
+    if (typeId == tokens::material()) return std::make_unique<Material>(id);
+    if (typeId == tokens::distantLight() || typeId == tokens::domeLight())
+        return std::make_unique<Light>(typeId, id);
+    return nullptr;
+}
+
+std::unique_ptr<Bprim> EmbreeRenderDelegate::createBprim(const Token& typeId, const Path& id) {
+    if (typeId == tokens::renderBuffer()) return std::make_unique<EmbreeRenderBuffer>(id);
+    return nullptr;
+}
+
+std::unique_ptr<RenderPass> EmbreeRenderDelegate::createRenderPass(RenderIndex* index) {
+    return std::make_unique<EmbreeRenderPass>(index, this);
+}
+
+void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
+    bool sceneDirty = _param->takeSceneDirty();
+    bool tablesDirty = _param->takeTablesDirty();
+    if (sceneDirty) {
+        rtcCommitScene(_scene);
+        ++_topCommits;
+    }
+    if (tablesDirty) {
+        // Materials sorted by path, so indices do not depend on pointer order.
+        std::vector<MaterialSource*> mats(_param->materials().begin(), _param->materials().end());
+        std::sort(mats.begin(), mats.end(), [](auto* a, auto* b) { return a->materialId() < b->materialId(); });
+        _snapshot.materials.clear();
+        std::unordered_map<Path, int> index;
+        for (MaterialSource* m : mats) {
+            index[m->materialId()] = static_cast<int>(_snapshot.materials.size());
+            _snapshot.materials.push_back(m->record());
+        }
+        for (GeometrySource* g : _param->geometry()) g->bindMaterials(index);
+        std::vector<LightSource*> lights;
+        for (LightSource* l : _param->lights())
+            if (l->enabled()) lights.push_back(l);
+        std::sort(lights.begin(), lights.end(), [](auto* a, auto* b) { return a->lightId() < b->lightId(); });
+        _snapshot.lights.clear();
+        for (LightSource* l : lights) _snapshot.lights.push_back(l->record());
+        _snapshot.usingDefaultLight = false;
+        if (_snapshot.lights.empty() && intSetting("defaultLighting", 1) != 0) {
+            // A scene without lights would render black; light it like an overcast sky
+            // (a white dome of radiance 1) and say so in the stats.
+            LightRecord dome;
+            dome.kind = LightRecord::Kind::Dome;
+            dome.radiance = glm::vec3(1.0f);
+            _snapshot.lights.push_back(dome);
+            _snapshot.usingDefaultLight = true;
+        }
+    }
+    if (sceneDirty || tablesDirty) {
+        _snapshot.geometryByInstance.clear();
+        for (GeometrySource* g : _param->geometry()) {
+            unsigned id = g->instanceId();
+            if (id == RTC_INVALID_GEOMETRY_ID) continue;
+            if (id >= _snapshot.geometryByInstance.size())
+                _snapshot.geometryByInstance.resize(id + 1, nullptr);
+            _snapshot.geometryByInstance[id] = g->record();
+        }
+    }
+}
+
+AovDescriptor EmbreeRenderDelegate::defaultAovDescriptor(const Token& aovName) const {
+    if (aovName == tokens::color()) return {Format::Float32Vec4, true, Value(glm::vec4(0.0f))};
+    if (aovName == tokens::primId()) return {Format::Int32, false, Value(-1)};
+    if (aovName == tokens::depth()) return {Format::Float32, false, Value(1.0f)};
+    return {};
+}
+
+std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescriptors() const {
+    return {
+        {"Samples per pixel", Token("convergedSamplesPerPixel"), Value(64), "samples per pixel at convergence"},
+        {"Random seed", Token("seed"), Value(0), "same seed, same image; another seed, another image"},
+        {"Max depth", Token("maxDepth"), Value(8), "bounces after the camera hit (0 = direct light only)"},
+        {"Clamp indirect", Token("clampIndirect"), Value(0.0f), "max channel value of an indirect contribution; 0 = off"},
+        {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
+        {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome"},
+        {"Dome visible to camera", Token("domeLightCameraVisibility"), Value(1), "camera rays see the dome light"},
+    };
+}
+
+void EmbreeRenderDelegate::setRenderSetting(const Token& key, const Value& value) {
+    std::lock_guard<std::mutex> lock(_settingsMutex);
+    auto it = _settings.find(key);
+    if (it != _settings.end() && it->second == value) return;
+    _settings[key] = value;
+    ++_settingsVersion;
+    if (key == Token("defaultLighting")) _param->markTablesDirty();
+}
+
+Value EmbreeRenderDelegate::renderSetting(const Token& key) const {
+    std::lock_guard<std::mutex> lock(_settingsMutex);
+    auto it = _settings.find(key);
+    return it == _settings.end() ? Value() : it->second;
+}
+
+int EmbreeRenderDelegate::intSetting(const char* key, int fallback) const {
+    auto v = getFloat(renderSetting(Token(key)));
+    return v ? static_cast<int>(*v) : fallback;
+}
+
+float EmbreeRenderDelegate::floatSetting(const char* key, float fallback) const {
+    return getFloat(renderSetting(Token(key))).value_or(fallback);
+}
+
+int EmbreeRenderDelegate::samplesPerPixel() const { return intSetting("convergedSamplesPerPixel", 64); }
+int EmbreeRenderDelegate::seed() const { return intSetting("seed", 0); }
+
+IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
+    IntegratorSettings s;
+    s.maxDepth = std::max(0, intSetting("maxDepth", 8));
+    s.clampIndirect = std::max(0.0f, floatSetting("clampIndirect", 0.0f));
+    s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
+    auto model = getString(renderSetting(Token("shadingModel")));
+    s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
+    return s;
+}
+
+void EmbreeRenderDelegate::addPassStats(long rays, long samples, long invalidSamples,
+                                        double seconds) {
+    _rays += rays;
+    _samples += samples;
+    _invalidSamples += invalidSamples;
+    double cur = _renderSeconds.load();
+    while (!_renderSeconds.compare_exchange_weak(cur, cur + seconds)) {
+    }
+}
+
+std::map<std::string, double> EmbreeRenderDelegate::renderStats() const {
+    double secs = _renderSeconds.load();
+    return {
+        {"rays", double(_rays.load())},
+        {"samples", double(_samples.load())},
+        {"invalidSamples", double(_invalidSamples.load())},
+        {"renderSeconds", secs},
+        {"mraysPerSecond", secs > 0 ? double(_rays.load()) / secs * 1e-6 : 0.0},
+        {"blasBuilds", double(_param->blasBuilds.load())},
+        {"meshesRebuilt", double(_param->meshesRebuilt.load())},
+        {"transformUpdates", double(_param->transformUpdates.load())},
+        {"topLevelCommits", double(_topCommits.load())},
+        {"defaultLight", _snapshot.usingDefaultLight ? 1.0 : 0.0},
+        {"lights", double(_snapshot.lights.size())},
+        {"materials", double(_snapshot.materials.size())},
+    };
+}
+
+}  // namespace principled::embree

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: Apache-2.0
+// EmbreeRenderDelegate: the Embree path-tracing render delegate. Creates the prims, commits
+// the two-level BVH and the material/light tables once per sync, and holds the settings.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+
+#include "delegate/embreeDevice.h"
+#include "delegate/hd/renderDelegate.h"
+#include "delegate/integrator.h"
+#include "delegate/renderParam.h"
+#include "delegate/sceneData.h"
+
+namespace principled::embree {
+
+class EmbreeRenderDelegate : public hd::RenderDelegate {
+public:
+    EmbreeRenderDelegate();
+    ~EmbreeRenderDelegate() override;
+
+    const std::vector<hd::Token>& supportedRprimTypes() const override;
+    const std::vector<hd::Token>& supportedSprimTypes() const override;
+    const std::vector<hd::Token>& supportedBprimTypes() const override;
+
+    std::unique_ptr<hd::Rprim> createRprim(const hd::Token& typeId, const hd::Path& id) override;
+    std::unique_ptr<hd::Sprim> createSprim(const hd::Token& typeId, const hd::Path& id) override;
+    std::unique_ptr<hd::Bprim> createBprim(const hd::Token& typeId, const hd::Path& id) override;
+    std::unique_ptr<hd::RenderPass> createRenderPass(hd::RenderIndex* index) override;
+
+    hd::RenderParam* renderParam() override { return _param.get(); }
+    void commitResources(hd::ChangeTracker* tracker) override;
+
+    hd::AovDescriptor defaultAovDescriptor(const hd::Token& aovName) const override;
+
+    std::vector<hd::RenderSettingDescriptor> renderSettingDescriptors() const override;
+    void setRenderSetting(const hd::Token& key, const hd::Value& value) override;
+    hd::Value renderSetting(const hd::Token& key) const override;
+    unsigned renderSettingsVersion() const override { return _settingsVersion.load(); }
+
+    std::map<std::string, double> renderStats() const override;
+
+    /// Problems found in user data since the last call (one line each, prim path first).
+    std::vector<std::string> takeWarnings() { return _param->takeWarnings(); }
+
+    // Used by the render pass.
+    const SceneSnapshot& snapshot() const { return _snapshot; }
+    IntegratorSettings integratorSettings() const;
+    int samplesPerPixel() const;
+    int seed() const;
+    void addPassStats(long rays, long samples, long invalidSamples, double seconds);
+
+private:
+    int intSetting(const char* key, int fallback) const;
+    float floatSetting(const char* key, float fallback) const;
+
+    EmbreeDevice _device;
+    RTCScene _scene = nullptr;
+    std::unique_ptr<EmbreeRenderParam> _param;
+    SceneSnapshot _snapshot;
+    mutable std::mutex _settingsMutex;
+    hd::RenderSettingsMap _settings;
+    std::atomic<unsigned> _settingsVersion{1};
+    // Stats.
+    std::atomic<long> _rays{0}, _samples{0}, _invalidSamples{0}, _topCommits{0};
+    std::atomic<double> _renderSeconds{0.0};
+};
+
+}  // namespace principled::embree

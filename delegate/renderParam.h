@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: Apache-2.0
+// EmbreeRenderParam: the delegate state prims reach during sync: the Embree device and
+// top-level scene, the registries of shaded prims and lights, and the edit counters.
+#pragma once
+
+#include <atomic>
+#include <mutex>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+#include <unordered_map>
+
+#include <embree3/rtcore.h>
+
+#include "delegate/hd/path.h"
+#include "delegate/hd/prim.h"
+#include "delegate/sceneData.h"
+
+namespace principled::embree {
+
+/// Implemented by rprims: their geometry record, their Embree instance in the top-level scene
+/// and the material bindings resolved at commit time.
+class GeometrySource {
+public:
+    virtual ~GeometrySource() = default;
+    /// Embree geomID of this prim's instance in the top-level scene (RTC_INVALID_GEOMETRY_ID if none).
+    virtual unsigned instanceId() const = 0;
+    virtual GeometryRecord* record() = 0;
+    /// Resolves material paths to indices into the material table.
+    virtual void bindMaterials(const std::unordered_map<hd::Path, int>& materialIndex) = 0;
+};
+
+/// Implemented by light sprims.
+class LightSource {
+public:
+    virtual ~LightSource() = default;
+    virtual const hd::Path& lightId() const = 0;
+    virtual const LightRecord& record() const = 0;
+    virtual bool enabled() const = 0;
+};
+
+/// Implemented by material sprims.
+class MaterialSource {
+public:
+    virtual ~MaterialSource() = default;
+    virtual const hd::Path& materialId() const = 0;
+    virtual const MaterialRecord& record() const = 0;
+};
+
+class EmbreeRenderParam : public hd::RenderParam {
+public:
+    EmbreeRenderParam(RTCDevice device, RTCScene scene) : _device(device), _scene(scene) {}
+
+    RTCDevice device() const { return _device; }
+    /// The top-level scene; rtcAttachGeometry on it is thread-safe (Embree 3.13 docs).
+    RTCScene scene() const { return _scene; }
+
+    /// Something in the top-level scene changed: commit it before the next pass.
+    void markSceneDirty() { _sceneDirty = true; }
+    bool takeSceneDirty() { return _sceneDirty.exchange(false); }
+    /// Materials or lights changed: rebuild the tables before the next pass.
+    void markTablesDirty() { _tablesDirty = true; }
+    bool takeTablesDirty() { return _tablesDirty.exchange(false); }
+
+    void add(GeometrySource* p) { std::lock_guard<std::mutex> l(_mutex); _geometry.insert(p); }
+    void remove(GeometrySource* p) { std::lock_guard<std::mutex> l(_mutex); _geometry.erase(p); }
+    void add(LightSource* p) { std::lock_guard<std::mutex> l(_mutex); _lights.insert(p); }
+    void remove(LightSource* p) { std::lock_guard<std::mutex> l(_mutex); _lights.erase(p); }
+    void add(MaterialSource* p) { std::lock_guard<std::mutex> l(_mutex); _materials.insert(p); }
+    void remove(MaterialSource* p) { std::lock_guard<std::mutex> l(_mutex); _materials.erase(p); }
+
+    const std::set<GeometrySource*>& geometry() const { return _geometry; }
+    const std::set<LightSource*>& lights() const { return _lights; }
+    const std::set<MaterialSource*>& materials() const { return _materials; }
+
+    // Counters for render stats and for tests of incremental updates.
+    std::atomic<long> blasBuilds{0};
+    std::atomic<long> meshesRebuilt{0};
+    std::atomic<long> transformUpdates{0};
+
+    /// A problem with user data found during sync (bad topology, unsupported value): the prim
+    /// is skipped or simplified and the message kept for the host to show.
+    void warn(const hd::Path& id, const std::string& message) {
+        std::lock_guard<std::mutex> l(_mutex);
+        _warnings.push_back(id.str() + ": " + message);
+    }
+    std::vector<std::string> takeWarnings() {
+        std::lock_guard<std::mutex> l(_mutex);
+        return std::exchange(_warnings, {});
+    }
+
+private:
+    RTCDevice _device;
+    RTCScene _scene;
+    std::atomic<bool> _sceneDirty{true};
+    std::atomic<bool> _tablesDirty{true};
+    std::mutex _mutex;
+    std::set<GeometrySource*> _geometry;
+    std::set<LightSource*> _lights;
+    std::set<MaterialSource*> _materials;
+    std::vector<std::string> _warnings;
+};
+
+}  // namespace principled::embree

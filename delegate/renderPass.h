@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: Apache-2.0
+// EmbreeRenderPass: the progressive render pass. Each execute() adds a batch of samples per
+// pixel over tiles scheduled on TBB and resolves the bound AOV buffers; accumulation restarts
+// when the scene, the settings, the camera, the size or the bindings change.
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "delegate/hd/renderPass.h"
+
+namespace principled::embree {
+
+class EmbreeRenderDelegate;
+
+class EmbreeRenderPass : public hd::RenderPass {
+public:
+    EmbreeRenderPass(hd::RenderIndex* index, EmbreeRenderDelegate* delegate)
+        : RenderPass(index), _delegate(delegate) {}
+
+    void execute(const hd::RenderPassState& state) override;
+    bool isConverged() const override { return _converged; }
+
+    /// Samples per pixel completed since the last restart.
+    int completedSamples() const { return _samples; }
+    /// Samples per pixel the pass converges at.
+    int targetSamples() const { return _target; }
+
+private:
+    bool needsRestart(const hd::RenderPassState& state);
+
+    EmbreeRenderDelegate* _delegate;
+    int _samples = 0;
+    int _target = 0;
+    int _passes = 0;
+    bool _converged = false;
+    // What the accumulated samples were rendered with.
+    unsigned _sceneVersion = 0, _settingsVersion = 0;
+    std::string _stateKey;
+};
+
+}  // namespace principled::embree

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: Apache-2.0
+// Kernel-facing scene records: plain structs the integrator reads during rendering. Built at
+// sync/commit time from Hydra prims; no hd types, no locks, read-only while a pass runs.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include "bsdf/bsdf.h"
+
+namespace principled::embree {
+
+/// A shading material: the BSDF parameters plus emission.
+struct MaterialRecord {
+    bsdf::MaterialParams params;
+    glm::vec3 emission{0.0f};
+    float opacity = 1.0f;
+};
+
+/// One rprim's geometry as the integrator sees it. Owned by the rprim; the Embree instance of
+/// the rprim carries a pointer to it as user data.
+struct GeometryRecord {
+    enum class Kind : uint8_t { Triangles, Sphere };
+    Kind kind = Kind::Triangles;
+    int primId = -1;
+    int materialIndex = -1;  ///< into SceneSnapshot::materials; -1 = use displayColor
+    glm::vec3 displayColor{0.18f};
+    bool doubleSided = false;
+    glm::mat4 objectToWorld{1.0f};
+    glm::mat4 worldToObject{1.0f};
+    glm::mat3 normalToWorld{1.0f};  ///< inverse transpose of objectToWorld's 3x3
+    // Triangles: object-space positions, per-corner normals (empty = flat), coarse face of
+    // each triangle (for elementId and per-face materials).
+    std::vector<glm::vec3> points;
+    std::vector<glm::uvec3> triangles;
+    std::vector<glm::vec3> cornerNormals;
+    std::vector<int> triangleFace;
+    // Sphere: centre and radius in object space.
+    glm::vec3 center{0.0f};
+    float radius = 1.0f;
+};
+
+/// A light as the integrator samples it.
+struct LightRecord {
+    enum class Kind : uint8_t { Distant, Dome };
+    Kind kind = Kind::Distant;
+    glm::vec3 radiance{1.0f};    ///< color * intensity * 2^exposure
+    glm::vec3 direction{0, 0, -1};  ///< distant: world direction the light travels
+    float cosHalfAngle = 1.0f;   ///< distant: cos of half the angular diameter (1 = delta)
+    glm::vec3 irradiance{0.0f};  ///< distant: perpendicular irradiance it delivers
+    bool visibleToCamera = true;
+};
+
+/// Everything a render pass reads: the committed top-level scene and the tables the records
+/// index. Rebuilt by the render delegate's commitResources(); immutable while a pass runs.
+struct SceneSnapshot {
+    RTCScene scene = nullptr;
+    std::vector<GeometryRecord*> geometryByInstance;  ///< indexed by Embree instance geomID
+    std::vector<MaterialRecord> materials;
+    std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
+    bool usingDefaultLight = false;                   ///< the scene had no light
+};
+
+}  // namespace principled::embree

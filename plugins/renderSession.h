@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: Apache-2.0
+// RenderSession: what a host does to render a USD stage: open it, populate a render index
+// through the scene adapter, pick a camera, bind AOV buffers, and step progressive passes.
+// The CLI, tests and host bindings share it.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace principled::usd {
+class Stage;
+}
+namespace principled::hd {
+class RenderIndex;
+class RenderPass;
+class RenderDelegate;
+}  // namespace principled::hd
+namespace principled::adapter {
+class UsdSceneDelegate;
+}
+namespace principled::embree {
+class EmbreeRenderBuffer;
+class EmbreeRenderDelegate;
+class EmbreeRenderPass;
+}  // namespace principled::embree
+
+namespace principled::host {
+
+/// A problem in what the user asked for (unknown camera, bad setting): the CLI exits 1.
+class UserError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct SessionOptions {
+    int width = 640;
+    int height = 360;
+    int samplesPerPixel = 64;
+    int seed = 0;
+    int maxDepth = 8;
+    std::string camera;           ///< prim path; empty = first camera, else a framing camera
+    std::string shadingModel = "disney";
+    double time = std::numeric_limits<double>::quiet_NaN();
+};
+
+class RenderSession {
+public:
+    /// Opens a .usda file (throws usd::Error on unreadable or malformed input).
+    static std::unique_ptr<RenderSession> openFile(const std::string& path,
+                                                   const SessionOptions& options);
+    /// Parses USDA text; displayName is used in error locations.
+    static std::unique_ptr<RenderSession> openString(const std::string& text,
+                                                     const std::string& displayName,
+                                                     const SessionOptions& options);
+    ~RenderSession();
+
+    /// Runs one progressive pass; returns true once converged.
+    bool step();
+    bool converged() const;
+    int completedSamples() const;
+    int targetSamples() const;
+
+    int width() const { return _options.width; }
+    int height() const { return _options.height; }
+    /// The color AOV: RGBA floats, top row first (alpha 1 where geometry was hit).
+    const float* color() const;
+
+    /// Scene and delegate problems found so far (each once).
+    std::vector<std::string> takeWarnings();
+    std::map<std::string, double> stats() const;
+    const std::string& cameraPath() const { return _cameraPath; }
+
+private:
+    RenderSession(std::unique_ptr<usd::Stage> stage, const SessionOptions& options);
+    void setup();
+
+    SessionOptions _options;
+    std::unique_ptr<usd::Stage> _stage;
+    std::unique_ptr<embree::EmbreeRenderDelegate> _delegate;
+    std::unique_ptr<hd::RenderIndex> _index;
+    std::unique_ptr<adapter::UsdSceneDelegate> _sceneDelegate;
+    std::unique_ptr<hd::RenderPass> _pass;
+    embree::EmbreeRenderBuffer* _color = nullptr;
+    std::string _cameraPath;
+    size_t _adapterWarningsTaken = 0;
+    size_t _stageWarningsTaken = 0;
+};
+
+}  // namespace principled::host

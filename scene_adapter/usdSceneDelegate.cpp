@@ -1,0 +1,423 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "scene_adapter/usdSceneDelegate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "delegate/hd/tokens.h"
+#include "scene_adapter/usda/stage.h"
+#include "scene_adapter/valueConvert.h"
+#include "scene_adapter/xformOps.h"
+
+namespace principled::adapter {
+
+using namespace hd;
+
+namespace {
+
+// UsdGeomCamera stores lengths in tenths of a scene unit (GfCamera::APERTURE_UNIT).
+constexpr double kCameraUnit = 0.1;
+
+std::string tokenAttr(const usd::Prim& prim, const char* name, double time,
+                      const std::string& fallback) {
+    if (const usd::Attribute* a = prim.attribute(name))
+        if (auto s = a->get(time).getString()) return *s;
+    return fallback;
+}
+
+const std::set<std::string>& ignoredTypes() {
+    static const std::set<std::string> t{"",        "Xform",    "Scope",         "Shader",
+                                         "NodeGraph", "GeomSubset", "SkelRoot",  "RenderSettings",
+                                         "RenderProduct", "RenderVar", "Material"};
+    return t;
+}
+
+Interpolation parseInterpolation(const std::string& s, Interpolation fallback) {
+    if (s == "constant") return Interpolation::Constant;
+    if (s == "uniform") return Interpolation::Uniform;
+    if (s == "varying") return Interpolation::Varying;
+    if (s == "vertex") return Interpolation::Vertex;
+    if (s == "faceVarying") return Interpolation::FaceVarying;
+    return fallback;
+}
+
+Interpolation attributeInterpolation(const usd::Attribute& a, Interpolation fallback) {
+    if (const usd::Value* m = a.metadata("interpolation"))
+        if (auto s = m->getString()) return parseInterpolation(*s, fallback);
+    return fallback;
+}
+
+// "/Mat/Shader.outputs:rgb" -> ("/Mat/Shader", "outputs:rgb").
+std::pair<std::string, std::string> splitProperty(const std::string& path) {
+    size_t slash = path.rfind('/');
+    size_t dot = path.find('.', slash == std::string::npos ? 0 : slash);
+    if (dot == std::string::npos) return {path, ""};
+    return {path.substr(0, dot), path.substr(dot + 1)};
+}
+
+std::string stripNamespace(const std::string& name, const std::string& ns) {
+    return name.rfind(ns, 0) == 0 ? name.substr(ns.size()) : name;
+}
+
+}  // namespace
+
+UsdSceneDelegate::UsdSceneDelegate(const usd::Stage& stage, const AdapterOptions& options)
+    : _stage(stage), _options(options) {
+    _time = std::isnan(options.time) ? stage.defaultTime() : options.time;
+}
+
+UsdSceneDelegate::~UsdSceneDelegate() = default;
+
+void UsdSceneDelegate::warn(const std::string& where, const std::string& message) {
+    _warnings.push_back(where + ": " + message);
+}
+
+void UsdSceneDelegate::populate(RenderIndex* index) {
+    const usd::Prim* root = _stage.pseudoRoot();
+    if (!root) return;
+    for (const usd::Prim* child : root->children()) visit(*child, glm::dmat4(1.0), true, index);
+}
+
+void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorld,
+                             bool parentVisible, RenderIndex* index) {
+    if (!prim.isActive() || prim.isAbstract()) return;
+    std::string purpose = tokenAttr(prim, "purpose", _time, "default");
+    if (purpose == "guide" || purpose == "proxy") return;  // render purpose only
+
+    std::string warning;
+    LocalTransform local = computeLocalTransform(prim, _time, &warning);
+    if (!warning.empty()) warn(prim.location().str() + ": " + prim.path(), warning);
+    glm::dmat4 world = local.resetsXformStack ? local.matrix : parentWorld * local.matrix;
+    bool visible = parentVisible && tokenAttr(prim, "visibility", _time, "inherited") != "invisible";
+
+    const std::string& type = prim.typeName();
+    Path id(prim.path());
+    Token hdType;
+    bool isRprim = false;
+    if (type == "Mesh") hdType = tokens::mesh(), isRprim = true;
+    else if (type == "Sphere") hdType = tokens::sphere(), isRprim = true;
+    else if (type == "Camera") hdType = tokens::camera();
+    else if (type == "Material") hdType = tokens::material();
+    else if (type == "DistantLight") hdType = tokens::distantLight();
+    else if (type == "DomeLight" || type == "DomeLight_1") hdType = tokens::domeLight();
+    else if (!ignoredTypes().count(type))
+        warn(prim.location().str() + ": " + prim.path(),
+             "prim type '" + type + "' is not supported yet; skipped");
+
+    if (!hdType.empty() && prim.isDefined()) {
+        Entry e;
+        e.prim = &prim;
+        e.type = hdType;
+        e.world = world;
+        e.visible = visible;
+        if (isRprim) e.material = resolveMaterialBinding(prim);
+        bool inserted = isRprim ? index->insertRprim(hdType, this, id)
+                                : index->insertSprim(hdType, this, id);
+        if (inserted) {
+            _entries[id] = e;
+            if (hdType == tokens::camera()) _cameras.push_back(id);
+        }
+    }
+    for (const usd::Prim* child : prim.children()) visit(*child, world, visible, index);
+}
+
+Path UsdSceneDelegate::resolveMaterialBinding(const usd::Prim& start) const {
+    // The nearest binding wins, walking up the namespace; the "full" purpose (final-quality
+    // renders) is preferred over the all-purpose binding on the same prim.
+    for (const usd::Prim* p = &start; p; p = p->parent()) {
+        for (const char* rel : {"material:binding:full", "material:binding"}) {
+            const usd::Relationship* r = p->relationship(rel);
+            if (!r || r->targets().empty()) continue;
+            const std::string& target = r->targets().front();
+            const usd::Prim* m = _stage.prim(target);
+            if (!m || m->typeName() != "Material") {
+                const_cast<UsdSceneDelegate*>(this)->warn(
+                    r->location().str() + ": " + start.path(),
+                    "material:binding targets '" + target + "', which is not a Material");
+                return Path();
+            }
+            return Path(target);
+        }
+    }
+    return Path();
+}
+
+const UsdSceneDelegate::Entry* UsdSceneDelegate::entry(const Path& id) const {
+    auto it = _entries.find(id);
+    return it == _entries.end() ? nullptr : &it->second;
+}
+
+const usd::Prim* UsdSceneDelegate::prim(const Path& id) const {
+    const Entry* e = entry(id);
+    return e ? e->prim : nullptr;
+}
+
+Value UsdSceneDelegate::attributeValue(const usd::Prim& p, const std::string& name) const {
+    const usd::Attribute* a = p.attribute(name);
+    if (!a || !a->hasValue()) return {};
+    return toHdValue(a->get(_time));
+}
+
+MeshTopology UsdSceneDelegate::getMeshTopology(const Path& id) const {
+    MeshTopology t;
+    const usd::Prim* p = prim(id);
+    if (!p) return t;
+    auto ints = [&](const char* name) {
+        Value v = attributeValue(*p, name);
+        if (auto* a = getIf<std::vector<int>>(v)) return *a;
+        return std::vector<int>();
+    };
+    t.faceVertexCounts = ints("faceVertexCounts");
+    t.faceVertexIndices = ints("faceVertexIndices");
+    t.holeIndices = ints("holeIndices");
+    t.scheme = Token(tokenAttr(*p, "subdivisionScheme", _time, "catmullClark"));
+    t.orientation = Token(tokenAttr(*p, "orientation", _time, "rightHanded"));
+    t.refineLevel = _options.refineLevel;
+    return t;
+}
+
+SubdivTags UsdSceneDelegate::getSubdivTags(const Path& id) const {
+    SubdivTags s;
+    const usd::Prim* p = prim(id);
+    if (!p) return s;
+    s.interpolateBoundary = Token(tokenAttr(*p, "interpolateBoundary", _time, "edgeAndCorner"));
+    s.faceVaryingLinearInterpolation =
+        Token(tokenAttr(*p, "faceVaryingLinearInterpolation", _time, "cornersPlus1"));
+    s.triangleSubdivisionRule =
+        Token(tokenAttr(*p, "triangleSubdivisionRule", _time, "catmullClark"));
+    auto ints = [&](const char* name) {
+        Value v = attributeValue(*p, name);
+        auto* a = getIf<std::vector<int>>(v);
+        return a ? *a : std::vector<int>();
+    };
+    auto floats = [&](const char* name) {
+        Value v = attributeValue(*p, name);
+        auto* a = getIf<std::vector<float>>(v);
+        return a ? *a : std::vector<float>();
+    };
+    s.creaseIndices = ints("creaseIndices");
+    s.creaseLengths = ints("creaseLengths");
+    s.creaseSharpnesses = floats("creaseSharpnesses");
+    s.cornerIndices = ints("cornerIndices");
+    s.cornerSharpnesses = floats("cornerSharpnesses");
+    return s;
+}
+
+glm::dmat4 UsdSceneDelegate::getTransform(const Path& id) const {
+    if (id == _defaultCamera) return _defaultCameraXform;
+    const Entry* e = entry(id);
+    return e ? e->world : glm::dmat4(1.0);
+}
+
+bool UsdSceneDelegate::getVisible(const Path& id) const {
+    const Entry* e = entry(id);
+    return e ? e->visible : true;
+}
+
+bool UsdSceneDelegate::getDoubleSided(const Path& id) const {
+    const usd::Prim* p = prim(id);
+    if (!p) return false;
+    Value v = attributeValue(*p, "doubleSided");
+    auto* b = getIf<bool>(v);
+    return b && *b;
+}
+
+Value UsdSceneDelegate::get(const Path& id, const Token& key) const {
+    const usd::Prim* p = prim(id);
+    if (!p) return {};
+    const std::string& k = key.str();
+    if (k == "points" || k == "radius") return attributeValue(*p, k);
+    if (k == "normals") {
+        Value v = attributeValue(*p, "primvars:normals");
+        return isEmpty(v) ? attributeValue(*p, "normals") : v;
+    }
+    Value v = attributeValue(*p, "primvars:" + k);
+    return isEmpty(v) ? attributeValue(*p, k) : v;
+}
+
+Value UsdSceneDelegate::getIndexedPrimvar(const Path& id, const Token& key,
+                                          std::vector<int>* indices) const {
+    indices->clear();
+    const usd::Prim* p = prim(id);
+    if (!p) return {};
+    std::string name = "primvars:" + key.str();
+    if (p->attribute(name)) {
+        Value idx = attributeValue(*p, name + ":indices");
+        if (auto* a = getIf<std::vector<int>>(idx)) *indices = *a;
+    }
+    return get(id, key);
+}
+
+std::vector<PrimvarDescriptor> UsdSceneDelegate::getPrimvarDescriptors(const Path& id,
+                                                                       Interpolation interp) const {
+    std::vector<PrimvarDescriptor> out;
+    const usd::Prim* p = prim(id);
+    if (!p) return out;
+    bool primvarNormals = false;
+    for (const usd::Attribute* a : p->attributes()) {
+        const std::string& n = a->name();
+        if (n.rfind("primvars:", 0) != 0) continue;
+        if (n.size() > 8 && n.compare(n.size() - 8, 8, ":indices") == 0) continue;
+        if (!a->hasValue()) continue;
+        std::string name = stripNamespace(n, "primvars:");
+        if (name == "normals") primvarNormals = true;
+        Interpolation i = attributeInterpolation(*a, Interpolation::Constant);
+        if (i != interp) continue;
+        PrimvarDescriptor d;
+        d.name = Token(name);
+        d.interpolation = i;
+        d.indexed = p->attribute(n + ":indices") != nullptr;
+        out.push_back(d);
+    }
+    // UsdGeomPointBased "normals": vertex interpolation unless authored otherwise.
+    if (!primvarNormals)
+        if (const usd::Attribute* a = p->attribute("normals"); a && a->hasValue())
+            if (attributeInterpolation(*a, Interpolation::Vertex) == interp)
+                out.push_back({tokens::normals(), interp, Token("normal"), false});
+    return out;
+}
+
+Path UsdSceneDelegate::getMaterialId(const Path& id) const {
+    const Entry* e = entry(id);
+    return e ? e->material : Path();
+}
+
+MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) const {
+    MaterialNetwork net;
+    const usd::Prim* mat = prim(materialId);
+    if (!mat) return net;
+    // Follows a connection to its source: through material/node-graph interface inputs to a
+    // shader output. Returns the shader prim path and output name, or the interface value.
+    auto resolve = [&](std::string target, Value* interfaceValue) -> std::pair<std::string, std::string> {
+        for (int hop = 0; hop < 32; ++hop) {
+            auto [primPath, prop] = splitProperty(target);
+            const usd::Prim* up = _stage.prim(primPath);
+            if (!up) return {"", ""};
+            if (up->typeName() == "Shader") return {primPath, stripNamespace(prop, "outputs:")};
+            const usd::Attribute* a = up->attribute(prop);
+            if (!a) return {"", ""};
+            if (!a->connections().empty()) {
+                target = a->connections().front();
+                continue;
+            }
+            if (a->hasValue()) *interfaceValue = toHdValue(a->get(_time));
+            return {"", ""};
+        }
+        return {"", ""};  // a connection cycle: treat as unconnected
+    };
+    std::vector<std::string> stack;
+    std::set<std::string> seen;
+    if (const usd::Attribute* surf = mat->attribute("outputs:surface");
+        surf && !surf->connections().empty()) {
+        Value unused;
+        auto [shader, output] = resolve(surf->connections().front(), &unused);
+        if (!shader.empty()) {
+            net.surfaceTerminal = Path(shader);
+            stack.push_back(shader);
+        }
+    }
+    std::vector<MaterialNode> ordered;
+    while (!stack.empty()) {
+        std::string path = stack.back();
+        stack.pop_back();
+        if (!seen.insert(path).second) continue;
+        const usd::Prim* sh = _stage.prim(path);
+        if (!sh) continue;
+        MaterialNode node;
+        node.path = Path(path);
+        node.identifier = Token(tokenAttr(*sh, "info:id", _time, ""));
+        for (const usd::Attribute* a : sh->attributes()) {
+            if (a->name().rfind("inputs:", 0) != 0) continue;
+            Token input(stripNamespace(a->name(), "inputs:"));
+            if (a->hasValue()) node.parameters[input] = toHdValue(a->get(_time));
+            for (const std::string& c : a->connections()) {
+                Value iface;
+                auto [up, output] = resolve(c, &iface);
+                if (!up.empty()) {
+                    node.inputConnections[input].push_back({Path(up), Token(output)});
+                    stack.push_back(up);
+                } else if (!isEmpty(iface)) {
+                    node.parameters[input] = iface;
+                }
+            }
+        }
+        ordered.push_back(std::move(node));
+    }
+    // Upstream nodes first.
+    net.nodes.assign(ordered.rbegin(), ordered.rend());
+    return net;
+}
+
+Value UsdSceneDelegate::getLightParamValue(const Path& id, const Token& param) const {
+    const usd::Prim* p = prim(id);
+    if (!p) return {};
+    Value v = attributeValue(*p, "inputs:" + param.str());
+    return isEmpty(v) ? attributeValue(*p, param.str()) : v;  // pre-2021 names had no prefix
+}
+
+Value UsdSceneDelegate::getCameraParamValue(const Path& id, const Token& param) const {
+    const std::string& k = param.str();
+    bool isLength = k == "focalLength" || k == "horizontalAperture" || k == "verticalAperture" ||
+                    k == "horizontalApertureOffset" || k == "verticalApertureOffset";
+    if (id == _defaultCamera) {
+        if (k == "focalLength") return Value(_defaultCameraFocal);
+        if (k == "clippingRange") return Value(_defaultCameraClip);
+        return {};
+    }
+    const usd::Prim* p = prim(id);
+    if (!p) return {};
+    Value v = attributeValue(*p, k);
+    if (isLength)
+        if (auto f = getFloat(v)) return Value(static_cast<float>(*f * kCameraUnit));
+    return v;
+}
+
+Path UsdSceneDelegate::addDefaultCamera(RenderIndex* index, double aspect) {
+    if (!_defaultCamera.empty()) return _defaultCamera;
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    auto grow = [&](const glm::dmat4& m, const glm::dvec3& p) {
+        glm::dvec3 w = glm::dvec3(m * glm::dvec4(p, 1.0));
+        if (std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z)) {
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+    };
+    for (const auto& [id, e] : _entries) {
+        if (e.type == tokens::mesh()) {
+            Value v = get(id, tokens::points());
+            if (auto* pts = getIf<std::vector<glm::vec3>>(v))
+                for (const auto& p : *pts) grow(e.world, glm::dvec3(p));
+        } else if (e.type == tokens::sphere()) {
+            double r = getFloat(get(id, tokens::radius())).value_or(1.0f);
+            for (int c = 0; c < 8; ++c)
+                grow(e.world, glm::dvec3(c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? r : -r));
+        }
+    }
+    if (lo.x > hi.x) lo = glm::dvec3(-1.0), hi = glm::dvec3(1.0);
+    glm::dvec3 center = 0.5 * (lo + hi);
+    double radius = std::max(1e-6, 0.5 * glm::length(hi - lo));
+    bool zUp = _stage.upAxis() == "Z";
+    glm::dvec3 up = zUp ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+    // From the front (+Z for Y-up, -Y for Z-up), raised by about 20 degrees.
+    glm::dvec3 dir = glm::normalize(zUp ? glm::dvec3(0, -1, 0.35) : glm::dvec3(0, 0.35, 1));
+    // Fit the bounding sphere inside the narrower field of view (fallback apertures).
+    double vHalf = std::atan(0.5 * 1.52908 / 5.0);
+    double hHalf = std::atan(std::tan(vHalf) * std::max(aspect, 1e-3));
+    double half = std::min(vHalf, hHalf);
+    double dist = 1.1 * radius / std::sin(half);
+    glm::dvec3 eye = center + dir * dist;
+    _defaultCameraClip = glm::vec2(float(dist * 1e-3), float((dist + radius) * 100.0));
+    _defaultCameraXform = glm::inverse(glm::lookAt(eye, center, up));
+    _defaultCamera = Path("/__principled/defaultCamera");
+    Entry e;
+    e.type = tokens::camera();
+    e.world = _defaultCameraXform;
+    _entries[_defaultCamera] = e;
+    index->insertSprim(tokens::camera(), this, _defaultCamera);
+    return _defaultCamera;
+}
+
+}  // namespace principled::adapter

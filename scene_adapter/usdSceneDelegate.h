@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: Apache-2.0
+// UsdSceneDelegate: serves a composed USD stage to a render index. populate() inserts one prim
+// per renderable USD prim (meshes, spheres, cameras, materials, lights); the pull methods answer
+// from the stage at the delegate's time code.
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "delegate/hd/renderIndex.h"
+#include "delegate/hd/sceneDelegate.h"
+
+namespace principled::usd {
+class Stage;
+class Prim;
+}  // namespace principled::usd
+
+namespace principled::adapter {
+
+struct AdapterOptions {
+    double time = std::numeric_limits<double>::quiet_NaN();  ///< NaN: the stage's default time
+    int refineLevel = 0;
+};
+
+class UsdSceneDelegate : public hd::SceneDelegate {
+public:
+    /// The stage must outlive the delegate.
+    UsdSceneDelegate(const usd::Stage& stage, const AdapterOptions& options = {});
+    ~UsdSceneDelegate() override;
+
+    /// Inserts every renderable prim into the index. Unsupported prims are reported by
+    /// warnings() and skipped.
+    void populate(hd::RenderIndex* index);
+
+    /// Camera prims found, in stage order.
+    const std::vector<hd::Path>& cameras() const { return _cameras; }
+    /// Adds (once) a camera framing the world bounds of the populated geometry, looking along
+    /// the stage's horizontal axis from the front and slightly above; returns its id.
+    hd::Path addDefaultCamera(hd::RenderIndex* index, double aspect);
+
+    /// Problems found while populating (prim path first).
+    const std::vector<std::string>& warnings() const { return _warnings; }
+
+    hd::MeshTopology getMeshTopology(const hd::Path& id) const override;
+    hd::SubdivTags getSubdivTags(const hd::Path& id) const override;
+    glm::dmat4 getTransform(const hd::Path& id) const override;
+    bool getVisible(const hd::Path& id) const override;
+    bool getDoubleSided(const hd::Path& id) const override;
+    hd::Value get(const hd::Path& id, const hd::Token& key) const override;
+    hd::Value getIndexedPrimvar(const hd::Path& id, const hd::Token& key,
+                                std::vector<int>* indices) const override;
+    std::vector<hd::PrimvarDescriptor> getPrimvarDescriptors(
+        const hd::Path& id, hd::Interpolation interp) const override;
+    hd::Path getMaterialId(const hd::Path& id) const override;
+    hd::MaterialNetwork getMaterialResource(const hd::Path& materialId) const override;
+    hd::Value getLightParamValue(const hd::Path& id, const hd::Token& param) const override;
+    hd::Value getCameraParamValue(const hd::Path& id, const hd::Token& param) const override;
+
+private:
+    struct Entry {
+        const usd::Prim* prim = nullptr;
+        hd::Token type;
+        glm::dmat4 world{1.0};
+        bool visible = true;
+        hd::Path material;
+    };
+
+    void visit(const usd::Prim& prim, const glm::dmat4& parentWorld, bool parentVisible,
+               hd::RenderIndex* index);
+    const Entry* entry(const hd::Path& id) const;
+    const usd::Prim* prim(const hd::Path& id) const;
+    hd::Value attributeValue(const usd::Prim& prim, const std::string& name) const;
+    hd::Path resolveMaterialBinding(const usd::Prim& prim) const;
+    void warn(const std::string& where, const std::string& message);
+
+    const usd::Stage& _stage;
+    AdapterOptions _options;
+    double _time;
+    std::unordered_map<hd::Path, Entry> _entries;
+    std::vector<hd::Path> _cameras;
+    std::vector<std::string> _warnings;
+    hd::Path _defaultCamera;
+    glm::dmat4 _defaultCameraXform{1.0};
+    float _defaultCameraFocal = 5.0f;
+    glm::vec2 _defaultCameraClip{1.0f, 1e6f};
+};
+
+}  // namespace principled::adapter

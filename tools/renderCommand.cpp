@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/renderCommand.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <regex>
+
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+#include "delegate/imageWriter.h"
+#include "plugins/renderSession.h"
+#include "scene_adapter/usda/error.h"
+#include "tools/defaultScene.h"
+#include "tools/progressBar.h"
+
+namespace principled::tools {
+
+namespace {
+
+struct RenderArgs {
+    std::string scene;
+    std::vector<std::string> outputs;
+    int spp = 64;
+    std::string res = "640x360";
+    int seed = 0;
+    int threads = 0;
+    int maxDepth = 8;
+    std::string camera;
+    std::string model = "disney";
+    std::string statsPath;
+    bool quiet = false;
+};
+
+int fail(const std::string& message) {
+    std::fprintf(stderr, "principled: error: %s\n", message.c_str());
+    return 1;
+}
+
+int runRender(const RenderArgs& a) {
+    host::SessionOptions o;
+    std::smatch m;
+    static const std::regex resPattern(R"(^(\d{1,5})x(\d{1,5})$)");
+    if (!std::regex_match(a.res, m, resPattern))
+        return fail("--res must look like WIDTHxHEIGHT (e.g. 640x360), not '" + a.res + "'");
+    o.width = std::stoi(m[1]);
+    o.height = std::stoi(m[2]);
+    o.samplesPerPixel = a.spp;
+    o.seed = a.seed;
+    o.maxDepth = a.maxDepth;
+    o.camera = a.camera;
+    o.shadingModel = a.model;
+    for (const auto& out : a.outputs) {
+        auto ext = std::filesystem::path(out).extension().string();
+        if (ext != ".exr" && ext != ".png")
+            return fail(out + ": output must end in .exr or .png");
+    }
+    std::unique_ptr<tbb::global_control> threadLimit;
+    if (a.threads > 0)
+        threadLimit = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, size_t(a.threads));
+
+    auto t0 = std::chrono::steady_clock::now();
+    std::unique_ptr<host::RenderSession> session;
+    try {
+        session = a.scene.empty()
+                      ? host::RenderSession::openString(kDefaultSceneUsda, "<default scene>", o)
+                      : host::RenderSession::openFile(a.scene, o);
+    } catch (const usd::Error& e) {
+        return fail(e.what());
+    } catch (const host::UserError& e) {
+        return fail(e.what());
+    }
+    double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    auto report = [&] {
+        for (const auto& w : session->takeWarnings())
+            if (!a.quiet) std::fprintf(stderr, "principled: warning: %s\n", w.c_str());
+    };
+    report();
+    if (!a.quiet && session->stats()["defaultLight"] > 0.0)
+        std::fprintf(stderr, "principled: note: the scene has no lights; lighting it with a white dome (radiance 1)\n");
+
+    ProgressBar bar("render", !a.quiet);
+    auto t1 = std::chrono::steady_clock::now();
+    while (!session->step())
+        bar.update(session->completedSamples(), session->targetSamples(),
+                   std::to_string(session->completedSamples()) + "/" +
+                       std::to_string(session->targetSamples()) + " spp");
+    bar.update(1, 1, std::to_string(session->completedSamples()) + "/" +
+                         std::to_string(session->targetSamples()) + " spp");
+    bar.finish();
+    double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    report();
+
+    for (const auto& out : a.outputs) {
+        std::error_code ec;
+        auto dir = std::filesystem::path(out).parent_path();
+        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+        std::string error;
+        embree::ImageLayer color{"", {"R", "G", "B", "A"}, session->color()};
+        if (!embree::writeImage(out, session->width(), session->height(), {color}, &error))
+            return fail(error);
+    }
+    if (!a.statsPath.empty()) {
+        nlohmann::json j;
+        j["scene"] = a.scene.empty() ? "<default scene>" : a.scene;
+        j["width"] = session->width();
+        j["height"] = session->height();
+        j["samplesPerPixel"] = session->completedSamples();
+        j["camera"] = session->cameraPath();
+        j["loadSeconds"] = loadSeconds;
+        j["renderWallSeconds"] = renderSeconds;
+        for (const auto& [k, v] : session->stats()) j["delegate"][k] = v;
+        std::ofstream f(a.statsPath);
+        if (!f) return fail(a.statsPath + ": cannot write the stats file");
+        f << j.dump(2) << "\n";
+    }
+    if (!a.quiet)
+        std::fprintf(stderr, "principled: rendered %dx%d at %d spp in %.2fs (%.1f Mrays/s)\n",
+                     session->width(), session->height(), session->completedSamples(),
+                     renderSeconds, session->stats()["mraysPerSecond"]);
+    return 0;
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app, int* exitCode) {
+    auto args = std::make_shared<RenderArgs>();
+    auto* cmd = app.add_subcommand("render", "Render a .usda stage (default: the built-in scene)");
+    cmd->add_option("scene", args->scene, "USDA file; omitted: the built-in default scene");
+    cmd->add_option("-o,--output", args->outputs, "Output image(s): .exr (linear float) or .png (sRGB)")
+        ->required();
+    cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--res", args->res, "Resolution WIDTHxHEIGHT");
+    cmd->add_option("--seed", args->seed, "Random seed (same seed, same image)");
+    cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
+    cmd->add_option("--max-depth", args->maxDepth, "Bounces after the camera hit")->check(CLI::Range(0, 1024));
+    cmd->add_option("--camera", args->camera, "Camera prim path (default: the first camera)");
+    cmd->add_option("--model", args->model, "Shading model: disney or ue4");
+    cmd->add_option("--stats", args->statsPath, "Write render statistics as JSON");
+    cmd->add_flag("-q,--quiet", args->quiet, "No progress bar, warnings or summary");
+    cmd->callback([args, exitCode] { *exitCode = runRender(*args); });
+}
+
+}  // namespace principled::tools

@@ -1,0 +1,596 @@
+// SPDX-License-Identifier: Apache-2.0
+// Follows the structure of Pcp (pxr/usd/pcp/primIndex.cpp) in a much reduced form: no
+// relocations, no instancing (instanceable prims are expanded like any other), no implied
+// class arcs across references, ancestral arcs weaker than direct arcs of the same kind.
+#include "scene_adapter/usda/composer.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <unordered_set>
+
+#include "scene_adapter/usda/assetResolver.h"
+#include "scene_adapter/usda/parser.h"
+#include "scene_adapter/usda/path.h"
+
+namespace principled::usd {
+
+namespace {
+// Nodes one prim index may hold: far above real assets (tens), low enough that an adversarial
+// diamond of references cannot exhaust memory.
+constexpr std::size_t kMaxNodesPerPrim = 4096;
+// Composed prims one stage may hold (16M).
+constexpr std::size_t kMaxPrims = std::size_t(1) << 24;
+
+std::string describeSite(const LayerStack* stack, std::string_view site) {
+    return stack->identifier + "<" + std::string(site) + ">";
+}
+
+template <class T, class Get>
+std::vector<T> composeListOp(const std::vector<const PrimSpec*>& strongFirst, Get get) {
+    std::vector<T> result;
+    for (auto it = strongFirst.rbegin(); it != strongFirst.rend(); ++it) get(**it).applyTo(result);
+    return result;
+}
+}  // namespace
+
+bool LayerStack::hasPrim(std::string_view site) const {
+    for (const Layer* layer : layers)
+        if (layer->prim(site)) return true;
+    return false;
+}
+
+void PrimIndexNode::addChild(std::unique_ptr<PrimIndexNode> child) {
+    child->parent = this;
+    auto pos = std::find_if(children.begin(), children.end(),
+                            [&](const auto& c) { return c->arc > child->arc; });
+    children.insert(pos, std::move(child));
+}
+
+Composer::Composer(Stage& stage, const StageOptions& options) : _stage(stage), _options(options) {}
+Composer::~Composer() = default;
+
+void Composer::warn(const SourceLocation& where, std::string message,
+                    Diagnostic::Severity severity) {
+    Diagnostic d{where, std::move(message), severity};
+    if (_reported.insert(d.str()).second) _stage._warnings.push_back(std::move(d));
+}
+
+const Layer* Composer::loadLayer(const std::string& absolutePath, const std::string& displayName) {
+    auto it = _layers.find(absolutePath);
+    if (it != _layers.end()) return it->second.get();
+    if (_layers.size() + _anonymous.size() >= _options.maxLayers)
+        throw Error({displayName, 0, 0}, "too many layers (StageOptions::maxLayers = " +
+                                             std::to_string(_options.maxLayers) + ")");
+    std::string text = readLayerText(absolutePath);
+    std::unique_ptr<Layer> layer = parseLayer(text, displayName, directoryOf(absolutePath));
+    const Layer* raw = layer.get();
+    _layers.emplace(absolutePath, std::move(layer));
+    _stage._layerFiles.push_back(displayName);
+    return raw;
+}
+
+const LayerStack* Composer::loadStack(const Layer* root) {
+    auto it = _stacks.find(root);
+    if (it != _stacks.end()) return it->second.get();
+    auto stack = std::make_unique<LayerStack>();
+    stack->identifier = root->file;
+    std::vector<const Layer*> chain;
+    addToStack(*stack, root, LayerOffset{}, chain);
+    const LayerStack* raw = stack.get();
+    _stacks.emplace(root, std::move(stack));
+    return raw;
+}
+
+void Composer::addToStack(LayerStack& stack, const Layer* layer, LayerOffset offset,
+                          std::vector<const Layer*>& chain) {
+    stack.layers.push_back(layer);
+    stack.offsets.push_back(offset);
+    chain.push_back(layer);
+    for (const SubLayer& sub : layer->subLayers) {
+        if (sub.resolvedPath.empty()) {
+            warn(sub.location, "sublayer @" + sub.assetPath + "@ not found (relative to " +
+                                   layer->anchorDir + ")");
+            continue;
+        }
+        const Layer* subLayer = nullptr;
+        try {
+            subLayer = loadLayer(sub.resolvedPath, sub.resolvedPath);
+        } catch (const Error& e) {
+            warn(sub.location, "cannot load sublayer @" + sub.assetPath + "@: " + e.what(),
+                 Diagnostic::Severity::Error);
+            continue;
+        }
+        if (std::find(chain.begin(), chain.end(), subLayer) != chain.end()) {
+            std::string cycle;
+            for (const Layer* l : chain) cycle += l->file + " -> ";
+            warn(sub.location, "sublayer cycle: " + cycle + subLayer->file,
+                 Diagnostic::Severity::Error);
+            continue;
+        }
+        addToStack(stack, subLayer, offset.compose(sub.offset), chain);
+    }
+    chain.pop_back();
+}
+
+void Composer::composeFile(const std::string& path) {
+    std::error_code ec;
+    std::string absolute = std::filesystem::absolute(path, ec).lexically_normal().string();
+    if (ec) absolute = path;
+    compose(loadLayer(absolute, path));
+}
+
+void Composer::composeText(std::string_view text, const std::string& displayName) {
+    _anonymous.push_back(parseLayer(text, displayName, currentDirectory()));
+    _stage._layerFiles.push_back(displayName);
+    compose(_anonymous.back().get());
+}
+
+void Composer::compose(const Layer* rootLayer) {
+    Stage& s = _stage;
+    s._layerMetadata = rootLayer->metadata;
+    s._defaultPrim = rootLayer->defaultPrim();
+    if (const Value* v = rootLayer->field("upAxis"))
+        if (auto t = v->getString()) s._upAxis = *t;
+    auto number = [&](const char* key, double& out, bool* authored) {
+        if (const Value* v = rootLayer->field(key))
+            if (auto d = v->getDouble()) {
+                out = *d;
+                if (authored) *authored = true;
+            }
+    };
+    number("metersPerUnit", s._metersPerUnit, nullptr);
+    number("startTimeCode", s._startTimeCode, &s._hasStart);
+    number("endTimeCode", s._endTimeCode, &s._hasEnd);
+    number("framesPerSecond", s._framesPerSecond, nullptr);
+    s._timeCodesPerSecond = s._framesPerSecond;
+    number("timeCodesPerSecond", s._timeCodesPerSecond, nullptr);
+
+    _rootStack = loadStack(rootLayer);
+
+    auto root = std::make_unique<Prim>();
+    root->_path = "/";
+    root->_defined = true;
+    root->_location = {rootLayer->file, 0, 0};
+    Prim* rootPrim = root.get();
+    s._root = rootPrim;
+    s._index["/"] = rootPrim;
+    s._prims.push_back(std::move(root));
+
+    std::vector<std::string> names;
+    std::unordered_set<std::string> seen;
+    for (auto it = _rootStack->layers.rbegin(); it != _rootStack->layers.rend(); ++it)
+        for (const auto& p : (*it)->rootPrims)
+            if (seen.insert(p->name).second) names.push_back(p->name);
+    for (auto it = _rootStack->layers.rbegin(); it != _rootStack->layers.rend(); ++it)
+        if ((*it)->rootPrimOrder) {
+            ListOp<std::string> op;
+            op.set(ListOpKind::Reorder, *(*it)->rootPrimOrder);
+            op.applyTo(names);
+        }
+    composeChildren(*rootPrim, nullptr, names);
+}
+
+std::unique_ptr<PrimIndexNode> Composer::derive(const Node& source, std::string_view name,
+                                                Node* parent) {
+    auto n = std::make_unique<Node>();
+    n->stack = source.stack;
+    n->site = path::child(source.site, name);
+    n->arc = source.arc;
+    n->map = source.map;
+    n->offset = source.offset;
+    n->arcLocation = source.arcLocation;
+    n->parent = parent;
+    for (const auto& c : source.children)
+        if (auto d = derive(*c, name, n.get())) n->children.push_back(std::move(d));
+    if (parent && n->children.empty() && !n->stack->hasPrim(n->site)) return nullptr;
+    ++_nodeCount;
+    return n;
+}
+
+std::vector<const PrimSpec*> Composer::specsAt(const Node& node) {
+    std::vector<const PrimSpec*> out;
+    for (const Layer* layer : node.stack->layers)
+        if (const PrimSpec* s = layer->prim(node.site)) out.push_back(s);
+    return out;
+}
+
+bool Composer::reserveNode(const SourceLocation& where) {
+    if (++_nodeCount <= kMaxNodesPerPrim) return true;
+    warn(where, "composition too complex: more than " + std::to_string(kMaxNodesPerPrim) +
+                    " arcs contribute to one prim; further arcs are ignored",
+         Diagnostic::Severity::Error);
+    return false;
+}
+
+void Composer::expandArcs(Node& node) {
+    std::vector<const PrimSpec*> specs = specsAt(node);
+    if (specs.empty()) return;
+    for (const PathItem& item :
+         composeListOp<PathItem>(specs, [](const PrimSpec& s) -> auto& { return s.inherits; }))
+        addClassArc(node, item, Arc::Inherit);
+    for (const Reference& r :
+         composeListOp<Reference>(specs, [](const PrimSpec& s) -> auto& { return s.references; }))
+        addReferenceArc(node, r, Arc::Reference);
+    for (const Reference& r :
+         composeListOp<Reference>(specs, [](const PrimSpec& s) -> auto& { return s.payloads; }))
+        addReferenceArc(node, r, Arc::Payload);
+    for (const PathItem& item : composeListOp<PathItem>(
+             specs, [](const PrimSpec& s) -> auto& { return s.specializes; }))
+        addClassArc(node, item, Arc::Specialize);
+}
+
+bool Composer::reportCycle(const Node& from, const LayerStack* stack, const std::string& site,
+                           const SourceLocation& where, const char* arcName) {
+    for (const Node* a = &from; a; a = a->parent) {
+        if (a->stack != stack) continue;
+        std::string as = path::stripVariants(a->site);
+        if (!path::hasPrefix(as, site) && !path::hasPrefix(site, as)) continue;
+        std::vector<const Node*> chain;
+        for (const Node* b = &from; b; b = b->parent) {
+            chain.push_back(b);
+            if (b == a) break;
+        }
+        std::string text;
+        for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+            text += describeSite((*it)->stack, path::stripVariants((*it)->site)) + " -> ";
+        text += describeSite(stack, site);
+        warn(where, std::string(arcName) + " cycle: " + text, Diagnostic::Severity::Error);
+        return true;
+    }
+    return false;
+}
+
+void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
+    const char* what = arc == Arc::Payload ? "payload" : "reference";
+    const LayerStack* stack = node.stack;
+    std::string label = ref.assetPath.empty() ? "<" + ref.primPath + ">" : "@" + ref.assetPath + "@";
+    if (!ref.assetPath.empty()) {
+        if (ref.resolvedPath.empty()) {
+            warn(ref.location, std::string(what) + " " + label +
+                                   " not found (relative to the directory of " +
+                                   ref.location.file + "); the prim is composed without it");
+            return;
+        }
+        try {
+            stack = loadStack(loadLayer(ref.resolvedPath, ref.resolvedPath));
+        } catch (const Error& e) {
+            warn(ref.location, std::string("cannot load ") + what + " " + label + ": " + e.what(),
+                 Diagnostic::Severity::Error);
+            return;
+        }
+    }
+    std::string target = ref.primPath;
+    if (target.empty()) {
+        std::string dp = stack->layers.front()->defaultPrim();
+        if (dp.empty()) {
+            warn(ref.location, std::string(what) + " " + label +
+                                   " names no prim and its layer has no defaultPrim");
+            return;
+        }
+        target = dp[0] == '/' ? dp : "/" + dp;
+    }
+    if (!stack->hasPrim(target)) {
+        warn(ref.location, std::string(what) + " target <" + target + "> not found in " +
+                               stack->identifier + "; the prim is composed without it");
+        return;
+    }
+    if (reportCycle(node, stack, target, ref.location, what)) return;
+    if (!reserveNode(ref.location)) return;
+    auto child = std::make_unique<Node>();
+    child->stack = stack;
+    child->site = target;
+    child->arc = arc;
+    child->map.push_back({target, path::stripVariants(node.site), false});
+    child->map.insert(child->map.end(), node.map.begin(), node.map.end());
+    child->offset = node.offset.compose(ref.offset);
+    child->arcLocation = ref.location;
+    Node* raw = child.get();
+    node.addChild(std::move(child));
+    expandArcs(*raw);
+}
+
+void Composer::addClassArc(Node& node, const PathItem& item, Arc arc) {
+    std::string site = path::stripVariants(node.site);
+    std::string target = path::makeAbsolute(item.path, site);
+    if (!node.stack->hasPrim(target)) return;  // a missing class is legal: no opinions
+    if (reportCycle(node, node.stack, target, item.location,
+                    arc == Arc::Inherit ? "inherits" : "specializes"))
+        return;
+    if (!reserveNode(item.location)) return;
+    auto child = std::make_unique<Node>();
+    child->stack = node.stack;
+    child->site = target;
+    child->arc = arc;
+    child->map.push_back({target, site, true});
+    child->map.insert(child->map.end(), node.map.begin(), node.map.end());
+    child->offset = node.offset;
+    child->arcLocation = item.location;
+    Node* raw = child.get();
+    node.addChild(std::move(child));
+    expandArcs(*raw);
+}
+
+std::vector<PrimIndexNode*> Composer::strengthOrder(Node& root) {
+    std::vector<Node*> out;
+    std::vector<Node*> deferred{&root};  // specializes subtrees are weaker than everything else
+    for (std::size_t i = 0; i < deferred.size(); ++i) {
+        std::vector<Node*> stack{deferred[i]};
+        while (!stack.empty()) {
+            Node* n = stack.back();
+            stack.pop_back();
+            out.push_back(n);
+            for (auto it = n->children.rbegin(); it != n->children.rend(); ++it) {
+                if ((*it)->arc == Arc::Specialize) continue;
+                stack.push_back(it->get());
+            }
+            for (const auto& c : n->children)
+                if (c->arc == Arc::Specialize) deferred.push_back(c.get());
+        }
+    }
+    return out;
+}
+
+std::string Composer::selectVariant(Node& root, const std::string& primPath,
+                                    const std::string& set) {
+    auto o = _options.variantOverrides.find(primPath);
+    if (o != _options.variantOverrides.end()) {
+        auto s = o->second.find(set);
+        if (s != o->second.end()) return s->second;
+    }
+    for (Node* n : strengthOrder(root))
+        for (const PrimSpec* spec : specsAt(*n)) {
+            auto it = spec->variantSelections.find(set);
+            if (it != spec->variantSelections.end()) return it->second;
+        }
+    return {};
+}
+
+void Composer::expandVariants(Node& root, const std::string& primPath,
+                              std::map<std::string, std::string>& used) {
+    // Each pass expands one variant set (strongest node first), then starts over: the new
+    // variant may author selections or sets of its own.
+    for (std::size_t pass = 0; pass < kMaxNodesPerPrim; ++pass) {
+        bool added = false;
+        for (Node* n : strengthOrder(root)) {
+            std::vector<const PrimSpec*> specs = specsAt(*n);
+            if (specs.empty()) continue;
+            auto sets = composeListOp<std::string>(
+                specs, [](const PrimSpec& s) -> auto& { return s.variantSetNames; });
+            for (const std::string& set : sets) {
+                if (std::find(n->expandedVariantSets.begin(), n->expandedVariantSets.end(), set) !=
+                    n->expandedVariantSets.end())
+                    continue;
+                n->expandedVariantSets.push_back(set);
+                std::string selection = selectVariant(root, primPath, set);
+                if (selection.empty()) continue;
+                used.emplace(set, selection);
+                std::string site = n->site + "{" + set + "=" + selection + "}";
+                if (!n->stack->hasPrim(site)) {
+                    auto o = _options.variantOverrides.find(primPath);
+                    if (o != _options.variantOverrides.end() && o->second.count(set))
+                        warn(specs.front()->location, "variant set \"" + set + "\" of " +
+                                                          primPath + " has no variant \"" +
+                                                          selection + "\"");
+                    continue;
+                }
+                if (!reserveNode(specs.front()->location)) return;
+                auto child = std::make_unique<Node>();
+                child->stack = n->stack;
+                child->site = site;
+                child->arc = Arc::Variant;
+                child->map = n->map;
+                child->offset = n->offset;
+                child->arcLocation = specs.front()->location;
+                Node* raw = child.get();
+                n->addChild(std::move(child));
+                expandArcs(*raw);
+                added = true;
+                break;
+            }
+            if (added) break;
+        }
+        if (!added) return;
+    }
+}
+
+std::vector<Composer::SpecRef> Composer::gatherSpecs(const std::vector<Node*>& order) const {
+    std::vector<SpecRef> out;
+    for (const Node* n : order)
+        for (std::size_t i = 0; i < n->stack->layers.size(); ++i)
+            if (const PrimSpec* s = n->stack->layers[i]->prim(n->site))
+                out.push_back({s, n, n->offset.compose(n->stack->offsets[i])});
+    return out;
+}
+
+std::optional<std::string> Composer::mapToStage(const Node& node, const std::string& p) const {
+    std::string out = p;
+    for (const MapStep& step : node.map) {
+        if (path::hasPrefix(out, step.source)) {
+            out = path::replacePrefix(out, step.source, step.target);
+        } else if (!step.identityFallback) {
+            return std::nullopt;
+        }
+    }
+    return out;
+}
+
+std::vector<std::string> Composer::composeTargets(
+    const std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>>& opsStrongFirst) {
+    std::vector<std::string> result;
+    for (auto it = opsStrongFirst.rbegin(); it != opsStrongFirst.rend(); ++it) {
+        const ListOp<PathItem>& op = *it->first;
+        const Node& node = *it->second->node;
+        std::string anchor = path::stripVariants(node.site);
+        auto mapList = [&](const std::vector<PathItem>& items) {
+            std::vector<std::string> out;
+            for (const PathItem& item : items) {
+                auto mapped = mapToStage(node, path::makeAbsolute(item.path, anchor));
+                if (mapped) {
+                    out.push_back(std::move(*mapped));
+                } else {
+                    warn(item.location, "target <" + item.path +
+                                            "> lies outside the referenced prim and is dropped");
+                }
+            }
+            return out;
+        };
+        ListOp<std::string> mapped;
+        mapped.isExplicit = op.isExplicit;
+        mapped.explicitItems = mapList(op.explicitItems);
+        mapped.added = mapList(op.added);
+        mapped.prepended = mapList(op.prepended);
+        mapped.appended = mapList(op.appended);
+        mapped.deleted = mapList(op.deleted);
+        mapped.ordered = mapList(op.ordered);
+        mapped.applyTo(result);
+    }
+    return result;
+}
+
+void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, std::string>& used,
+                           std::vector<std::string>& childNames) {
+    std::vector<Node*> order = strengthOrder(index);
+    std::vector<SpecRef> specs = gatherSpecs(order);
+
+    // Specifier: the strongest def/class opinion. A class reached through an inherit or
+    // specializes arc is the thing being inherited, not an abstract prim.
+    const SpecRef* defining = nullptr;
+    for (const SpecRef& s : specs) {
+        if (s.spec->isVariant || s.spec->specifier == Specifier::Over) continue;
+        defining = &s;
+        break;
+    }
+    if (defining) {
+        prim._defined = true;
+        bool viaClassArc = false;
+        for (const Node* n = defining->node; n; n = n->parent)
+            if (n->arc == Arc::Inherit || n->arc == Arc::Specialize) viaClassArc = true;
+        if (defining->spec->specifier == Specifier::Class && !viaClassArc) prim._abstract = true;
+        prim._location = defining->spec->location;
+    } else if (!specs.empty()) {
+        prim._location = specs.front().spec->location;
+    }
+    if (prim._parent && prim._parent->isAbstract()) prim._abstract = true;
+    for (const SpecRef& s : specs)
+        if (!s.spec->typeName.empty()) {
+            prim._typeName = s.spec->typeName;
+            break;
+        }
+    for (const SpecRef& s : specs)
+        for (const auto& [key, value] : s.spec->metadata) prim._metadata.emplace(key, value);
+    if (const Value* active = prim.metadata("active"))
+        if (auto b = active->getBool()) prim._active = *b;
+    if (prim._parent && !prim._parent->isActive()) prim._active = false;
+    std::vector<const PrimSpec*> strongFirst;
+    for (const SpecRef& s : specs) strongFirst.push_back(s.spec);
+    prim._appliedSchemas = composeListOp<std::string>(
+        strongFirst, [](const PrimSpec& s) -> auto& { return s.apiSchemas; });
+    prim._variantSelections = used;
+
+    // Properties: every opinion of each name, strongest first.
+    std::map<std::string, std::vector<std::pair<const AttributeSpec*, const SpecRef*>>> attrs;
+    std::map<std::string, std::vector<std::pair<const RelationshipSpec*, const SpecRef*>>> rels;
+    for (const SpecRef& s : specs) {
+        for (const AttributeSpec& a : s.spec->attributes) attrs[a.name].push_back({&a, &s});
+        for (const RelationshipSpec& r : s.spec->relationships) rels[r.name].push_back({&r, &s});
+    }
+    for (const auto& [name, opinions] : attrs) {
+        auto attr = std::make_unique<Attribute>();
+        const AttributeSpec& top = *opinions.front().first;
+        attr->_name = name;
+        attr->_typeName = top.typeName;
+        attr->_isArray = top.isArray;
+        attr->_uniform = top.variability == Variability::Uniform;
+        attr->_custom = top.custom;
+        attr->_location = top.location;
+        std::size_t defaultAt = opinions.size(), samplesAt = opinions.size();
+        std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>> connections;
+        for (std::size_t i = 0; i < opinions.size(); ++i) {
+            const AttributeSpec& a = *opinions[i].first;
+            if (defaultAt == opinions.size() && a.defaultValue) defaultAt = i;
+            if (samplesAt == opinions.size() && a.hasTimeSamples) samplesAt = i;
+            if (a.hasConnections) connections.push_back({&a.connections, opinions[i].second});
+            for (const auto& [key, value] : a.metadata) attr->_metadata.emplace(key, value);
+        }
+        if (defaultAt < opinions.size()) attr->_default = *opinions[defaultAt].first->defaultValue;
+        // Value resolution (UsdAttribute::Get): per opinion, time samples before the default;
+        // so samples win unless a strictly stronger opinion authored a default.
+        if (samplesAt < opinions.size() && samplesAt <= defaultAt) {
+            const LayerOffset& off = opinions[samplesAt].second->offset;
+            for (const auto& [t, v] : opinions[samplesAt].first->timeSamples)
+                attr->_samples.emplace(off.apply(t), v);
+        }
+        if (!connections.empty()) attr->_connections = composeTargets(connections);
+        prim._attributes.push_back(attr.get());
+        prim._attributeStore.push_back(std::move(attr));
+    }
+    for (const auto& [name, opinions] : rels) {
+        auto rel = std::make_unique<Relationship>();
+        rel->_name = name;
+        rel->_location = opinions.front().first->location;
+        std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>> targets;
+        for (const auto& [r, s] : opinions) {
+            if (r->hasTargets) targets.push_back({&r->targets, s});
+            for (const auto& [key, value] : r->metadata) rel->_metadata.emplace(key, value);
+        }
+        rel->_targets = composeTargets(targets);
+        prim._relationships.push_back(rel.get());
+        prim._relationshipStore.push_back(std::move(rel));
+    }
+
+    // Child names: weakest opinion first, stronger opinions append new names (Pcp order).
+    std::unordered_set<std::string> seen;
+    for (auto it = specs.rbegin(); it != specs.rend(); ++it)
+        for (const auto& c : it->spec->children)
+            if (seen.insert(c->name).second) childNames.push_back(c->name);
+    for (auto it = specs.rbegin(); it != specs.rend(); ++it)
+        if (it->spec->nameChildrenOrder) {
+            ListOp<std::string> op;
+            op.set(ListOpKind::Reorder, *it->spec->nameChildrenOrder);
+            op.applyTo(childNames);
+        }
+}
+
+void Composer::composeChildren(Prim& parent, Node* parentIndex,
+                               const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+        if (_stage._prims.size() >= kMaxPrims) {
+            warn(parent._location, "too many prims (more than " + std::to_string(kMaxPrims) +
+                                       "); the rest of the stage is not composed",
+                 Diagnostic::Severity::Error);
+            return;
+        }
+        std::string primPath = path::child(parent._path, name);
+        _nodeCount = 0;
+        std::unique_ptr<Node> index;
+        if (parentIndex) {
+            index = derive(*parentIndex, name, nullptr);
+            // Arcs authored at this level, on every node the ancestral arcs brought in.
+            std::vector<Node*> existing = strengthOrder(*index);
+            _indexRoot = index.get();
+            for (Node* n : existing) expandArcs(*n);
+        } else {
+            index = std::make_unique<Node>();
+            index->stack = _rootStack;
+            index->site = primPath;
+            _indexRoot = index.get();
+            expandArcs(*index);
+        }
+        std::map<std::string, std::string> used;
+        expandVariants(*index, primPath, used);
+
+        auto prim = std::make_unique<Prim>();
+        prim->_path = primPath;
+        prim->_name = name;
+        prim->_parent = &parent;
+        std::vector<std::string> childNames;
+        composePrim(*prim, *index, used, childNames);
+        Prim* raw = prim.get();
+        parent._children.push_back(raw);
+        _stage._index[primPath] = raw;
+        _stage._prims.push_back(std::move(prim));
+        if (raw->_active) composeChildren(*raw, index.get(), childNames);
+    }
+}
+
+}  // namespace principled::usd

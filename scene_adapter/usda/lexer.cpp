@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "scene_adapter/usda/lexer.h"
+
+namespace principled::usd {
+
+namespace {
+bool isIdentStart(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+bool isIdentChar(char c) {
+    return isIdentStart(c) || (c >= '0' && c <= '9') || c == ':';
+}
+bool isDigit(char c) { return c >= '0' && c <= '9'; }
+}  // namespace
+
+Lexer::Lexer(std::string_view text, std::string file) : _text(text), _file(std::move(file)) {
+    _next = scan();
+}
+
+std::string Lexer::describe(const Token& t) {
+    if (t.kind == TokenKind::End) return "end of file";
+    std::string out = "'";
+    std::size_t n = 0;
+    for (char c : t.text) {
+        if (++n > 40) {
+            out += "...";
+            break;
+        }
+        auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u >= 0x7f) {
+            static const char* kHex = "0123456789abcdef";
+            out += "\\x";
+            out += kHex[u >> 4];
+            out += kHex[u & 15];
+        } else {
+            out += c;
+        }
+    }
+    return out + "'";
+}
+
+void Lexer::fail(const Token& at, std::string_view expected) const {
+    throw ParseError(location(at), "expected " + std::string(expected) + ", found " + describe(at));
+}
+
+void Lexer::failHere(std::string_view expected, std::string_view found) const {
+    SourceLocation where{_file, _line, static_cast<int>(_pos - _lineStart) + 1};
+    throw ParseError(where, "expected " + std::string(expected) + ", found " + std::string(found));
+}
+
+void Lexer::skipSpaceAndComments() {
+    const std::size_t n = _text.size();
+    while (_pos < n) {
+        char c = _text[_pos];
+        if (c == '\n') {
+            ++_pos;
+            ++_line;
+            _lineStart = _pos;
+        } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+            ++_pos;
+        } else if (c == '#' || (c == '/' && _pos + 1 < n && _text[_pos + 1] == '/')) {
+            while (_pos < n && _text[_pos] != '\n') ++_pos;
+        } else if (c == '/' && _pos + 1 < n && _text[_pos + 1] == '*') {
+            int line = _line, col = static_cast<int>(_pos - _lineStart) + 1;
+            _pos += 2;
+            for (;;) {
+                if (_pos + 1 >= n) {
+                    _pos = n;
+                    failHere("'*/' closing the comment opened at " + std::to_string(line) + ":" +
+                                 std::to_string(col),
+                             "end of file");
+                }
+                if (_text[_pos] == '*' && _text[_pos + 1] == '/') {
+                    _pos += 2;
+                    break;
+                }
+                if (_text[_pos] == '\n') {
+                    ++_line;
+                    _lineStart = _pos + 1;
+                }
+                ++_pos;
+            }
+        } else {
+            break;
+        }
+    }
+}
+
+void Lexer::scanString(Token& t) {
+    const std::size_t n = _text.size();
+    const std::size_t start = _pos;
+    const char q = _text[_pos];
+    const bool triple = _pos + 2 < n && _text[_pos + 1] == q && _text[_pos + 2] == q;
+    const std::string opened = std::to_string(t.line) + ":" + std::to_string(t.column);
+    const std::string closing = std::string(triple ? 3 : 1, q);
+    _pos += triple ? 3 : 1;
+    for (;;) {
+        if (_pos >= n)
+            failHere("'" + closing + "' closing the string opened at " + opened, "end of file");
+        char c = _text[_pos];
+        if (c == '\\') {
+            _pos += 2;
+            if (_pos > n) _pos = n;
+            continue;
+        }
+        if (c == '\n') {
+            if (!triple)
+                failHere("'" + closing + "' closing the string opened at " + opened,
+                         "end of line");
+            ++_pos;
+            ++_line;
+            _lineStart = _pos;
+            continue;
+        }
+        if (c == q) {
+            if (!triple) {
+                ++_pos;
+                break;
+            }
+            if (_pos + 2 < n && _text[_pos + 1] == q && _text[_pos + 2] == q) {
+                _pos += 3;
+                break;
+            }
+        }
+        ++_pos;
+    }
+    t.kind = TokenKind::String;
+    t.text = _text.substr(start, _pos - start);
+}
+
+Token Lexer::scan() {
+    skipSpaceAndComments();
+    Token t;
+    t.line = _line;
+    t.column = static_cast<int>(_pos - _lineStart) + 1;
+    const std::size_t n = _text.size();
+    if (_pos >= n) {
+        t.kind = TokenKind::End;
+        t.text = {};
+        return t;
+    }
+    const std::size_t start = _pos;
+    const char c = _text[_pos];
+    if (isIdentStart(c)) {
+        while (_pos < n && isIdentChar(_text[_pos])) ++_pos;
+        t.kind = TokenKind::Identifier;
+    } else if (isDigit(c) || ((c == '-' || c == '+' || c == '.') && _pos + 1 < n &&
+                              (isDigit(_text[_pos + 1]) ||
+                               (c != '.' && (_text[_pos + 1] == '.' ||
+                                             isIdentStart(_text[_pos + 1])))))) {
+        // A maximal number-like run; the parser validates it with std::from_chars so that
+        // "1.2.3" or "4x" is reported as one bad number.
+        ++_pos;
+        while (_pos < n) {
+            char d = _text[_pos];
+            if (isDigit(d) || d == '.' || isIdentStart(d)) {
+                ++_pos;
+            } else if ((d == '-' || d == '+') && (_text[_pos - 1] == 'e' || _text[_pos - 1] == 'E')) {
+                ++_pos;
+            } else {
+                break;
+            }
+        }
+        t.kind = TokenKind::Number;
+    } else if (c == '"' || c == '\'') {
+        scanString(t);
+        return t;
+    } else if (c == '@') {
+        const bool triple = _pos + 2 < n && _text[_pos + 1] == '@' && _text[_pos + 2] == '@';
+        _pos += triple ? 3 : 1;
+        for (;;) {
+            if (_pos >= n || (!triple && _text[_pos] == '\n'))
+                failHere(std::string(triple ? "'@@@'" : "'@'") + " closing the asset path opened at " +
+                             std::to_string(t.line) + ":" + std::to_string(t.column),
+                         _pos >= n ? "end of file" : "end of line");
+            if (_text[_pos] == '\n') {
+                ++_line;
+                _lineStart = _pos + 1;
+            }
+            if (triple && _text.compare(_pos, 3, "@@@") == 0 &&
+                !(_pos + 3 < n && _text[_pos + 3] == '@')) {
+                _pos += 3;
+                break;
+            }
+            if (!triple && _text[_pos] == '@') {
+                ++_pos;
+                break;
+            }
+            if (triple && _text[_pos] == '\\') ++_pos;
+            ++_pos;
+        }
+        t.kind = TokenKind::Asset;
+    } else if (c == '<') {
+        ++_pos;
+        while (_pos < n && _text[_pos] != '>' && _text[_pos] != '\n') ++_pos;
+        if (_pos >= n || _text[_pos] != '>')
+            failHere("'>' closing the path opened at " + std::to_string(t.line) + ":" +
+                         std::to_string(t.column),
+                     _pos >= n ? "end of file" : "end of line");
+        ++_pos;
+        t.kind = TokenKind::Path;
+    } else {
+        ++_pos;
+        t.kind = TokenKind::Punct;
+    }
+    t.text = _text.substr(start, _pos - start);
+    return t;
+}
+
+std::string unescapeString(std::string_view raw) {
+    std::size_t q = (raw.size() >= 6 && raw[1] == raw[0] && raw[2] == raw[0]) ? 3 : 1;
+    if (raw.size() < 2 * q) return {};
+    std::string_view body = raw.substr(q, raw.size() - 2 * q);
+    std::string out;
+    out.reserve(body.size());
+    for (std::size_t i = 0; i < body.size(); ++i) {
+        char c = body[i];
+        if (c != '\\' || i + 1 >= body.size()) {
+            out += c;
+            continue;
+        }
+        char e = body[++i];
+        switch (e) {
+            case 'n': out += '\n'; break;
+            case 't': out += '\t'; break;
+            case 'r': out += '\r'; break;
+            case '0': out += '\0'; break;
+            case 'a': out += '\a'; break;
+            case 'b': out += '\b'; break;
+            case 'f': out += '\f'; break;
+            case 'v': out += '\v'; break;
+            case 'x': {
+                int v = 0, digits = 0;
+                while (digits < 2 && i + 1 < body.size()) {
+                    char h = body[i + 1];
+                    int d = (h >= '0' && h <= '9')   ? h - '0'
+                            : (h >= 'a' && h <= 'f') ? h - 'a' + 10
+                            : (h >= 'A' && h <= 'F') ? h - 'A' + 10
+                                                     : -1;
+                    if (d < 0) break;
+                    v = v * 16 + d;
+                    ++i;
+                    ++digits;
+                }
+                out += static_cast<char>(v);
+                break;
+            }
+            default: out += e; break;  // \\ \" \' and unknown escapes keep the character
+        }
+    }
+    return out;
+}
+
+}  // namespace principled::usd

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: Apache-2.0
+// Hand-written USDA tokenizer: identifiers (with ':' namespaces), numbers (incl. inf/nan),
+// quoted strings ('', "", triple-quoted), @asset@ / @@@asset@@@, </path>, punctuation.
+// Comments: '#', '//' to end of line and '/* ... */'. Tokens are views into the source text;
+// nothing is allocated per token.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "scene_adapter/usda/error.h"
+#include "scene_adapter/usda/sourceLocation.h"
+
+namespace principled::usd {
+
+enum class TokenKind : std::uint8_t { End, Identifier, Number, String, Asset, Path, Punct };
+
+struct Token {
+    TokenKind kind = TokenKind::End;
+    std::string_view text;  ///< raw text, including quotes / @ / <>
+    int line = 1;
+    int column = 1;
+
+    bool is(char c) const { return kind == TokenKind::Punct && text.size() == 1 && text[0] == c; }
+    bool isIdent(std::string_view s) const { return kind == TokenKind::Identifier && text == s; }
+};
+
+class Lexer {
+public:
+    Lexer(std::string_view text, std::string file);
+
+    const Token& peek() const { return _next; }
+    Token next() {
+        Token t = _next;
+        _next = scan();
+        return t;
+    }
+
+    const std::string& file() const { return _file; }
+    SourceLocation location(const Token& t) const { return {_file, t.line, t.column}; }
+
+    /// Throws ParseError "file:line:col: expected <expected>, found <describe(at)>".
+    [[noreturn]] void fail(const Token& at, std::string_view expected) const;
+    /// "end of file" or the token text in single quotes (abbreviated when long).
+    static std::string describe(const Token& t);
+
+private:
+    Token scan();
+    void skipSpaceAndComments();
+    [[noreturn]] void failHere(std::string_view expected, std::string_view found) const;
+    void scanString(Token& t);
+
+    std::string_view _text;
+    std::string _file;
+    std::size_t _pos = 0;
+    std::size_t _lineStart = 0;
+    int _line = 1;
+    Token _next;
+};
+
+/// The contents of a string token with escapes decoded (quotes stripped).
+std::string unescapeString(std::string_view raw);
+
+}  // namespace principled::usd

@@ -1,0 +1,851 @@
+// SPDX-License-Identifier: Apache-2.0
+// Grammar: pxr/usd/sdf/textFileFormatParser.h (the PEGTL grammar of USDA 1.0), restricted to
+// what assets use. Newlines are treated as whitespace; ';' separators are accepted.
+#include "scene_adapter/usda/parser.h"
+
+#include <charconv>
+#include <algorithm>
+#include <cmath>
+
+#include "scene_adapter/usda/assetResolver.h"
+#include "scene_adapter/usda/lexer.h"
+#include "scene_adapter/usda/valueType.h"
+
+namespace principled::usd {
+
+namespace {
+
+class Parser {
+public:
+    Parser(std::string_view text, const std::string& file, const std::string& anchorDir)
+        : _text(text), _lex(checkHeader(text, file), file), _anchor(anchorDir) {}
+
+    std::unique_ptr<Layer> parse();
+
+private:
+    // The `#usda 1.0` header line; the lexer then skips it as a comment.
+    static std::string_view checkHeader(std::string_view text, const std::string& file);
+
+    struct DepthGuard {
+        Parser& p;
+        explicit DepthGuard(Parser& parser) : p(parser) {
+            if (++p._depth > kMaxNestingDepth)
+                p._lex.fail(p._lex.peek(),
+                            "at most " + std::to_string(kMaxNestingDepth) + " nested levels");
+        }
+        ~DepthGuard() { --p._depth; }
+    };
+
+    const Token& peek() const { return _lex.peek(); }
+    Token next() { return _lex.next(); }
+    SourceLocation here() const { return _lex.location(_lex.peek()); }
+    [[noreturn]] void fail(std::string_view expected) const { _lex.fail(_lex.peek(), expected); }
+    Token expect(char c) {
+        if (!peek().is(c)) fail(std::string("'") + c + "'");
+        return next();
+    }
+    bool accept(char c) {
+        if (!peek().is(c)) return false;
+        next();
+        return true;
+    }
+    Token expectIdent(std::string_view what) {
+        if (peek().kind != TokenKind::Identifier) fail(what);
+        return next();
+    }
+    std::string expectString(std::string_view what) {
+        if (peek().kind != TokenKind::String) fail(what);
+        return unescapeString(next().text);
+    }
+    static std::optional<ListOpKind> listOpKeyword(const Token& t);
+
+    void parseLayerMetadata(Layer& layer);
+    void parseSubLayers(Layer& layer);
+    std::unique_ptr<PrimSpec> parsePrim();
+    void parsePrimMetadata(PrimSpec& spec);
+    void parsePrimBody(PrimSpec& spec);
+    void parseVariantSet(PrimSpec& spec);
+    void parseReorder(std::optional<std::vector<std::string>>& names, bool root);
+    void parseProperty(PrimSpec& spec, std::optional<ListOpKind> op = std::nullopt);
+    void parseRelationship(PrimSpec& spec, std::optional<ListOpKind> op, bool custom);
+    void parsePropertyMetadata(Dictionary& metadata);
+    void parseTimeSamples(AttributeSpec& attr, const ValueType* type);
+
+    std::vector<Reference> parseReferenceList();
+    Reference parseReference();
+    LayerOffset parseLayerOffsetParens();
+    std::vector<PathItem> parsePathList();
+    std::vector<std::string> parseStringList();
+
+    Value parseTypedValue(const ValueType* type, const std::string& typeName, bool isArray);
+    void parseNumericElement(const ValueType& type, std::vector<double>& out);
+    double parseNumber(const ValueType& type);
+    double parseScalarNumber(const Token& t, bool integer, bool isUnsigned, bool isBool);
+    Value parseGenericValue();
+    Dictionary parseDictionary();
+    AssetPath assetFromToken(const Token& t) const;
+    static std::string pathFromToken(const Token& t);
+
+    std::string_view _text;
+    Lexer _lex;
+    std::string _anchor;
+    int _depth = 0;
+};
+
+std::string_view Parser::checkHeader(std::string_view text, const std::string& file) {
+    refuseBinary(text, file);
+    std::string_view body = text;
+    if (body.substr(0, 3) == "\xEF\xBB\xBF") body.remove_prefix(3);  // UTF-8 byte order mark
+    std::string_view first = body.substr(0, body.find('\n'));
+    while (!first.empty() && (first.back() == '\r' || first.back() == ' ' || first.back() == '\t'))
+        first.remove_suffix(1);
+    bool ok = first.substr(0, 5) == "#usda" && first.size() > 5 &&
+              (first[5] == ' ' || first[5] == '\t');
+    if (ok) {
+        std::string_view version = first.substr(5);
+        version.remove_prefix(std::min(version.find_first_not_of(" \t"), version.size()));
+        ok = version == "1.0";
+    }
+    if (!ok) {
+        std::string found = body.empty()    ? "end of file"
+                            : first.empty() ? "'\\n'"
+                                            : Lexer::describe(Token{TokenKind::Punct, first, 1, 1});
+        throw ParseError({file, 1, 1}, "expected '#usda 1.0', found " + found);
+    }
+    return body;
+}
+
+std::optional<ListOpKind> Parser::listOpKeyword(const Token& t) {
+    if (t.kind != TokenKind::Identifier) return std::nullopt;
+    if (t.text == "prepend") return ListOpKind::Prepend;
+    if (t.text == "append") return ListOpKind::Append;
+    if (t.text == "delete") return ListOpKind::Delete;
+    if (t.text == "add") return ListOpKind::Add;
+    if (t.text == "reorder") return ListOpKind::Reorder;
+    return std::nullopt;
+}
+
+std::unique_ptr<Layer> Parser::parse() {
+    auto layer = std::make_unique<Layer>();
+    layer->file = _lex.file();
+    layer->anchorDir = _anchor;
+    if (peek().is('(')) parseLayerMetadata(*layer);
+    for (;;) {
+        const Token& t = peek();
+        if (t.kind == TokenKind::End) break;
+        if (t.is(';')) {
+            next();
+        } else if (t.isIdent("def") || t.isIdent("over") || t.isIdent("class")) {
+            layer->rootPrims.push_back(parsePrim());
+        } else if (t.isIdent("reorder")) {
+            next();
+            if (!peek().isIdent("rootPrims")) fail("'rootPrims'");
+            next();
+            parseReorder(layer->rootPrimOrder, true);
+        } else {
+            fail("'def', 'over' or 'class'");
+        }
+    }
+    return layer;
+}
+
+void Parser::parseLayerMetadata(Layer& layer) {
+    DepthGuard guard(*this);
+    expect('(');
+    for (;;) {
+        const Token& t = peek();
+        if (t.is(')')) {
+            next();
+            return;
+        }
+        if (t.is(';')) {
+            next();
+            continue;
+        }
+        if (t.kind == TokenKind::String) {
+            SourceLocation where = here();
+            layer.metadata["doc"] = Value::string("string", unescapeString(next().text), where);
+            continue;
+        }
+        if (listOpKeyword(t)) next();
+        Token key = expectIdent("a layer metadata name or ')'");
+        expect('=');
+        if (key.text == "subLayers") {
+            parseSubLayers(layer);
+        } else {
+            layer.metadata[std::string(key.text)] = parseGenericValue();
+        }
+    }
+}
+
+void Parser::parseSubLayers(Layer& layer) {
+    DepthGuard guard(*this);
+    expect('[');
+    while (!peek().is(']')) {
+        if (peek().kind != TokenKind::Asset) fail("a sublayer asset path '@...@' or ']'");
+        SubLayer sub;
+        sub.location = here();
+        AssetPath a = assetFromToken(next());
+        sub.assetPath = a.authored;
+        sub.resolvedPath = a.resolved;
+        if (peek().is('(')) sub.offset = parseLayerOffsetParens();
+        layer.subLayers.push_back(std::move(sub));
+        if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+    }
+    next();
+}
+
+LayerOffset Parser::parseLayerOffsetParens() {
+    DepthGuard guard(*this);
+    LayerOffset off;
+    expect('(');
+    while (!accept(')')) {
+        if (accept(';')) continue;
+        Token key = expectIdent("'offset', 'scale' or ')'");
+        expect('=');
+        if (key.text == "offset" || key.text == "scale") {
+            static const ValueType kDouble{"double", ScalarType::Double, 1, 0, false};
+            double v = parseNumber(kDouble);
+            (key.text == "offset" ? off.offset : off.scale) = v;
+        } else {
+            parseGenericValue();  // customData and other arc metadata: accepted, unused
+        }
+    }
+    return off;
+}
+
+std::unique_ptr<PrimSpec> Parser::parsePrim() {
+    DepthGuard guard(*this);
+    auto spec = std::make_unique<PrimSpec>();
+    spec->location = here();
+    Token kw = next();
+    spec->specifier = kw.text == "def"     ? Specifier::Def
+                      : kw.text == "class" ? Specifier::Class
+                                           : Specifier::Over;
+    if (peek().kind == TokenKind::Identifier) spec->typeName = std::string(next().text);
+    if (peek().kind != TokenKind::String) fail("a quoted prim name");
+    Token nameTok = peek();
+    spec->name = expectString("a quoted prim name");
+    if (spec->name.empty() ||
+        spec->name.find_first_of("/.{}<>[]:=@\"' \t\r\n") != std::string::npos ||
+        (spec->name[0] >= '0' && spec->name[0] <= '9'))
+        _lex.fail(nameTok, "a valid prim name (an identifier)");
+    if (peek().is('(')) parsePrimMetadata(*spec);
+    expect('{');
+    parsePrimBody(*spec);
+    return spec;
+}
+
+void Parser::parsePrimMetadata(PrimSpec& spec) {
+    DepthGuard guard(*this);
+    expect('(');
+    for (;;) {
+        const Token& t = peek();
+        if (t.is(')')) {
+            next();
+            return;
+        }
+        if (t.is(';')) {
+            next();
+            continue;
+        }
+        if (t.kind == TokenKind::String) {
+            SourceLocation where = here();
+            spec.metadata["documentation"] =
+                Value::string("string", unescapeString(next().text), where);
+            continue;
+        }
+        ListOpKind op = ListOpKind::Explicit;
+        if (auto k = listOpKeyword(t)) {
+            op = *k;
+            next();
+        }
+        Token key = expectIdent("a prim metadata name or ')'");
+        expect('=');
+        std::string_view k = key.text;
+        if (k == "references") {
+            spec.references.set(op, parseReferenceList());
+        } else if (k == "payload") {
+            spec.payloads.set(op, parseReferenceList());
+        } else if (k == "inherits") {
+            spec.inherits.set(op, parsePathList());
+        } else if (k == "specializes") {
+            spec.specializes.set(op, parsePathList());
+        } else if (k == "variantSets") {
+            spec.variantSetNames.set(op, parseStringList());
+        } else if (k == "apiSchemas") {
+            spec.apiSchemas.set(op, parseStringList());
+        } else if (k == "variants") {
+            SourceLocation where = here();
+            Dictionary d = parseDictionary();
+            for (const auto& [name, v] : d) {
+                if (auto s = v.getString()) spec.variantSelections[name] = *s;
+            }
+            spec.metadata["variants"] = Value::dictionary(std::move(d), where);
+        } else {
+            std::string name(k == "doc" ? std::string_view("documentation") : k);
+            spec.metadata[name] = parseGenericValue();
+        }
+    }
+}
+
+void Parser::parseReorder(std::optional<std::vector<std::string>>& names, bool) {
+    expect('=');
+    names = parseStringList();
+}
+
+void Parser::parsePrimBody(PrimSpec& spec) {
+    for (;;) {
+        const Token& t = peek();
+        if (t.is('}')) {
+            next();
+            return;
+        }
+        if (t.kind == TokenKind::End) fail("'}'");
+        if (t.is(';')) {
+            next();
+        } else if (t.isIdent("def") || t.isIdent("over") || t.isIdent("class")) {
+            spec.children.push_back(parsePrim());
+        } else if (t.isIdent("variantSet")) {
+            parseVariantSet(spec);
+        } else if (t.isIdent("reorder")) {
+            next();
+            if (peek().isIdent("nameChildren")) {
+                next();
+                parseReorder(spec.nameChildrenOrder, false);
+            } else if (peek().isIdent("properties")) {
+                next();
+                parseReorder(spec.propertyOrder, false);
+            } else if (peek().isIdent("rel")) {
+                parseRelationship(spec, ListOpKind::Reorder, false);
+            } else {
+                parseProperty(spec, ListOpKind::Reorder);  // reorder <type> x.connect = [...]
+            }
+        } else if (t.kind == TokenKind::Identifier) {
+            parseProperty(spec);
+        } else {
+            fail("a property, a child prim, 'variantSet' or '}'");
+        }
+    }
+}
+
+void Parser::parseVariantSet(PrimSpec& spec) {
+    DepthGuard guard(*this);
+    SourceLocation where = here();
+    next();  // variantSet
+    std::string setName = expectString("a quoted variant set name");
+    expect('=');
+    expect('{');
+    VariantSetSpec* vs = nullptr;
+    for (auto& existing : spec.variantSets)
+        if (existing.name == setName) vs = &existing;
+    if (!vs) {
+        spec.variantSets.push_back(VariantSetSpec{setName, {}, where});
+        vs = &spec.variantSets.back();
+    }
+    for (;;) {
+        if (accept('}')) break;
+        if (accept(';')) continue;
+        if (peek().kind != TokenKind::String) fail("a quoted variant name or '}'");
+        auto variant = std::make_unique<PrimSpec>();
+        variant->isVariant = true;
+        variant->location = here();
+        variant->name = expectString("a quoted variant name");
+        if (peek().is('(')) parsePrimMetadata(*variant);
+        expect('{');
+        {
+            DepthGuard inner(*this);
+            parsePrimBody(*variant);
+        }
+        // A set's list is small; look it up again because push_back may move `vs`.
+        vs->variants.push_back(std::move(variant));
+    }
+}
+
+void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
+    if (!op) {
+        op = listOpKeyword(peek());
+        if (op) next();
+    }
+    SourceLocation where = here();
+    bool custom = false;
+    if (peek().isIdent("custom")) {
+        custom = true;
+        next();
+    }
+    Variability variability = Variability::Varying;
+    if (peek().isIdent("uniform")) {
+        variability = Variability::Uniform;
+        next();
+    } else if (peek().isIdent("varying")) {
+        next();
+    } else if (peek().isIdent("config")) {
+        variability = Variability::Config;
+        next();
+    }
+    if (peek().isIdent("rel")) {
+        parseRelationship(spec, op, custom);
+        return;
+    }
+    if (peek().kind != TokenKind::Identifier) fail("a value type name or 'rel'");
+    Token typeTok = peek();
+    const ValueType* type = findValueType(typeTok.text);
+    if (!type) fail("a value type name or 'rel'");
+    next();
+    bool isArray = false;
+    if (accept('[')) {
+        expect(']');
+        isArray = true;
+    }
+    Token nameTok = expectIdent("a property name");
+    std::string name(nameTok.text);
+    std::string_view field;
+    if (accept('.')) {
+        Token f = expectIdent("'connect' or 'timeSamples'");
+        if (f.text != "connect" && f.text != "timeSamples")
+            _lex.fail(f, "'connect' or 'timeSamples'");
+        field = f.text;
+    }
+    AttributeSpec* attr = nullptr;
+    for (auto it = spec.attributes.rbegin(); it != spec.attributes.rend(); ++it)
+        if (it->name == name) attr = &*it;
+    if (!attr) {
+        spec.attributes.emplace_back();
+        attr = &spec.attributes.back();
+        attr->name = name;
+        attr->location = where;
+    }
+    attr->typeName = std::string(typeTok.text);
+    attr->isArray = isArray;
+    attr->custom = attr->custom || custom;
+    if (variability != Variability::Varying) attr->variability = variability;
+    if (field == "connect") {
+        if (accept('=')) {
+            attr->connections.set(op.value_or(ListOpKind::Explicit), parsePathList());
+            attr->hasConnections = true;
+        }
+    } else if (field == "timeSamples") {
+        expect('=');
+        parseTimeSamples(*attr, type);
+    } else if (accept('=')) {
+        attr->defaultValue = parseTypedValue(type, attr->typeName, isArray);
+    }
+    if (peek().is('(')) parsePropertyMetadata(attr->metadata);
+}
+
+void Parser::parseRelationship(PrimSpec& spec, std::optional<ListOpKind> op, bool custom) {
+    SourceLocation where = here();
+    next();  // rel
+    Token nameTok = expectIdent("a relationship name");
+    std::string name(nameTok.text);
+    if (accept('.')) {
+        Token f = expectIdent("'default'");
+        if (f.text != "default") _lex.fail(f, "'default'");
+    }
+    RelationshipSpec* rel = nullptr;
+    for (auto& r : spec.relationships)
+        if (r.name == name) rel = &r;
+    if (!rel) {
+        spec.relationships.emplace_back();
+        rel = &spec.relationships.back();
+        rel->name = name;
+        rel->location = where;
+    }
+    rel->custom = rel->custom || custom;
+    if (accept('=')) {
+        rel->targets.set(op.value_or(ListOpKind::Explicit), parsePathList());
+        rel->hasTargets = true;
+    }
+    if (peek().is('(')) parsePropertyMetadata(rel->metadata);
+}
+
+void Parser::parsePropertyMetadata(Dictionary& metadata) {
+    DepthGuard guard(*this);
+    expect('(');
+    for (;;) {
+        const Token& t = peek();
+        if (t.is(')')) {
+            next();
+            return;
+        }
+        if (t.is(';')) {
+            next();
+            continue;
+        }
+        if (t.kind == TokenKind::String) {
+            SourceLocation where = here();
+            metadata["documentation"] = Value::string("string", unescapeString(next().text), where);
+            continue;
+        }
+        if (listOpKeyword(t)) next();
+        Token key = expectIdent("a property metadata name or ')'");
+        expect('=');
+        std::string name(key.text == "doc" ? std::string_view("documentation") : key.text);
+        metadata[name] = parseGenericValue();
+    }
+}
+
+void Parser::parseTimeSamples(AttributeSpec& attr, const ValueType* type) {
+    DepthGuard guard(*this);
+    expect('{');
+    attr.hasTimeSamples = true;
+    static const ValueType kDouble{"double", ScalarType::Double, 1, 0, false};
+    while (!accept('}')) {
+        if (peek().kind == TokenKind::End) fail("'}'");
+        double t = parseNumber(kDouble);
+        expect(':');
+        attr.timeSamples[t] = parseTypedValue(type, attr.typeName, attr.isArray);
+        if (!accept(',') && !peek().is('}')) fail("',' or '}'");
+    }
+}
+
+std::vector<Reference> Parser::parseReferenceList() {
+    DepthGuard guard(*this);
+    std::vector<Reference> out;
+    if (peek().isIdent("None")) {
+        next();
+        return out;
+    }
+    if (!accept('[')) {
+        out.push_back(parseReference());
+        return out;
+    }
+    while (!accept(']')) {
+        out.push_back(parseReference());
+        if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+    }
+    return out;
+}
+
+Reference Parser::parseReference() {
+    Reference r;
+    r.location = here();
+    const Token& t = peek();
+    if (t.kind == TokenKind::Asset) {
+        AssetPath a = assetFromToken(next());
+        r.assetPath = a.authored;
+        r.resolvedPath = a.resolved;
+        if (peek().kind == TokenKind::Path) r.primPath = pathFromToken(next());
+    } else if (t.kind == TokenKind::Path) {
+        r.primPath = pathFromToken(next());
+        if (r.primPath.empty() || r.primPath[0] != '/')
+            throw ParseError(r.location, "expected an absolute prim path, found '<" + r.primPath + ">'");
+    } else {
+        fail("an asset path '@...@' or a prim path '<...>'");
+    }
+    if (peek().is('(')) r.offset = parseLayerOffsetParens();
+    return r;
+}
+
+std::vector<PathItem> Parser::parsePathList() {
+    DepthGuard guard(*this);
+    std::vector<PathItem> out;
+    if (peek().isIdent("None")) {
+        next();
+        return out;
+    }
+    if (peek().kind == TokenKind::Path) {
+        SourceLocation where = here();
+        out.push_back({pathFromToken(next()), where});
+        return out;
+    }
+    if (!accept('[')) fail("a path '<...>', a list of paths or None");
+    while (!accept(']')) {
+        if (peek().kind != TokenKind::Path) fail("a path '<...>' or ']'");
+        SourceLocation where = here();
+        out.push_back({pathFromToken(next()), where});
+        if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+    }
+    return out;
+}
+
+std::vector<std::string> Parser::parseStringList() {
+    DepthGuard guard(*this);
+    std::vector<std::string> out;
+    if (peek().isIdent("None")) {
+        next();
+        return out;
+    }
+    if (peek().kind == TokenKind::String) {
+        out.push_back(unescapeString(next().text));
+        return out;
+    }
+    if (!accept('[')) fail("a quoted string or a list of strings");
+    while (!accept(']')) {
+        out.push_back(expectString("a quoted string or ']'"));
+        if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+    }
+    return out;
+}
+
+AssetPath Parser::assetFromToken(const Token& t) const {
+    std::string_view s = t.text;
+    std::size_t q = s.size() >= 6 && s.substr(0, 3) == "@@@" ? 3 : 1;
+    AssetPath a;
+    a.authored = std::string(s.substr(q, s.size() - 2 * q));
+    a.resolved = resolveAsset(a.authored, _anchor);
+    return a;
+}
+
+std::string Parser::pathFromToken(const Token& t) {
+    return std::string(t.text.substr(1, t.text.size() - 2));
+}
+
+Value Parser::parseTypedValue(const ValueType* type, const std::string& typeName, bool isArray) {
+    SourceLocation where = here();
+    if (peek().isIdent("None")) {
+        next();
+        return Value::none(typeName, isArray, where);
+    }
+    const ValueType& t = *type;
+    if (t.scalar == ScalarType::Opaque) fail("no value for an opaque attribute");
+    if (!isArray) {
+        if (t.isNumeric()) {
+            if (t.components == 1) return Value::number(typeName, parseNumber(t), where);
+            std::vector<double> v;
+            v.reserve(static_cast<std::size_t>(t.components));
+            parseNumericElement(t, v);
+            return Value::tuple(typeName, std::move(v), where);
+        }
+        if (t.scalar == ScalarType::Asset) {
+            if (peek().kind != TokenKind::Asset) fail("an asset path '@...@'");
+            return Value::asset(assetFromToken(next()), where);
+        }
+        return Value::string(typeName, expectString("a quoted string"), where);
+    }
+    DepthGuard guard(*this);
+    expect('[');
+    if (t.isNumeric()) {
+        std::vector<double> v;
+        while (!peek().is(']')) {
+            parseNumericElement(t, v);
+            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+        }
+        next();
+        return Value::numberArray(typeName, t.components, std::move(v), where);
+    }
+    if (t.scalar == ScalarType::Asset) {
+        std::vector<AssetPath> v;
+        while (!peek().is(']')) {
+            if (peek().kind != TokenKind::Asset) fail("an asset path '@...@' or ']'");
+            v.push_back(assetFromToken(next()));
+            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+        }
+        next();
+        return Value::assetArray(std::move(v), where);
+    }
+    std::vector<std::string> v;
+    while (!peek().is(']')) {
+        v.push_back(expectString("a quoted string or ']'"));
+        if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+    }
+    next();
+    return Value::stringArray(typeName, std::move(v), where);
+}
+
+void Parser::parseNumericElement(const ValueType& type, std::vector<double>& out) {
+    if (type.components == 1) {
+        out.push_back(parseNumber(type));
+        return;
+    }
+    DepthGuard guard(*this);
+    expect('(');
+    const int rows = type.rows > 0 ? type.rows : 1;
+    const int cols = type.rows > 0 ? type.rows : type.components;
+    for (int r = 0; r < rows; ++r) {
+        if (type.rows > 0) {
+            if (r > 0) expect(',');
+            expect('(');
+        }
+        for (int c = 0; c < cols; ++c) {
+            if (c > 0) expect(',');
+            out.push_back(parseNumber(type));
+        }
+        if (type.rows > 0) expect(')');
+    }
+    expect(')');
+}
+
+double Parser::parseNumber(const ValueType& type) {
+    Token t = peek();
+    bool isBool = type.scalar == ScalarType::Bool;
+    if (t.kind != TokenKind::Number && t.kind != TokenKind::Identifier)
+        fail(type.isInteger() ? "an integer" : isBool ? "a bool" : "a number");
+    double v = parseScalarNumber(t, type.isInteger(), type.isUnsigned(), isBool);
+    next();
+    return v;
+}
+
+double Parser::parseScalarNumber(const Token& t, bool integer, bool isUnsigned, bool isBool) {
+    const char* what = integer ? "an integer" : isBool ? "a bool" : "a number";
+    std::string_view s = t.text;
+    if (t.kind == TokenKind::Identifier) {
+        if (isBool && s == "true") return 1.0;
+        if (isBool && s == "false") return 0.0;
+        if (!integer && !isBool && (s == "inf" || s == "nan"))
+            return s == "inf" ? HUGE_VAL : std::nan("");
+        _lex.fail(t, what);
+    }
+    if (!s.empty() && s[0] == '+') s.remove_prefix(1);
+    const char* first = s.data();
+    const char* last = s.data() + s.size();
+    if (integer || isBool) {
+        std::int64_t i = 0;
+        auto [p, ec] = std::from_chars(first, last, i);
+        if (ec == std::errc() && p == last) {
+            if (isUnsigned && i < 0) _lex.fail(t, "an unsigned integer");
+            return static_cast<double>(i);
+        }
+        if (isUnsigned) {
+            std::uint64_t u = 0;
+            auto [pu, ecu] = std::from_chars(first, last, u);
+            if (ecu == std::errc() && pu == last) return static_cast<double>(u);
+        }
+    }
+    double d = 0.0;
+    auto [p, ec] = std::from_chars(first, last, d);
+    if (p != last || (ec != std::errc() && ec != std::errc::result_out_of_range))
+        _lex.fail(t, what);
+    if (ec == std::errc::result_out_of_range) {
+        // Overflow reads as +-inf, underflow as 0, as strtod does.
+        bool neg = s[0] == '-';
+        auto e = s.find_first_of("eE");
+        bool tiny = e != std::string_view::npos && e + 1 < s.size() && s[e + 1] == '-';
+        d = tiny ? 0.0 : (neg ? -HUGE_VAL : HUGE_VAL);
+    }
+    if ((integer || isBool) && (std::trunc(d) != d)) _lex.fail(t, what);
+    return d;
+}
+
+Value Parser::parseGenericValue() {
+    DepthGuard guard(*this);
+    SourceLocation where = here();
+    const Token& t = peek();
+    switch (t.kind) {
+        case TokenKind::String: return Value::string("string", unescapeString(next().text), where);
+        case TokenKind::Asset: return Value::asset(assetFromToken(next()), where);
+        case TokenKind::Path: return Value::path(pathFromToken(next()), where);
+        case TokenKind::Number: {
+            bool isInt = t.text.find_first_of(".eEin") == std::string_view::npos;
+            double v = parseScalarNumber(t, false, false, false);
+            next();
+            return Value::number(isInt ? "int" : "double", v, where);
+        }
+        case TokenKind::Identifier: {
+            Token id = next();
+            if (id.text == "None") return Value::none({}, false, where);
+            if (id.text == "true" || id.text == "false")
+                return Value::number("bool", id.text == "true" ? 1.0 : 0.0, where);
+            if (id.text == "inf") return Value::number("double", HUGE_VAL, where);
+            if (id.text == "nan") return Value::number("double", std::nan(""), where);
+            return Value::string("token", std::string(id.text), where);
+        }
+        default: break;
+    }
+    if (t.is('{')) return Value::dictionary(parseDictionary(), where);
+    if (t.is('(')) {
+        next();
+        std::vector<double> v;
+        while (!accept(')')) {
+            Value e = parseGenericValue();
+            if (auto d = e.getDouble()) {
+                v.push_back(*d);
+            } else if (auto tup = e.getTuple()) {
+                v.insert(v.end(), tup->begin(), tup->end());
+            } else {
+                throw ParseError(e.location(), "expected a number in a tuple, found " + e.toString());
+            }
+            if (!accept(',') && !peek().is(')')) fail("',' or ')'");
+        }
+        return Value::tuple("double", std::move(v), where);
+    }
+    if (t.is('[')) {
+        next();
+        std::vector<Value> items;
+        while (!accept(']')) {
+            items.push_back(parseGenericValue());
+            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+        }
+        if (items.empty()) return Value::stringArray("string", {}, where);
+        const Value& first = items.front();
+        for (const Value& e : items)
+            if (e.kind() != first.kind() || e.components() != first.components())
+                throw ParseError(e.location(), "expected array elements of one type, found " +
+                                                   e.toString());
+        switch (first.kind()) {
+            case Value::Kind::Number:
+            case Value::Kind::Tuple: {
+                std::vector<double> v;
+                for (const Value& e : items) {
+                    if (auto d = e.getDouble()) v.push_back(*d);
+                    else if (auto tup = e.getTuple()) v.insert(v.end(), tup->begin(), tup->end());
+                }
+                return Value::numberArray(first.typeName(), first.components(), std::move(v),
+                                          where);
+            }
+            case Value::Kind::String:
+            case Value::Kind::Path: {
+                std::vector<std::string> v;
+                for (const Value& e : items) v.push_back(e.getString() ? *e.getString() : *e.getPath());
+                return Value::stringArray(first.typeName(), std::move(v), where);
+            }
+            case Value::Kind::Asset: {
+                std::vector<AssetPath> v;
+                for (const Value& e : items) v.push_back(*e.getAsset());
+                return Value::assetArray(std::move(v), where);
+            }
+            default:
+                throw ParseError(first.location(),
+                                 "expected numbers, strings, assets or paths in a list, found " +
+                                     first.toString());
+        }
+    }
+    fail("a value");
+}
+
+Dictionary Parser::parseDictionary() {
+    DepthGuard guard(*this);
+    expect('{');
+    Dictionary d;
+    for (;;) {
+        if (accept('}')) return d;
+        if (accept(';')) continue;
+        if (peek().kind == TokenKind::End) fail("'}'");
+        Token typeTok = expectIdent("a value type name or '}'");
+        bool isArray = false;
+        if (accept('[')) {
+            expect(']');
+            isArray = true;
+        }
+        std::string key;
+        if (peek().kind == TokenKind::String) {
+            key = unescapeString(next().text);
+        } else {
+            key = std::string(expectIdent("a dictionary key").text);
+        }
+        expect('=');
+        if (typeTok.text == "dictionary") {
+            SourceLocation where = here();
+            d[key] = Value::dictionary(parseDictionary(), where);
+        } else if (const ValueType* type = findValueType(typeTok.text)) {
+            d[key] = parseTypedValue(type, std::string(typeTok.text), isArray);
+        } else {
+            _lex.fail(typeTok, "a value type name");
+        }
+    }
+}
+
+}  // namespace
+
+std::unique_ptr<Layer> parseLayer(std::string_view text, const std::string& file,
+                                  const std::string& anchorDir) {
+    Parser parser(text, file, anchorDir);
+    return parser.parse();
+}
+
+std::unique_ptr<Layer> parseLayerFile(const std::string& file) {
+    std::string text = readLayerText(file);
+    return parseLayer(text, file, directoryOf(file));
+}
+
+}  // namespace principled::usd

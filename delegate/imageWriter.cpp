@@ -63,7 +63,9 @@ bool writeImage(const std::string& path, int width, int height,
         data = floats.data();
     } else if (ext == "png") {
         const ImageLayer& l = layers[0];
-        int c = int(std::min<size_t>(l.channels.size(), 4));
+        // PNG is the picture people look at: RGB only. A visible dome has alpha 0 in the color
+        // AOV, and viewers would show it as transparent (the EXR keeps alpha).
+        int c = int(std::min<size_t>(l.channels.size(), 3));
         if (c < 3) {
             *error = path + ": PNG needs a colour layer with 3 or 4 channels";
             return false;
@@ -73,7 +75,7 @@ bool writeImage(const std::string& path, int width, int height,
         for (size_t p = 0; p < n; ++p)
             for (int k = 0; k < c; ++k) {
                 float v = l.pixels[p * l.channels.size() + k];
-                float e = k < 3 ? linearToSrgb(v) : std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f);
+                float e = linearToSrgb(v);
                 bytes[p * c + k] = static_cast<unsigned char>(std::lround(e * 255.0f));
             }
         data = bytes.data();

@@ -15,7 +15,7 @@ struct ImageLayer {
 };
 
 /// Writes layers to path: ".exr" keeps every layer as float channels ("layer.R"); ".png" writes
-/// the first layer's first 3-4 channels with the sRGB transfer function, clamped to [0,1].
+/// the first layer's RGB with the sRGB transfer function, clamped to [0,1] (no alpha).
 /// Returns false with *error naming the file and the reason.
 bool writeImage(const std::string& path, int width, int height,
                 const std::vector<ImageLayer>& layers, std::string* error);

@@ -34,8 +34,9 @@ TEST(ImageWriter, ExrRoundTripsFloatsAndPngIsEncoded) {
     EXPECT_FLOAT_EQ(back[4], 0.0f);  // NaN never written
     auto pin = OIIO::ImageInput::open(png);
     ASSERT_TRUE(pin);
-    std::vector<unsigned char> b(8);
-    ASSERT_TRUE(pin->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, b.data()));
+    EXPECT_EQ(pin->spec().nchannels, 3);
+    std::vector<unsigned char> b(6);
+    ASSERT_TRUE(pin->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, b.data()));
     EXPECT_EQ(b[0], 118);  // 0.18 -> sRGB 0.4614 -> 118
     EXPECT_EQ(b[1], 255);  // clamped
     EXPECT_FALSE(embree::writeImage((dir / "a.bmp").string(), 2, 1, {layer}, &err));

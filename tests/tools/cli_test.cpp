@@ -1,0 +1,118 @@
+// Runs the installed command line as a user would and checks exit codes, messages and output.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int status;
+    std::string output;  // stdout + stderr
+};
+
+Result run(const std::string& args) {
+    std::string cmd = std::string(PRINCIPLED_BINARY_DIR) + "/bin/principled " + args + " 2>&1";
+    Result r{-1, ""};
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+    int s = pclose(p);
+    r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+    return r;
+}
+
+fs::path tempDir() {
+    fs::path d = fs::temp_directory_path() / "principled_cli_test";
+    fs::create_directories(d);
+    return d;
+}
+
+std::string usdWg(const std::string& rel) {
+    return std::string(PRINCIPLED_SOURCE_DIR) + "/../shared/usd-wg/" + rel;
+}
+
+// Reads an EXR's RGB and returns (all finite, mean of RGB).
+std::pair<bool, double> exrStats(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return {false, 0.0};
+    const auto& spec = in->spec();
+    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+    in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
+    bool finite = true;
+    double sum = 0.0;
+    for (size_t i = 0; i < px.size(); ++i) {
+        finite &= std::isfinite(px[i]);
+        if (int(i % spec.nchannels) < 3) sum += px[i];
+    }
+    return {finite, sum / (double(spec.width) * spec.height * 3)};
+}
+
+}  // namespace
+
+TEST(Cli, UnbalancedBraceExitsOneWithFileLineColumn) {
+    fs::path f = tempDir() / "unbalanced.usda";
+    std::ofstream(f) << "#usda 1.0\ndef Xform \"A\"\n{\n    def Sphere \"B\"\n    {\n    }\n";
+    Result r = run("render " + f.string() + " -o " + (tempDir() / "x.exr").string());
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("unbalanced.usda:7:1: expected"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("\n", r.output.find("error:")), r.output.size() - 1)
+        << "one-line message expected: " << r.output;
+}
+
+TEST(Cli, UserErrorsExitOne) {
+    EXPECT_EQ(run("render /nonexistent/scene.usda -o /tmp/x.exr").status, 1);
+    EXPECT_EQ(run("render -o /tmp/x.jpg").status, 1);
+    EXPECT_EQ(run("render -o /tmp/x.exr --res 12").status, 1);
+    EXPECT_EQ(run("render -o /tmp/x.exr --spp 0").status, 1);
+    Result cam = run("render -o /tmp/x.exr --camera /NoSuchCamera --spp 1 --res 8x8");
+    EXPECT_EQ(cam.status, 1);
+    EXPECT_NE(cam.output.find("/World/Camera"), std::string::npos) << cam.output;
+    EXPECT_EQ(run("no-such-command").status, 1);
+    EXPECT_EQ(run("--help").status, 0);
+}
+
+TEST(Cli, BinaryCrateFilesAreRefusedClearly) {
+    fs::path f = tempDir() / "crate.usda";
+    std::ofstream(f, std::ios::binary) << "PXR-USDC" << std::string(64, '\0');
+    Result r = run("render " + f.string() + " -o /tmp/x.exr");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("text"), std::string::npos) << r.output;
+}
+
+TEST(Cli, RendersTheQuadCorpusFileToAFiniteNonZeroExr) {
+    fs::path out = tempDir() / "quads.exr";
+    fs::remove(out);
+    Result r = run("render " + usdWg("test_assets/schemaTests/usdGeom/meshes/quad_mesh/quads.usda") +
+                   " -o " + out.string() + " --spp 4 --res 64x64 --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    auto [finite, mean] = exrStats(out.string());
+    EXPECT_TRUE(finite);
+    EXPECT_GT(mean, 0.0);
+}
+
+TEST(Cli, RendersTheDefaultSceneWithStats) {
+    fs::path exr = tempDir() / "d.exr", png = tempDir() / "d.png", stats = tempDir() / "s.json";
+    Result r = run("render -o " + exr.string() + " -o " + png.string() + " --spp 2 --res 96x54 --stats " +
+                   stats.string() + " --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(r.output.empty()) << "--quiet must print nothing: " << r.output;
+    EXPECT_TRUE(fs::exists(png));
+    auto [finite, mean] = exrStats(exr.string());
+    EXPECT_TRUE(finite);
+    EXPECT_GT(mean, 0.01);
+    std::ifstream s(stats);
+    std::string json((std::istreambuf_iterator<char>(s)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"rays\""), std::string::npos);
+    EXPECT_NE(json.find("\"samplesPerPixel\": 2"), std::string::npos) << json;
+}

@@ -15,7 +15,8 @@ struct Gtr1 {
         if (cosH <= 0.0f) return 0.0f;
         if (alpha >= 1.0f) return kInvPi;
         float a2 = alpha * alpha;
-        float t = 1.0f + (a2 - 1.0f) * cosH * cosH;
+        // 1 + (a^2 - 1) c^2 = a^2 c^2 + (1 - c)(1 + c): no cancellation at the peak.
+        float t = a2 * cosH * cosH + (1.0f - cosH) * (1.0f + cosH);
         return (a2 - 1.0f) / (kPi * std::log(a2) * t);
     }
 

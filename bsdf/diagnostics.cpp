@@ -82,11 +82,13 @@ std::string describe(const MaterialParams& p, const glm::vec3& wo, const glm::ve
 
 }  // namespace
 
-StressResult stressTest(uint64_t evaluations, uint64_t seed, Model model) {
+namespace {
+
+StressResult stressImpl(uint64_t evaluations, uint64_t seed, int model) {
     StressResult r;
     Pcg32 rng(seed);
     Options o;
-    o.model = model;
+    o.model = model == 1 ? Model::UE4 : Model::Disney;
     MaterialParams p;
     Bsdf bsdf(p, o);
     for (uint64_t n = 0; n < evaluations; ++n) {
@@ -107,6 +109,7 @@ StressResult stressTest(uint64_t evaluations, uint64_t seed, Model model) {
             p.thin = rng.uniform() < 0.3f;
             o.vndfSampling = rng.uniform() < 0.7f;
             o.legacySpecularG = rng.uniform() < 0.2f;
+            if (model < 0) o.model = rng.uniform() < 0.5f ? Model::Disney : Model::UE4;
             bsdf = Bsdf(p, o);
         }
         glm::vec3 wo = randomDirection(rng);
@@ -135,6 +138,13 @@ StressResult stressTest(uint64_t evaluations, uint64_t seed, Model model) {
     }
     return r;
 }
+
+}  // namespace
+
+StressResult stressTest(uint64_t evaluations, uint64_t seed, Model model) {
+    return stressImpl(evaluations, seed, model == Model::UE4 ? 1 : 0);
+}
+StressResult stressTest(uint64_t evaluations, uint64_t seed) { return stressImpl(evaluations, seed, -1); }
 
 MaterialParams cliDefaults() {
     MaterialParams p;

@@ -27,6 +27,8 @@ struct StressResult {
 /// Random parameters in [0,1] (edge values 0, 1, 1e-8 favoured) and random or degenerate
 /// directions; every eval, pdf and sample must be finite and non-negative.
 StressResult stressTest(uint64_t evaluations, uint64_t seed, Model model);
+/// Same, with the model drawn at random for every material.
+StressResult stressTest(uint64_t evaluations, uint64_t seed);
 
 /// Sets the parameter called name (Disney naming, as in MaterialParams) from text. Colours take
 /// one value or three joined by ':'. Returns an empty string on success, else a one-line error.

@@ -11,7 +11,7 @@ inline LobeSet buildDisney(const MaterialParams& p, const Options& o) {
     LobeSet s;
     glm::vec3 base = glm::max(p.baseColor, glm::vec3(0.0f));
     float r = std::clamp(p.roughness, 0.0f, 1.0f);
-    float metallic = std::clamp(p.metallic, 0.0f, 1.0f);
+    float metallic = p.specularWorkflow ? 0.0f : std::clamp(p.metallic, 0.0f, 1.0f);
     float specTrans = std::clamp(p.specTrans, 0.0f, 1.0f);
     // Burley 2012, "Physically-Based Shading at Disney", §5.1 and wdas/brdf disney.brdf:
     // Ctint = baseColor / luminance (white when black), Cspec0 = mix(0.08 specular
@@ -21,6 +21,7 @@ inline LobeSet buildDisney(const MaterialParams& p, const Options& o) {
     glm::vec3 cspec0 = glm::mix(0.08f * std::clamp(p.specular, 0.0f, 1.0f) *
                                     glm::mix(glm::vec3(1.0f), tint, std::clamp(p.specularTint, 0.0f, 1.0f)),
                                 base, metallic);
+    if (p.specularWorkflow) cspec0 = glm::clamp(p.specularColor, 0.0f, 1.0f);
     glm::vec3 csheen = glm::mix(glm::vec3(1.0f), tint, std::clamp(p.sheenTint, 0.0f, 1.0f));
     // Burley 2015, "Extending the Disney BRDF to a BSDF with Integrated Subsurface Scattering",
     // §3: the diffuse-like lobes are scaled by (1 - metallic)(1 - specTrans).

@@ -36,6 +36,10 @@ struct MaterialParams {
     float specTrans = 0.0f;  ///< Burley 2015 specular transmission weight.
     float ior = 1.5f;        ///< Used by transmission.
     bool thin = false;       ///< Thin-surface transmission (no refraction of the path).
+    /// UsdPreviewSurface specular workflow (useSpecularWorkflow = 1): specularColor is F0 and
+    /// metallic, specular and specularTint are ignored.
+    bool specularWorkflow = false;
+    glm::vec3 specularColor{0.0f};
 };
 
 /// Settings that trade speed against accuracy; every one is charted in bench/.

@@ -332,3 +332,28 @@ TEST(Bsdf, StressSweep) {
 
 }  // namespace
 }  // namespace principled::bsdf
+
+namespace principled::bsdf {
+namespace {
+
+TEST(Bsdf, SpecularWorkflowUsesSpecularColorAsF0) {
+    MaterialParams p = cliDefaults();
+    p.specularWorkflow = true;
+    p.specularColor = {0.9f, 0.6f, 0.3f};
+    p.metallic = 1.0f;  // ignored
+    p.baseColor = glm::vec3(0.0f);
+    for (Model m : {Model::Disney, Model::UE4}) {
+        Options o;
+        o.model = m;
+        Bsdf b(p, o);
+        EXPECT_EQ(b.lobes(), lobeBit(Lobe::Specular));
+        // Normal incidence: f cos = F0 D / 4 with G = 1.
+        glm::vec3 n(0, 0, 1);
+        glm::vec3 f = b.eval(n, n);
+        EXPECT_NEAR(f.y / f.x, 0.6f / 0.9f, 3e-4f);  // UE4 SG Schlick: 2^-12.5 at cos 1
+        EXPECT_NEAR(f.z / f.x, 0.3f / 0.9f, 3e-4f);
+    }
+}
+
+}  // namespace
+}  // namespace principled::bsdf

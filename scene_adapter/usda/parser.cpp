@@ -429,6 +429,12 @@ void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
         parseTimeSamples(*attr, type);
     } else if (accept('=')) {
         attr->defaultValue = parseTypedValue(type, attr->typeName, isArray);
+    } else {
+        // A declaration without a value ends its line (or opens its metadata).
+        const Token& t = peek();
+        if (t.line == nameTok.line && t.kind != TokenKind::End && !t.is('(') && !t.is(';') &&
+            !t.is('}'))
+            fail("'='");
     }
     if (peek().is('(')) parsePropertyMetadata(attr->metadata);
 }

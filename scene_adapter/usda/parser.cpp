@@ -146,6 +146,7 @@ std::unique_ptr<Layer> Parser::parse() {
             fail("'def', 'over' or 'class'");
         }
     }
+    layer->indexRootPrims();
     return layer;
 }
 
@@ -299,6 +300,7 @@ void Parser::parsePrimBody(PrimSpec& spec) {
         const Token& t = peek();
         if (t.is('}')) {
             next();
+            spec.indexChildren();
             return;
         }
         if (t.kind == TokenKind::End) fail("'}'");

@@ -493,7 +493,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "t.usda:3:22: expected a quoted variant name or '}', found 'x'"},
         BadInput{"BadReference", "#usda 1.0\ndef \"A\" (\n  references = 3\n) {}\n",
                  "t.usda:3:16: expected an asset path '@...@' or a prim path '<...>', found '3'"}),
-    [](const auto& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });
 
 TEST(Parser, DeepNestingIsRefused) {
     std::string prims = "#usda 1.0\n";

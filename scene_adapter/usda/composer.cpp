@@ -20,6 +20,10 @@ namespace {
 constexpr std::size_t kMaxNodesPerPrim = 4096;
 // Composed prims one stage may hold (16M).
 constexpr std::size_t kMaxPrims = std::size_t(1) << 24;
+// Arcs nested inside arcs (a reference of a reference of ...), and composed namespace depth:
+// both bound the composer's recursion so that chained layers cannot overflow the stack.
+constexpr int kMaxArcDepth = 256;
+constexpr int kMaxNamespaceDepth = 1024;
 
 std::string describeSite(const LayerStack* stack, std::string_view site) {
     return stack->identifier + "<" + std::string(site) + ">";
@@ -167,7 +171,7 @@ void Composer::compose(const Layer* rootLayer) {
             op.set(ListOpKind::Reorder, *(*it)->rootPrimOrder);
             op.applyTo(names);
         }
-    composeChildren(*rootPrim, nullptr, names);
+    composeChildren(*rootPrim, nullptr, names, 1);
 }
 
 std::unique_ptr<PrimIndexNode> Composer::derive(const Node& source, std::string_view name,
@@ -194,7 +198,15 @@ std::vector<const PrimSpec*> Composer::specsAt(const Node& node) {
     return out;
 }
 
-bool Composer::reserveNode(const SourceLocation& where) {
+bool Composer::reserveNode(const Node& parent, const SourceLocation& where) {
+    int depth = 0;
+    for (const Node* n = &parent; n; n = n->parent) ++depth;
+    if (depth >= kMaxArcDepth) {
+        warn(where, "composition arcs nested more than " + std::to_string(kMaxArcDepth) +
+                        " deep; further arcs are ignored",
+             Diagnostic::Severity::Error);
+        return false;
+    }
     if (++_nodeCount <= kMaxNodesPerPrim) return true;
     warn(where, "composition too complex: more than " + std::to_string(kMaxNodesPerPrim) +
                     " arcs contribute to one prim; further arcs are ignored",
@@ -275,7 +287,7 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
         return;
     }
     if (reportCycle(node, stack, target, ref.location, what)) return;
-    if (!reserveNode(ref.location)) return;
+    if (!reserveNode(node, ref.location)) return;
     auto child = std::make_unique<Node>();
     child->stack = stack;
     child->site = target;
@@ -296,7 +308,7 @@ void Composer::addClassArc(Node& node, const PathItem& item, Arc arc) {
     if (reportCycle(node, node.stack, target, item.location,
                     arc == Arc::Inherit ? "inherits" : "specializes"))
         return;
-    if (!reserveNode(item.location)) return;
+    if (!reserveNode(node, item.location)) return;
     auto child = std::make_unique<Node>();
     child->stack = node.stack;
     child->site = target;
@@ -373,7 +385,7 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
                                                           selection + "\"");
                     continue;
                 }
-                if (!reserveNode(specs.front()->location)) return;
+                if (!reserveNode(*n, specs.front()->location)) return;
                 auto child = std::make_unique<Node>();
                 child->stack = n->stack;
                 child->site = site;
@@ -552,7 +564,13 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
 }
 
 void Composer::composeChildren(Prim& parent, Node* parentIndex,
-                               const std::vector<std::string>& names) {
+                               const std::vector<std::string>& names, int depth) {
+    if (!names.empty() && depth > kMaxNamespaceDepth) {
+        warn(parent._location, "namespace deeper than " + std::to_string(kMaxNamespaceDepth) +
+                                   " levels below " + parent._path + "; children are ignored",
+             Diagnostic::Severity::Error);
+        return;
+    }
     for (const std::string& name : names) {
         if (_stage._prims.size() >= kMaxPrims) {
             warn(parent._location, "too many prims (more than " + std::to_string(kMaxPrims) +
@@ -589,7 +607,7 @@ void Composer::composeChildren(Prim& parent, Node* parentIndex,
         parent._children.push_back(raw);
         _stage._index[primPath] = raw;
         _stage._prims.push_back(std::move(prim));
-        if (raw->_active) composeChildren(*raw, index.get(), childNames);
+        if (raw->_active) composeChildren(*raw, index.get(), childNames, depth + 1);
     }
 }
 

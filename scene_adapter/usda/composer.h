@@ -78,7 +78,7 @@ private:
     void addClassArc(Node& node, const PathItem& item, Arc arc);
     bool reportCycle(const Node& from, const LayerStack* stack, const std::string& site,
                      const SourceLocation& where, const char* arcName);
-    bool reserveNode(const SourceLocation& where);
+    bool reserveNode(const Node& parent, const SourceLocation& where);
     void expandVariants(Node& root, const std::string& primPath,
                         std::map<std::string, std::string>& used);
     std::string selectVariant(Node& root, const std::string& primPath, const std::string& set);
@@ -90,7 +90,8 @@ private:
     std::vector<std::string> composeTargets(
         const std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>>& opsStrongFirst);
 
-    void composeChildren(Prim& parent, Node* parentIndex, const std::vector<std::string>& names);
+    void composeChildren(Prim& parent, Node* parentIndex, const std::vector<std::string>& names,
+                         int depth);
     void composePrim(Prim& prim, Node& index, const std::map<std::string, std::string>& used,
                      std::vector<std::string>& childNames);
 

@@ -510,5 +510,67 @@ TEST(Composer, PyramidAssetWithPayloadsReferencesAndNestedVariants) {
     EXPECT_EQ(stage->prim("/Pyramid/geo/shape")->attribute("points")->get().size(), 16u);
 }
 
+TEST(Composer, LongReferenceChainsAreBounded) {
+    test::TempDir dir("chain");
+    const int files = 300;
+    for (int i = 0; i < files; ++i)
+        dir.write("f" + std::to_string(i) + ".usda",
+                  "#usda 1.0\n( defaultPrim = \"P\" )\ndef \"P\" ( references = @f" +
+                      std::to_string(i + 1) + ".usda@ ) { double d" + std::to_string(i) +
+                      " = 1 }\n");
+    dir.write("f" + std::to_string(files) + ".usda", "#usda 1.0\n( defaultPrim = \"P\" )\ndef \"P\" {}\n");
+    auto stage = Stage::open(dir.path("f0.usda"));
+    EXPECT_NE(stage->prim("/P")->attribute("d200"), nullptr);
+    EXPECT_TRUE(hasWarning(*stage, "composition arcs nested more than 256 deep"));
+    StageOptions few;
+    few.maxLayers = 10;
+    stage = Stage::open(dir.path("f0.usda"), few);
+    EXPECT_TRUE(hasWarning(*stage, "too many layers (StageOptions::maxLayers = 10)"));
+}
+
+TEST(Composer, MutatedCompositionNeverCrashes) {
+    const std::string base = R"(#usda 1.0
+( defaultPrim = "W" startTimeCode = 1 )
+class "C" { double c = 1  def "k" {} }
+def "Base" ( specializes = </C> ) { rel r = </Base/x>  def "x" { double v.timeSamples = { 1: 1, 2: 2 } } }
+def Xform "W" ( inherits = </C>  prepend references = [</Base>, </W2>]  payload = </Base>
+    variants = { string v = "a" }  prepend variantSets = "v" )
+{
+    variantSet "v" = { "a" ( references = </Base> ) { def "va" { float f.connect = </W.c> } } "b" {} }
+    def "child" ( references = </W> ) {}
+}
+def "W2" ( inherits = </W> ) { over "x" ( active = false ) {} }
+)";
+    std::uint64_t state = 7;
+    auto rnd = [&state] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return static_cast<std::uint32_t>(state >> 33);
+    };
+    const std::string pieces[] = {"</W>", "</Base>", "</C>", "</W/child>", "{", "}", "(", ")",
+                                  "\"", "=", "def \"Z\" ", "over ", "class ", "inherits = ",
+                                  "references = ", "variants = ", "active = false "};
+    int composed = 0;
+    for (int iter = 0; iter < 1500; ++iter) {
+        std::string text = base;
+        int edits = 1 + static_cast<int>(rnd() % 3);
+        for (int e = 0; e < edits; ++e) {
+            std::size_t pos = rnd() % text.size();
+            if (rnd() % 2) {
+                text.erase(pos, 1 + rnd() % 6);
+            } else {
+                text.insert(pos, pieces[rnd() % (sizeof(pieces) / sizeof(pieces[0]))]);
+            }
+        }
+        try {
+            auto stage = Stage::openString(text, "m.usda");
+            for (const Prim* p : stage->traverse())
+                for (const Attribute* a : p->attributes()) (void)a->get(1.5);
+            ++composed;
+        } catch (const ParseError&) {
+        }
+    }
+    EXPECT_GT(composed, 100);
+}
+
 }  // namespace
 }  // namespace principled::usd

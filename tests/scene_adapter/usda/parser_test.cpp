@@ -537,7 +537,7 @@ def Xform "W" ( kind = "component" prepend references = @r.usda@</X> variants = 
                 case 1: text.insert(pos, 1, alphabet[rnd() % (sizeof(alphabet) - 1)]); break;
                 default: text.resize(pos); break;
             }
-            if (text.empty()) text = "#";
+            if (text.empty()) text.push_back('#');
         }
         try {
             parse(text);
@@ -557,7 +557,11 @@ TEST(Parser, LargeArray) {
     text.reserve(static_cast<std::size_t>(count) * 40);
     for (int i = 0; i < count; ++i) {
         if (i) text += ", ";
-        text += "(" + std::to_string(i) + ".5, -" + std::to_string(i % 1000) + "e-3, 1.25)";
+        text += '(';
+        text += std::to_string(i);
+        text += ".5, -";
+        text += std::to_string(i % 1000);
+        text += "e-3, 1.25)";
     }
     text += "]\n}\n";
     auto layer = parse(text);

@@ -29,6 +29,19 @@ std::string describeSite(const LayerStack* stack, std::string_view site) {
     return stack->identifier + "<" + std::string(site) + ">";
 }
 
+// Adds a weaker opinion of metadata field `key`: the stronger value stays, except that
+// dictionaries (customData, assetInfo, ...) merge key by key, as Sdf composes them.
+void composeField(Dictionary& out, const std::string& key, const Value& weaker) {
+    auto [it, inserted] = out.emplace(key, weaker);
+    if (inserted) return;
+    const Dictionary* strong = it->second.dictionary();
+    const Dictionary* weak = weaker.dictionary();
+    if (!strong || !weak) return;
+    Dictionary merged = *strong;
+    for (const auto& [k, v] : *weak) composeField(merged, k, v);
+    it->second = Value::dictionary(std::move(merged), it->second.location());
+}
+
 template <class T, class Get>
 std::vector<T> composeListOp(const std::vector<const PrimSpec*>& strongFirst, Get get) {
     std::vector<T> result;
@@ -223,9 +236,10 @@ void Composer::expandArcs(Node& node) {
     for (const Reference& r :
          composeListOp<Reference>(specs, [](const PrimSpec& s) -> auto& { return s.references; }))
         addReferenceArc(node, r, Arc::Reference);
-    for (const Reference& r :
-         composeListOp<Reference>(specs, [](const PrimSpec& s) -> auto& { return s.payloads; }))
-        addReferenceArc(node, r, Arc::Payload);
+    if (_options.loadPayloads)
+        for (const Reference& r : composeListOp<Reference>(
+                 specs, [](const PrimSpec& s) -> auto& { return s.payloads; }))
+            addReferenceArc(node, r, Arc::Payload);
     for (const PathItem& item : composeListOp<PathItem>(
              specs, [](const PrimSpec& s) -> auto& { return s.specializes; }))
         addClassArc(node, item, Arc::Specialize);
@@ -489,7 +503,7 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
             break;
         }
     for (const SpecRef& s : specs)
-        for (const auto& [key, value] : s.spec->metadata) prim._metadata.emplace(key, value);
+        for (const auto& [key, value] : s.spec->metadata) composeField(prim._metadata, key, value);
     if (const Value* active = prim.metadata("active"))
         if (auto b = active->getBool()) prim._active = *b;
     if (prim._parent && !prim._parent->isActive()) prim._active = false;
@@ -522,7 +536,7 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
             if (defaultAt == opinions.size() && a.defaultValue) defaultAt = i;
             if (samplesAt == opinions.size() && a.hasTimeSamples) samplesAt = i;
             if (a.hasConnections) connections.push_back({&a.connections, opinions[i].second});
-            for (const auto& [key, value] : a.metadata) attr->_metadata.emplace(key, value);
+            for (const auto& [key, value] : a.metadata) composeField(attr->_metadata, key, value);
         }
         if (defaultAt < opinions.size()) attr->_default = *opinions[defaultAt].first->defaultValue;
         // Value resolution (UsdAttribute::Get): per opinion, time samples before the default;
@@ -543,7 +557,7 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
         std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>> targets;
         for (const auto& [r, s] : opinions) {
             if (r->hasTargets) targets.push_back({&r->targets, s});
-            for (const auto& [key, value] : r->metadata) rel->_metadata.emplace(key, value);
+            for (const auto& [key, value] : r->metadata) composeField(rel->_metadata, key, value);
         }
         rel->_targets = composeTargets(targets);
         prim._relationships.push_back(rel.get());

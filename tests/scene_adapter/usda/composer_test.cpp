@@ -510,6 +510,38 @@ TEST(Composer, PyramidAssetWithPayloadsReferencesAndNestedVariants) {
     EXPECT_EQ(stage->prim("/Pyramid/geo/shape")->attribute("points")->get().size(), 16u);
 }
 
+TEST(Composer, DictionariesMergeAcrossOpinionsAndPayloadsCanBeSkipped) {
+    auto stage = Stage::openString(R"(#usda 1.0
+def "Ref" ( customData = { int a = 1  int b = 1  dictionary d = { int x = 1  int y = 1 } } ) {
+    double v = 1 ( customData = { string from = "ref" string only = "ref" } )
+}
+def "Pay" { double p = 1 }
+def "P" ( references = </Ref>  payload = </Pay>
+          customData = { int b = 2  dictionary d = { int y = 2 } } ) {
+    double v ( customData = { string from = "local" } )
+}
+)",
+                                   "dict.usda");
+    const Value* cd = stage->prim("/P")->metadata("customData");
+    ASSERT_NE(cd, nullptr);
+    EXPECT_EQ(cd->find("a")->getInt(), 1);
+    EXPECT_EQ(cd->find("b")->getInt(), 2);
+    EXPECT_EQ(cd->find("d")->find("x")->getInt(), 1);
+    EXPECT_EQ(cd->find("d")->find("y")->getInt(), 2);
+    const Value* vcd = stage->prim("/P")->attribute("v")->metadata("customData");
+    EXPECT_EQ(vcd->find("from")->getString(), "local");
+    EXPECT_EQ(vcd->find("only")->getString(), "ref");
+    EXPECT_NE(stage->prim("/P")->attribute("p"), nullptr);
+    StageOptions noPayloads;
+    noPayloads.loadPayloads = false;
+    stage = Stage::openString(R"(#usda 1.0
+def "Pay" { double p = 1 }
+def "P" ( payload = </Pay> ) { }
+)",
+                              "dict.usda", noPayloads);
+    EXPECT_EQ(stage->prim("/P")->attribute("p"), nullptr);
+}
+
 TEST(Composer, LongReferenceChainsAreBounded) {
     test::TempDir dir("chain");
     const int files = 300;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Follows the structure of Pcp (pxr/usd/pcp/primIndex.cpp) in a much reduced form: no
-// relocations, no instancing (instanceable prims are expanded like any other), no implied
-// class arcs across references, ancestral arcs weaker than direct arcs of the same kind.
+// relocations, no instancing (instanceable prims are expanded like any other), implied class
+// arcs only into the root layer stack, ancestral arcs before direct arcs of the same kind.
 #include "scene_adapter/usda/composer.h"
 
 #include <algorithm>
@@ -315,9 +315,41 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
     expandArcs(*raw);
 }
 
+void Composer::addImpliedClassArc(const Node& node, const std::string& target, Arc arc,
+                                  const SourceLocation& where) {
+    // Only arcs seen through a reference or payload have an implied counterpart.
+    bool viaReference = false;
+    for (const Node* n = &node; n; n = n->parent)
+        if (n->arc == Arc::Reference || n->arc == Arc::Payload) viaReference = true;
+    if (!viaReference || !_indexRoot) return;
+    // Map the class into stage namespace; paths outside the referenced prim are global classes
+    // and keep their path (Pcp adds the root identity to reference map functions).
+    std::string mapped = target;
+    for (const MapStep& step : node.map)
+        if (path::hasPrefix(mapped, step.source))
+            mapped = path::replacePrefix(mapped, step.source, step.target);
+    if (!_rootStack->hasPrim(mapped)) return;
+    for (const Node* n : strengthOrder(*_indexRoot))
+        if (n->stack == _rootStack && path::stripVariants(n->site) == mapped) return;
+    if (reportCycle(*_indexRoot, _rootStack, mapped, where,
+                    arc == Arc::Inherit ? "inherits" : "specializes"))
+        return;
+    if (!reserveNode(*_indexRoot, where)) return;
+    auto child = std::make_unique<Node>();
+    child->stack = _rootStack;
+    child->site = mapped;
+    child->arc = arc;
+    child->map.push_back({mapped, _indexRoot->site, true});
+    child->arcLocation = where;
+    Node* raw = child.get();
+    _indexRoot->addChild(std::move(child));
+    expandArcs(*raw);
+}
+
 void Composer::addClassArc(Node& node, const PathItem& item, Arc arc) {
     std::string site = path::stripVariants(node.site);
     std::string target = path::makeAbsolute(item.path, site);
+    addImpliedClassArc(node, target, arc, item.location);
     if (!node.stack->hasPrim(target)) return;  // a missing class is legal: no opinions
     if (reportCycle(node, node.stack, target, item.location,
                     arc == Arc::Inherit ? "inherits" : "specializes"))

@@ -76,6 +76,10 @@ private:
     void expandArcs(Node& node);
     void addReferenceArc(Node& node, const Reference& ref, Arc arc);
     void addClassArc(Node& node, const PathItem& item, Arc arc);
+    /// Pcp's implied inherits/specializes: a class arc inside a referenced asset also picks up
+    /// the class at the mapped path in the root layer stack (stronger than the asset's class).
+    void addImpliedClassArc(const Node& node, const std::string& target, Arc arc,
+                            const SourceLocation& where);
     bool reportCycle(const Node& from, const LayerStack* stack, const std::string& site,
                      const SourceLocation& where, const char* arcName);
     bool reserveNode(const Node& parent, const SourceLocation& where);

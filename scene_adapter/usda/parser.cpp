@@ -36,6 +36,19 @@ std::string_view Parser::checkHeader(std::string_view text, const std::string& f
     return body;
 }
 
+void Parser::addPrim(std::vector<std::unique_ptr<PrimSpec>>& siblings, SiblingNames& seen,
+                     std::unique_ptr<PrimSpec> prim) {
+    // One layer holds one spec per path (Sdf): a second spec of the same name is an error.
+    auto [it, inserted] = seen.emplace(prim->name, prim.get());
+    if (!inserted)
+        throw ParseError(prim->location,
+                         "expected a unique prim name, found '" + prim->name +
+                             "' again (first defined at " +
+                             std::to_string(it->second->location.line) + ":" +
+                             std::to_string(it->second->location.column) + ")");
+    siblings.push_back(std::move(prim));
+}
+
 std::optional<ListOpKind> Parser::listOpKeyword(const Token& t) {
     if (t.kind != TokenKind::Identifier) return std::nullopt;
     if (t.text == "prepend") return ListOpKind::Prepend;
@@ -51,13 +64,14 @@ std::unique_ptr<Layer> Parser::parse() {
     layer->file = _lex.file();
     layer->anchorDir = _anchor;
     if (peek().is('(')) parseLayerMetadata(*layer);
+    SiblingNames seen;
     for (;;) {
         const Token& t = peek();
         if (t.kind == TokenKind::End) break;
         if (t.is(';')) {
             next();
         } else if (t.isIdent("def") || t.isIdent("over") || t.isIdent("class")) {
-            layer->rootPrims.push_back(parsePrim());
+            addPrim(layer->rootPrims, seen, parsePrim());
         } else if (t.isIdent("reorder")) {
             next();
             if (!peek().isIdent("rootPrims")) fail("'rootPrims'");
@@ -217,6 +231,7 @@ void Parser::parseReorder(std::optional<std::vector<std::string>>& names, bool) 
 }
 
 void Parser::parsePrimBody(PrimSpec& spec) {
+    SiblingNames seen;
     for (;;) {
         const Token& t = peek();
         if (t.is('}')) {
@@ -228,7 +243,7 @@ void Parser::parsePrimBody(PrimSpec& spec) {
         if (t.is(';')) {
             next();
         } else if (t.isIdent("def") || t.isIdent("over") || t.isIdent("class")) {
-            spec.children.push_back(parsePrim());
+            addPrim(spec.children, seen, parsePrim());
         } else if (t.isIdent("variantSet")) {
             parseVariantSet(spec);
         } else if (t.isIdent("reorder")) {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "scene_adapter/usda/layer.h"
@@ -62,6 +63,10 @@ private:
     void parseLayerMetadata(Layer& layer);
     void parseSubLayers(Layer& layer);
     std::unique_ptr<PrimSpec> parsePrim();
+    /// Names of the prims parsed so far in one body (views of their names).
+    using SiblingNames = std::unordered_map<std::string_view, const PrimSpec*>;
+    void addPrim(std::vector<std::unique_ptr<PrimSpec>>& siblings, SiblingNames& seen,
+                 std::unique_ptr<PrimSpec> prim);
     void parsePrimMetadata(PrimSpec& spec);
     void parsePrimBody(PrimSpec& spec);
     void parseVariantSet(PrimSpec& spec);

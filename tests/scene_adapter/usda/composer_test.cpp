@@ -542,6 +542,42 @@ def "P" ( payload = </Pay> ) { }
     EXPECT_EQ(stage->prim("/P")->attribute("p"), nullptr);
 }
 
+TEST(Composer, ImpliedInheritsReachTheRootLayerStack) {
+    test::TempDir dir("implied");
+    dir.write("asset.usda", R"(#usda 1.0
+( defaultPrim = "Asset" )
+def "Asset" ( inherits = </_class_Asset> ) {
+    double size = 1
+    def "Part" ( inherits = </Asset/_local> ) {}
+    class "_local" { double q = 1 }
+}
+class "_class_Asset" { double color = 1  double size = 5 }
+)");
+    std::string root = dir.write("root.usda", R"(#usda 1.0
+def "A" ( references = @asset.usda@ ) { over "_local" { double q = 4 } }
+def "B" ( references = @asset.usda@ ) { double color = 3 }
+class "_class_Asset" { double color = 2  double extra = 7 }
+)");
+    auto stage = Stage::open(root);
+    EXPECT_TRUE(stage->warnings().empty()) << allWarnings(*stage);
+    EXPECT_EQ(number(*stage, "/A", "color"), 2.0);  // root class beats the asset's class
+    EXPECT_EQ(number(*stage, "/A", "extra"), 7.0);
+    EXPECT_EQ(number(*stage, "/A", "size"), 1.0);   // the asset's own opinion beats both classes
+    EXPECT_EQ(number(*stage, "/B", "color"), 3.0);  // local beats every class
+    EXPECT_EQ(number(*stage, "/A/Part", "q"), 4.0); // a local class mapped to /A/_local
+    EXPECT_EQ(number(*stage, "/B/Part", "q"), 1.0);
+}
+
+TEST(Composer, ImpliedSpecializesThroughInternalReference) {
+    auto s = Stage::open(test::corpusDir() +
+                         "/test_assets/foundation/stage_composition/inherit_and_specialize.usda");
+    // The referenced copy specializes /World/cubeSceneReferenced/source (green), not the red
+    // original; its own yellow opinion still wins.
+    const Prim* spec = s->prim("/World/cubeSceneReferenced/specializes");
+    ASSERT_NE(spec, nullptr);
+    EXPECT_EQ((*spec->attribute("primvars:displayColor")->get().numbers())[1], 0.8);
+}
+
 TEST(Composer, LongReferenceChainsAreBounded) {
     test::TempDir dir("chain");
     const int files = 300;

@@ -491,6 +491,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "t.usda:3:29: expected ':', found '('"},
         BadInput{"BadVariantSet", "#usda 1.0\ndef \"A\" {\n  variantSet \"v\" = { x }\n}\n",
                  "t.usda:3:22: expected a quoted variant name or '}', found 'x'"},
+        BadInput{"DuplicatePrim", "#usda 1.0\ndef \"A\" {}\nover \"A\" {}\n",
+                 "t.usda:3:1: expected a unique prim name, found 'A' again (first defined at 2:1)"},
         BadInput{"BadReference", "#usda 1.0\ndef \"A\" (\n  references = 3\n) {}\n",
                  "t.usda:3:16: expected an asset path '@...@' or a prim path '<...>', found '3'"}),
     [](const ::testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });

@@ -308,7 +308,12 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
     child->arc = arc;
     child->map.push_back({target, path::stripVariants(node.site), false});
     child->map.insert(child->map.end(), node.map.begin(), node.map.end());
-    child->offset = node.offset.compose(ref.offset);
+    // Time mapping: the node's, then the offset of the sublayer that authored the arc, then
+    // the arc's own (offset; scale).
+    LayerOffset authoring;
+    for (std::size_t i = 0; i < node.stack->layers.size(); ++i)
+        if (node.stack->layers[i]->file == ref.location.file) authoring = node.stack->offsets[i];
+    child->offset = node.offset.compose(authoring).compose(ref.offset);
     child->arcLocation = ref.location;
     Node* raw = child.get();
     node.addChild(std::move(child));

@@ -29,8 +29,9 @@ public:
     bool isArray() const { return _isArray; }
     bool isUniform() const { return _uniform; }
     bool isCustom() const { return _custom; }
-    /// A default value or time samples are authored (a None default counts as authored).
-    bool hasValue() const { return _default.has_value() || !_samples.empty(); }
+    /// A default value (not a None block) or time samples are authored, as
+    /// UsdAttribute::HasAuthoredValue. A blocked attribute (`= None`) has no value.
+    bool hasValue() const { return (_default && !_default->isNone()) || !_samples.empty(); }
     /// The strongest default opinion, nullptr if none.
     const Value* defaultValue() const { return _default ? &*_default : nullptr; }
     /// The winning time samples (in stage time, layer offsets applied). Empty when none are

@@ -124,6 +124,18 @@ over "P" { double b = 3 }
     EXPECT_EQ(stage->layerFiles().size(), 3u);
 }
 
+TEST(Composer, ReferenceOffsetsComposeWithTheAuthoringSublayer) {
+    test::TempDir dir("refoffset");
+    dir.write("anim.usda", "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" { double x.timeSamples = { 0: 0, 1: 1 } }\n");
+    dir.write("sub.usda", "#usda 1.0\ndef \"P\" ( references = @anim.usda@ (offset = 5; scale = 2) ) {}\n");
+    std::string root = dir.write("root.usda", "#usda 1.0\n( subLayers = [@sub.usda@ (offset = 100)] )\n");
+    auto stage = Stage::open(root);
+    const auto& samples = stage->prim("/P")->attribute("x")->timeSamples();
+    ASSERT_EQ(samples.size(), 2u);
+    EXPECT_EQ(samples.begin()->first, 105.0);   // 0 * 2 + 5 + 100
+    EXPECT_EQ(samples.rbegin()->first, 107.0);  // 1 * 2 + 5 + 100
+}
+
 TEST(Composer, InheritsFromClass) {
     auto stage = Stage::openString(R"(#usda 1.0
 class "_cls" {

@@ -33,6 +33,7 @@ def Xform "World" ( kind = "assembly" ) {
         texCoord2f[] primvars:st = [(0, 0), (1, 0), (0, 1)] ( interpolation = "faceVarying" )
         int visibleFrom.timeSamples = { 0: 1, 10: 5 }
         custom bool flag = false
+        int[] blocked = None
         rel material:binding = </World/Looks/Mat>
     }
     def Scope "Looks" {
@@ -91,6 +92,9 @@ TEST(Stage, SingleLayerApi) {
     EXPECT_TRUE(mesh->attribute("flag")->isCustom());
     EXPECT_EQ(mesh->attribute("flag")->get().getBool(), false);
     EXPECT_TRUE(world->attribute("xformOpOrder")->isUniform());
+    EXPECT_FALSE(mesh->attribute("blocked")->hasValue());  // None is a block, not a value
+    EXPECT_TRUE(mesh->attribute("blocked")->get().isNone());
+    EXPECT_NE(mesh->attribute("blocked")->defaultValue(), nullptr);
     EXPECT_EQ(mesh->attribute("nope"), nullptr);
     EXPECT_EQ(mesh->relationship("material:binding")->targets(),
               (std::vector<std::string>{"/World/Looks/Mat"}));
@@ -98,7 +102,7 @@ TEST(Stage, SingleLayerApi) {
     std::vector<std::string> names;
     for (const Attribute* a : mesh->attributes()) names.push_back(a->name());
     EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
-    EXPECT_EQ(names.size(), 6u);
+    EXPECT_EQ(names.size(), 7u);
 
     const Attribute* surface = stage->prim("/World/Looks/Mat")->attribute("outputs:surface");
     EXPECT_FALSE(surface->hasValue());

@@ -38,14 +38,7 @@ std::string_view Parser::checkHeader(std::string_view text, const std::string& f
 
 void Parser::addPrim(std::vector<std::unique_ptr<PrimSpec>>& siblings, SiblingNames& seen,
                      std::unique_ptr<PrimSpec> prim) {
-    // One layer holds one spec per path (Sdf): a second spec of the same name is an error.
-    auto [it, inserted] = seen.emplace(prim->name, prim.get());
-    if (!inserted)
-        throw ParseError(prim->location,
-                         "expected a unique prim name, found '" + prim->name +
-                             "' again (first defined at " +
-                             std::to_string(it->second->location.line) + ":" +
-                             std::to_string(it->second->location.column) + ")");
+    seen.emplace(prim->name, prim.get());
     siblings.push_back(std::move(prim));
 }
 
@@ -71,7 +64,7 @@ std::unique_ptr<Layer> Parser::parse() {
         if (t.is(';')) {
             next();
         } else if (t.isIdent("def") || t.isIdent("over") || t.isIdent("class")) {
-            addPrim(layer->rootPrims, seen, parsePrim());
+            addPrim(layer->rootPrims, seen, parsePrim(seen));
         } else if (t.isIdent("reorder")) {
             next();
             if (!peek().isIdent("rootPrims")) fail("'rootPrims'");
@@ -150,7 +143,7 @@ LayerOffset Parser::parseLayerOffsetParens() {
     return off;
 }
 
-std::unique_ptr<PrimSpec> Parser::parsePrim() {
+std::unique_ptr<PrimSpec> Parser::parsePrim(const SiblingNames& seen) {
     DepthGuard guard(*this);
     auto spec = std::make_unique<PrimSpec>();
     spec->location = here();
@@ -166,6 +159,11 @@ std::unique_ptr<PrimSpec> Parser::parsePrim() {
         spec->name.find_first_of("/.{}<>[]:=@\"' \t\r\n") != std::string::npos ||
         (spec->name[0] >= '0' && spec->name[0] <= '9'))
         _lex.fail(nameTok, "a valid prim name (an identifier)");
+    // One layer holds one spec per path (Sdf): a second spec of the same name is an error.
+    if (auto it = seen.find(spec->name); it != seen.end())
+        _lex.fail(nameTok, "a unique prim name ('" + spec->name + "' is already defined at " +
+                               std::to_string(it->second->location.line) + ":" +
+                               std::to_string(it->second->location.column) + ")");
     if (peek().is('(')) parsePrimMetadata(*spec);
     expect('{');
     parsePrimBody(*spec);
@@ -243,7 +241,7 @@ void Parser::parsePrimBody(PrimSpec& spec) {
         if (t.is(';')) {
             next();
         } else if (t.isIdent("def") || t.isIdent("over") || t.isIdent("class")) {
-            addPrim(spec.children, seen, parsePrim());
+            addPrim(spec.children, seen, parsePrim(seen));
         } else if (t.isIdent("variantSet")) {
             parseVariantSet(spec);
         } else if (t.isIdent("reorder")) {

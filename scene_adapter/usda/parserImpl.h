@@ -62,9 +62,9 @@ private:
 
     void parseLayerMetadata(Layer& layer);
     void parseSubLayers(Layer& layer);
-    std::unique_ptr<PrimSpec> parsePrim();
     /// Names of the prims parsed so far in one body (views of their names).
     using SiblingNames = std::unordered_map<std::string_view, const PrimSpec*>;
+    std::unique_ptr<PrimSpec> parsePrim(const SiblingNames& seen);
     void addPrim(std::vector<std::unique_ptr<PrimSpec>>& siblings, SiblingNames& seen,
                  std::unique_ptr<PrimSpec> prim);
     void parsePrimMetadata(PrimSpec& spec);

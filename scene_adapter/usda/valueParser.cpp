@@ -9,6 +9,13 @@
 
 namespace principled::usd::detail {
 
+namespace {
+// A value's text for "found Y" in an error: single-quoted, cut at 40 characters like tokens.
+std::string quoted(const std::string& text) {
+    return "'" + (text.size() > 40 ? text.substr(0, 40) + "..." : text) + "'";
+}
+}  // namespace
+
 AssetPath Parser::assetFromToken(const Token& t) const {
     std::string_view s = t.text;
     std::size_t q = s.size() >= 6 && s.substr(0, 3) == "@@@" ? 3 : 1;
@@ -184,7 +191,8 @@ Value Parser::parseGenericValue() {
             } else if (auto tup = e.getTuple()) {
                 v.insert(v.end(), tup->begin(), tup->end());
             } else {
-                throw ParseError(e.location(), "expected a number in a tuple, found " + e.toString());
+                throw ParseError(e.location(),
+                                 "expected a number in a tuple, found " + quoted(e.toString()));
             }
             if (!accept(',') && !peek().is(')')) fail("',' or ')'");
         }
@@ -202,7 +210,7 @@ Value Parser::parseGenericValue() {
         for (const Value& e : items)
             if (e.kind() != first.kind() || e.components() != first.components())
                 throw ParseError(e.location(), "expected array elements of one type, found " +
-                                                   e.toString());
+                                                   quoted(e.toString()));
         switch (first.kind()) {
             case Value::Kind::Number:
             case Value::Kind::Tuple: {
@@ -228,7 +236,7 @@ Value Parser::parseGenericValue() {
             default:
                 throw ParseError(first.location(),
                                  "expected numbers, strings, assets or paths in a list, found " +
-                                     first.toString());
+                                     quoted(first.toString()));
         }
     }
     fail("a value");

@@ -492,7 +492,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"BadVariantSet", "#usda 1.0\ndef \"A\" {\n  variantSet \"v\" = { x }\n}\n",
                  "t.usda:3:22: expected a quoted variant name or '}', found 'x'"},
         BadInput{"DuplicatePrim", "#usda 1.0\ndef \"A\" {}\nover \"A\" {}\n",
-                 "t.usda:3:1: expected a unique prim name, found 'A' again (first defined at 2:1)"},
+                 "t.usda:3:6: expected a unique prim name ('A' is already defined at 2:1), found '\"A\"'"},
+        BadInput{"MixedList", "#usda 1.0\n( customLayerData = { int x = 1 } doc = [1, \"a\"] )\n",
+                 "t.usda:2:45: expected array elements of one type, found '\"a\"'"},
+        BadInput{"DictInList", "#usda 1.0\n( doc = [{}] )\n",
+                 "t.usda:2:10: expected numbers, strings, assets or paths in a list, found '{ }'"},
         BadInput{"BadReference", "#usda 1.0\ndef \"A\" (\n  references = 3\n) {}\n",
                  "t.usda:3:16: expected an asset path '@...@' or a prim path '<...>', found '3'"}),
     [](const ::testing::TestParamInfo<BadInput>& p) { return std::string(p.param.name); });

@@ -456,6 +456,22 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
     }
 }
 
+std::string Composer::instanceKey(const std::vector<Node*>& order,
+                                  const std::map<std::string, std::string>& used) {
+    // Pcp's instance key, simplified: every arc below the prim's own (local) site, with its
+    // time mapping, plus the variant selections. Local opinions on the instance prim itself
+    // (its transform, say) are not part of what instances share.
+    std::string key;
+    for (const Node* n : order) {
+        if (n->arc == Arc::Root) continue;
+        key += std::to_string(static_cast<int>(n->arc)) + "|" + n->stack->identifier + "|" +
+               n->site + "|" + std::to_string(n->offset.offset) + "|" +
+               std::to_string(n->offset.scale) + "\n";
+    }
+    for (const auto& [set, selection] : used) key += "{" + set + "=" + selection + "}";
+    return key.empty() ? std::string("(no arcs)") : key;
+}
+
 std::vector<Composer::SpecRef> Composer::gatherSpecs(const std::vector<Node*>& order) const {
     std::vector<SpecRef> out;
     for (const Node* n : order)
@@ -549,6 +565,8 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
     prim._appliedSchemas = composeListOp<std::string>(
         strongFirst, [](const PrimSpec& s) -> auto& { return s.apiSchemas; });
     prim._variantSelections = used;
+    if (const Value* inst = prim.metadata("instanceable"))
+        if (inst->getBool().value_or(false)) prim._instanceKey = instanceKey(order, used);
 
     // Properties: every opinion of each name, strongest first.
     std::map<std::string, std::vector<std::pair<const AttributeSpec*, const SpecRef*>>> attrs;

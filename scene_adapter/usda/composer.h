@@ -90,6 +90,8 @@ private:
     static std::vector<Node*> strengthOrder(Node& root);
     static std::vector<const PrimSpec*> specsAt(const Node& node);
     std::vector<SpecRef> gatherSpecs(const std::vector<Node*>& order) const;
+    static std::string instanceKey(const std::vector<Node*>& order,
+                                   const std::map<std::string, std::string>& used);
     std::optional<std::string> mapToStage(const Node& node, const std::string& path) const;
     std::vector<std::string> composeTargets(
         const std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>>& opsStrongFirst);

@@ -590,6 +590,25 @@ TEST(Composer, ImpliedSpecializesThroughInternalReference) {
     EXPECT_EQ((*spec->attribute("primvars:displayColor")->get().numbers())[1], 0.8);
 }
 
+TEST(Composer, InstanceKeysGroupIdenticalInstances) {
+    auto stage = Stage::openString(R"(#usda 1.0
+def "Tree" ( variantSets = "lod"  variants = { string lod = "hi" } ) {
+    variantSet "lod" = { "hi" { def Mesh "m" {} } "lo" { def Mesh "m" {} } }
+}
+def "A" ( instanceable = true  references = </Tree> ) { double3 xformOp:translate = (1, 0, 0) }
+def "B" ( instanceable = true  references = </Tree> ) { double3 xformOp:translate = (2, 0, 0) }
+def "C" ( instanceable = true  references = </Tree>  variants = { string lod = "lo" } ) { }
+def "D" ( references = </Tree> ) { }
+)",
+                                   "inst.usda");
+    const Prim* a = stage->prim("/A");
+    EXPECT_TRUE(a->isInstance());
+    EXPECT_EQ(a->instanceKey(), stage->prim("/B")->instanceKey());
+    EXPECT_NE(a->instanceKey(), stage->prim("/C")->instanceKey());
+    EXPECT_FALSE(stage->prim("/D")->isInstance());
+    EXPECT_NE(stage->prim("/A/m"), nullptr);  // still expanded
+}
+
 TEST(Composer, LongReferenceChainsAreBounded) {
     test::TempDir dir("chain");
     const int files = 300;

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/subdiv/osdStencils.h"
+
+#include <memory>
+#include <stdexcept>
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/stencilTableFactory.h>
+
+namespace principled::subdiv {
+
+namespace {
+
+/// A symbolic primvar value: "1 x element i". Limit() combines these into masks.
+struct Symbol {
+    int index;
+};
+
+/// Source buffer whose element i is the symbol i.
+struct SymbolicSource {
+    Symbol operator[](int i) const { return {i}; }
+};
+
+/// Destination buffer for PrimvarRefiner that records each row as a stencil. PrimvarRefiner
+/// writes a row as Clear() followed by AddWithWeight() calls, one row at a time, so rows stream
+/// into a StencilsBuilder; rows written out of order are permuted at the end.
+class RowRecorder {
+public:
+    struct Row {
+        RowRecorder* owner;
+        int row;
+        void Clear() { owner->clear(row); }
+        void AddWithWeight(const Symbol& s, float w) { owner->add(row, s.index, w); }
+    };
+    Row operator[](int i) { return {this, i}; }
+
+    explicit RowRecorder(size_t rowCount) : _rowCount(rowCount) { _order.reserve(rowCount); }
+
+    Stencils finish() {
+        Stencils built = _builder.finish();
+        if (_broken) throw std::runtime_error("limit mask rows were interleaved");
+        bool inOrder = _order.size() == _rowCount;
+        for (size_t k = 0; inOrder && k < _order.size(); ++k) inOrder = _order[k] == int(k);
+        if (inOrder) return built;
+        // Permute (rows never written stay empty, i.e. evaluate to zero).
+        std::vector<int> slot(_rowCount, -1);
+        for (size_t k = 0; k < _order.size(); ++k) {
+            if (_order[k] < 0 || size_t(_order[k]) >= _rowCount || slot[_order[k]] >= 0)
+                throw std::runtime_error("limit mask row written twice or out of range");
+            slot[_order[k]] = int(k);
+        }
+        StencilsBuilder b;
+        for (size_t r = 0; r < _rowCount; ++r) {
+            b.beginRow();
+            if (slot[r] >= 0) {
+                for (int k = built.offsets[slot[r]]; k < built.offsets[slot[r] + 1]; ++k)
+                    b.add(built.indices[k], built.weights[k]);
+            }
+            b.endRow();
+        }
+        return b.finish();
+    }
+
+private:
+    void clear(int row) {
+        if (_current >= 0) _builder.endRow();
+        _builder.beginRow();
+        _current = row;
+        _order.push_back(row);
+    }
+    void add(int row, int index, float w) {
+        if (row != _current) {
+            _broken = true;
+            return;
+        }
+        _builder.add(index, w);
+    }
+
+    size_t _rowCount;
+    StencilsBuilder _builder;
+    std::vector<int> _order;
+    int _current = -1;
+    bool _broken = false;
+};
+
+/// Destination that ignores everything (lets one Limit() pass record a single mask).
+struct Discard {
+    struct Row {
+        void Clear() {}
+        void AddWithWeight(const Symbol&, float) {}
+    };
+    Row operator[](int) { return {}; }
+};
+
+Stencils fromFar(const Far::StencilTable& table) {
+    Stencils s;
+    const int n = table.GetNumStencils();
+    const auto& sizes = table.GetSizes();
+    const auto& indices = table.GetControlIndices();
+    const auto& weights = table.GetWeights();
+    s.offsets.resize(static_cast<size_t>(n) + 1);
+    s.offsets[0] = 0;
+    for (int i = 0; i < n; ++i) s.offsets[i + 1] = s.offsets[i] + sizes[i];
+    s.indices.assign(indices.begin(), indices.end());
+    s.weights.assign(weights.begin(), weights.end());
+    return s;
+}
+
+}  // namespace
+
+Stencils refinementStencils(const Far::TopologyRefiner& refiner, Interpolation mode,
+                            int channel) {
+    Far::StencilTableFactory::Options o;
+    o.interpolationMode = mode == Interpolation::Vertex    ? Far::StencilTableFactory::INTERPOLATE_VERTEX
+                          : mode == Interpolation::Varying ? Far::StencilTableFactory::INTERPOLATE_VARYING
+                                                           : Far::StencilTableFactory::INTERPOLATE_FACE_VARYING;
+    o.fvarChannel = static_cast<unsigned>(channel);
+    o.generateOffsets = false;
+    o.generateControlVerts = false;
+    o.generateIntermediateLevels = false;  // last level only
+    o.factorizeIntermediateLevels = true;  // each level's stencils built from the previous ones
+    o.maxLevel = static_cast<unsigned>(refiner.GetMaxLevel());
+    std::unique_ptr<const Far::StencilTable> table(Far::StencilTableFactory::Create(refiner, o));
+    return table ? fromFar(*table) : Stencils();
+}
+
+LimitMasks vertexLimitMasks(const Far::TopologyRefiner& refiner) {
+    const Far::PrimvarRefiner primvars(refiner);
+    const SymbolicSource src;
+    const size_t n = static_cast<size_t>(refiner.GetLevel(refiner.GetMaxLevel()).GetNumVertices());
+    // One pass per mask keeps one recorder alive at a time (peak memory of one table).
+    LimitMasks masks;
+    {
+        RowRecorder pos(n);
+        primvars.Limit(src, pos);
+        masks.position = pos.finish();
+    }
+    {
+        RowRecorder du(n);
+        Discard pos, dv;
+        primvars.Limit(src, pos, du, dv);
+        masks.tangentU = du.finish();
+    }
+    {
+        RowRecorder dv(n);
+        Discard pos, du;
+        primvars.Limit(src, pos, du, dv);
+        masks.tangentV = dv.finish();
+    }
+    return masks;
+}
+
+Stencils faceVaryingLimitMasks(const Far::TopologyRefiner& refiner, int channel) {
+    const Far::PrimvarRefiner primvars(refiner);
+    const size_t n =
+        static_cast<size_t>(refiner.GetLevel(refiner.GetMaxLevel()).GetNumFVarValues(channel));
+    RowRecorder values(n);
+    primvars.LimitFaceVarying(SymbolicSource(), values, channel);
+    return values.finish();
+}
+
+}  // namespace principled::subdiv

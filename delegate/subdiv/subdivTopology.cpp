@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <exception>
 #include <mutex>
@@ -79,6 +80,10 @@ bool isIdentity(const Stencils& s) {
     return true;
 }
 
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 template <typename F>
 void parallelRange(size_t n, F&& f) {
     // 8192 elements per task: see Stencils::apply.
@@ -135,8 +140,7 @@ std::unique_ptr<SubdivTopology> SubdivTopology::create(const hd::MeshTopology& t
     } else if (!t->build(error)) {
         return nullptr;
     }
-    t->_buildSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    t->_timings.total = secondsSince(start);
     return t;
 }
 
@@ -209,6 +213,11 @@ bool SubdivTopology::build(std::string* error) {
     desc.fvarChannels = channels.data();
 
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    auto clock = std::chrono::steady_clock::now();
+    auto lap = [&clock](double* slot) {
+        *slot = secondsSince(clock);
+        clock = std::chrono::steady_clock::now();
+    };
     tOsdMessage.clear();
     std::unique_ptr<Far::TopologyRefiner> refiner(
         Factory::Create(desc, Factory::Options(setup.scheme, setup.options)));
@@ -223,10 +232,13 @@ bool SubdivTopology::build(std::string* error) {
     Far::TopologyRefiner::UniformOptions uniform(_level);
     uniform.fullTopologyInLastLevel = true;  // PrimvarRefiner::Limit needs vertex neighbourhoods
     refiner->RefineUniform(uniform);
+    lap(&_timings.refiner);
 
     try {
         _vertex = refinementStencils(*refiner, Interpolation::Vertex);
+        lap(&_timings.vertexStencils);
         if (_options.varying) _varying = refinementStencils(*refiner, Interpolation::Varying);
+        lap(&_timings.varyingStencils);
         if (_scheme != Scheme::Bilinear) {
             // Bilinear limit points are the refined points and its tangent masks are arbitrary
             // (Sdc calls them ambiguous), so bilinear normals come from the triangles.
@@ -235,12 +247,14 @@ bool SubdivTopology::build(std::string* error) {
             _limitDu = std::move(masks.tangentU);
             _limitDv = std::move(masks.tangentV);
         }
+        lap(&_timings.limitMasks);
         for (size_t c = 0; c < _fvar.size(); ++c) {
             if (osdChannel[c] < 0) continue;
             _fvar[c].toLevel = refinementStencils(*refiner, Interpolation::FaceVarying, osdChannel[c]);
             _fvar[c].limit = faceVaryingLimitMasks(*refiner, osdChannel[c]);
             if (isIdentity(_fvar[c].limit)) _fvar[c].limit = Stencils();
         }
+        lap(&_timings.faceVarying);
     } catch (const std::exception& e) {
         *error = std::string("building stencils failed: ") + e.what();
         return false;
@@ -285,6 +299,7 @@ bool SubdivTopology::build(std::string* error) {
         }
     }
     if (_limitP.rows() && isIdentity(_limitP)) _limitP = Stencils();
+    lap(&_timings.triangles);
     return true;  // the refiner is released here: only stencils are kept
 }
 
@@ -316,6 +331,27 @@ size_t SubdivTopology::memoryBytes() const {
     return bytes;
 }
 
+std::string SubdivTopology::describe() const {
+    static const char* kNames[] = {"none", "catmullClark", "loop", "bilinear"};
+    auto table = [](const char* name, const Stencils& st) {
+        if (st.empty()) return std::string();
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " %s %zux%.1f", name, st.rows(),
+                      double(st.entries()) / double(st.rows()));
+        return std::string(buf);
+    };
+    std::string s = std::string(kNames[int(_scheme)]) + " level " + std::to_string(_level) + ": " +
+                    std::to_string(_triangles.size()) + " triangles, " +
+                    std::to_string(_refinedPoints) + " points; stencils (rows x entries/row):" +
+                    table("vertex", _vertex) + table("varying", _varying) +
+                    table("limitP", _limitP) + table("limitDu", _limitDu) +
+                    table("limitDv", _limitDv);
+    for (size_t c = 0; c < _fvar.size(); ++c)
+        s += table(("fvar" + std::to_string(c)).c_str(), _fvar[c].toLevel) +
+             table(("fvarLimit" + std::to_string(c)).c_str(), _fvar[c].limit);
+    return s;
+}
+
 bool SubdivTopology::refine(const std::vector<glm::vec3>& coarsePoints, RefinedMesh* out,
                             std::string* error) const {
     if (coarsePoints.size() != _pointCount) {
@@ -334,35 +370,47 @@ bool SubdivTopology::refine(const std::vector<glm::vec3>& coarsePoints, RefinedM
         out->normals.clear();
         return true;
     }
-    std::vector<glm::vec3> levelPoints(_refinedPoints);
+    // Last-level points in a per-thread scratch buffer: re-posing reuses its pages instead of
+    // faulting in a fresh allocation every frame.
+    thread_local std::vector<glm::vec3> levelPoints;
+    levelPoints.resize(_refinedPoints);
     _vertex.apply(&coarsePoints[0].x, 3, &levelPoints[0].x);
-    if (_limitP.empty()) {
-        out->points = levelPoints;
-    } else {
-        out->points.resize(_refinedPoints);
-        _limitP.apply(&levelPoints[0].x, 3, &out->points[0].x);
-    }
-    computeNormals(levelPoints, out);
+    out->points.resize(_refinedPoints);
+    out->normals.resize(_refinedPoints);
+    if (_limitP.empty()) std::copy(levelPoints.begin(), levelPoints.end(), out->points.begin());
+    computeLimit(levelPoints, out);
     return true;
 }
 
-void SubdivTopology::computeNormals(const std::vector<glm::vec3>& levelPoints,
-                                    RefinedMesh* out) const {
+void SubdivTopology::computeLimit(const std::vector<glm::vec3>& levelPoints,
+                                  RefinedMesh* out) const {
     const size_t n = _refinedPoints;
-    out->normals.resize(n);
-    std::vector<char> fallback(n, 1);
-    if (!_limitDu.empty()) {
-        std::vector<glm::vec3> du(n), dv(n);
-        _limitDu.apply(&levelPoints[0].x, 3, &du[0].x);
-        _limitDv.apply(&levelPoints[0].x, 3, &dv[0].x);
+    // Per-thread scratch; the lambdas below run on TBB workers, so they must use this
+    // reference and never name the thread_local itself.
+    thread_local std::vector<char> fallbackScratch;
+    std::vector<char>& fallback = fallbackScratch;
+    fallback.assign(n, 1);
+    auto row = [&levelPoints](const Stencils& s, size_t r) {
+        glm::vec3 acc(0.0f);
+        for (int k = s.offsets[r]; k < s.offsets[r + 1]; ++k)
+            acc += s.weights[k] * levelPoints[size_t(s.indices[k])];
+        return acc;
+    };
+    const bool tangents = !_limitDu.empty();
+    const bool limit = !_limitP.empty();
+    if (tangents || limit) {
+        // One pass per point: limit position and both tangents.
         parallelRange(n, [&](size_t begin, size_t end) {
             for (size_t i = begin; i < end; ++i) {
+                if (limit) out->points[i] = row(_limitP, i);
+                if (!tangents) continue;
+                const glm::vec3 du = row(_limitDu, i), dv = row(_limitDv, i);
                 // Normal from limit tangents: N = normalize(dP/du x dP/dv) (Far tutorial 2_3).
-                glm::vec3 c = glm::cross(du[i], dv[i]);
-                float len2 = glm::dot(c, c);
+                const glm::vec3 c = glm::cross(du, dv);
+                const float len2 = glm::dot(c, c);
                 // 1e-12: relative to |du|^2 |dv|^2, i.e. tangents within ~1e-6 rad of parallel
                 // (or vanishing) give no usable normal.
-                float ref = glm::dot(du[i], du[i]) * glm::dot(dv[i], dv[i]);
+                const float ref = glm::dot(du, du) * glm::dot(dv, dv);
                 if (len2 > 1e-12f * ref && len2 > 0.0f) {
                     out->normals[i] = c / std::sqrt(len2);
                     fallback[i] = 0;

@@ -37,6 +37,17 @@ struct BuildOptions {
 
 enum class Scheme { None, CatmullClark, Loop, Bilinear };
 
+/// Where build time went (seconds), for docs/subdivision.md and profiling.
+struct BuildTimings {
+    double refiner = 0;        ///< TopologyRefinerFactory::Create + RefineUniform
+    double vertexStencils = 0; ///< StencilTableFactory, vertex interpolation
+    double varyingStencils = 0;
+    double limitMasks = 0;     ///< position + tangent masks
+    double faceVarying = 0;    ///< fvar stencils + limit masks, all channels
+    double triangles = 0;      ///< coarse-face map, triangles, fvar corners
+    double total = 0;
+};
+
 /// One topology (hd::MeshTopology + hd::SubdivTags + level + face-varying channels) refined
 /// uniformly with OpenSubdiv, reduced to stencil tables. Building does the expensive work
 /// once (TopologyRefiner, RefineUniform, StencilTableFactory, limit masks) and then drops the
@@ -96,7 +107,9 @@ public:
     bool faceVaryingAvailable(int channel) const;
     uint64_t id() const { return _id; }      ///< unique per instance, never 0
     size_t memoryBytes() const;              ///< stencils + triangle arrays
-    double buildSeconds() const { return _buildSeconds; }
+    /// One line: scheme, level, counts, and the rows / entries of every stencil table.
+    std::string describe() const;
+    const BuildTimings& timings() const { return _timings; }
 
     /// Number of Far::TopologyRefiner objects ever built (process-wide); tests use it to
     /// check that re-posing does not rebuild.
@@ -106,7 +119,8 @@ private:
     SubdivTopology() = default;
     bool build(std::string* error);
     void buildCage();
-    void computeNormals(const std::vector<glm::vec3>& levelPoints, RefinedMesh* out) const;
+    /// Limit points (when there are position masks) and normals from the last-level points.
+    void computeLimit(const std::vector<glm::vec3>& levelPoints, RefinedMesh* out) const;
 
     struct FaceVaryingTables {
         bool available = false;
@@ -125,7 +139,7 @@ private:
     Scheme _scheme = Scheme::None;
     int _level = 0;
     uint64_t _id = 0;
-    double _buildSeconds = 0.0;
+    BuildTimings _timings;
     size_t _refinedPoints = 0;
     std::vector<std::string> _warnings;
 

@@ -93,7 +93,13 @@ struct Discard {
     Row operator[](int) { return {}; }
 };
 
-Stencils fromFar(const Far::StencilTable& table) {
+// The float wrappers Far::StencilTableFactory / Far::StencilTable static_cast a
+// StencilTableReal<float> to the derived StencilTable (UBSan: bad downcast), so the Real
+// templates are used directly.
+using FactoryReal = Far::StencilTableFactoryReal<float>;
+using TableReal = Far::StencilTableReal<float>;
+
+Stencils fromFar(const TableReal& table) {
     Stencils s;
     const int n = table.GetNumStencils();
     const auto& sizes = table.GetSizes();
@@ -111,17 +117,17 @@ Stencils fromFar(const Far::StencilTable& table) {
 
 Stencils refinementStencils(const Far::TopologyRefiner& refiner, Interpolation mode,
                             int channel) {
-    Far::StencilTableFactory::Options o;
-    o.interpolationMode = mode == Interpolation::Vertex    ? Far::StencilTableFactory::INTERPOLATE_VERTEX
-                          : mode == Interpolation::Varying ? Far::StencilTableFactory::INTERPOLATE_VARYING
-                                                           : Far::StencilTableFactory::INTERPOLATE_FACE_VARYING;
+    FactoryReal::Options o;
+    o.interpolationMode = mode == Interpolation::Vertex    ? FactoryReal::INTERPOLATE_VERTEX
+                          : mode == Interpolation::Varying ? FactoryReal::INTERPOLATE_VARYING
+                                                           : FactoryReal::INTERPOLATE_FACE_VARYING;
     o.fvarChannel = static_cast<unsigned>(channel);
     o.generateOffsets = false;
     o.generateControlVerts = false;
     o.generateIntermediateLevels = false;  // last level only
     o.factorizeIntermediateLevels = true;  // each level's stencils built from the previous ones
     o.maxLevel = static_cast<unsigned>(refiner.GetMaxLevel());
-    std::unique_ptr<const Far::StencilTable> table(Far::StencilTableFactory::Create(refiner, o));
+    std::unique_ptr<const TableReal> table(FactoryReal::Create(refiner, o));
     return table ? fromFar(*table) : Stencils();
 }
 

@@ -331,3 +331,75 @@ TEST(SubdivTopology, BadTagsAreWarningsAndUnknownTokensUseDefaults) {
     EXPECT_GE(b.topology->warnings().size(), 4u);
     EXPECT_EQ(b.mesh.triangles.size(), 48u);
 }
+
+TEST(SubdivTopology, RandomTopologiesNeverCrash) {
+    // Deterministic random soup: repeated and out-of-range indices, tiny faces, non-manifold
+    // fans, random tags and face-varying channels. Either an error or a consistent result.
+    uint32_t state = 12345u;
+    auto next = [&state](uint32_t n) {  // xorshift32 (Marsaglia 2003)
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        return state % n;
+    };
+    const char* schemes[] = {"catmullClark", "loop", "bilinear", "none"};
+    const char* boundaries[] = {"none", "edgeOnly", "edgeAndCorner"};
+    const char* fvarModes[] = {"none", "cornersOnly", "cornersPlus1", "cornersPlus2", "boundaries", "all"};
+    int built = 0;
+    for (int iter = 0; iter < 1000; ++iter) {
+        const int pointCount = 1 + int(next(10));
+        hd::MeshTopology t;
+        t.scheme = schemes[next(4)];
+        if (next(4) == 0) t.orientation = "leftHanded";
+        const int faces = 1 + int(next(8));
+        for (int f = 0; f < faces; ++f) {
+            int n = next(10) == 0 ? int(next(3)) : 3 + int(next(3));
+            t.faceVertexCounts.push_back(n);
+            for (int k = 0; k < n; ++k)
+                t.faceVertexIndices.push_back(next(30) == 0 ? pointCount : int(next(uint32_t(pointCount))));
+        }
+        if (next(3) == 0) t.holeIndices.push_back(int(next(uint32_t(faces + 1))));
+        hd::SubdivTags tags;
+        tags.interpolateBoundary = boundaries[next(3)];
+        tags.faceVaryingLinearInterpolation = fvarModes[next(6)];
+        if (next(2)) {
+            int len = 2 + int(next(3));
+            tags.creaseLengths = {len};
+            for (int k = 0; k < len; ++k) tags.creaseIndices.push_back(int(next(uint32_t(pointCount))));
+            tags.creaseSharpnesses = {float(next(12))};
+        }
+        if (next(2)) {
+            tags.cornerIndices = {int(next(uint32_t(pointCount)))};
+            tags.cornerSharpnesses = {float(next(12))};
+        }
+        BuildOptions o{int(next(3))};
+        FaceVaryingChannel ch;
+        ch.valueCount = 1 + next(6);
+        for (size_t k = 0; k < t.faceVertexIndices.size(); ++k) ch.indices.push_back(int(next(uint32_t(ch.valueCount))));
+        o.faceVarying = {ch};
+        std::vector<glm::vec3> points(static_cast<size_t>(pointCount));
+        for (glm::vec3& p : points) p = glm::vec3(float(next(100)), float(next(100)), float(next(100))) * 0.01f;
+
+        std::string err;
+        auto topo = SubdivTopology::create(t, tags, points.size(), o, &err);
+        if (!topo) {
+            ASSERT_FALSE(err.empty()) << "iteration " << iter;
+            continue;
+        }
+        ++built;
+        RefinedMesh m;
+        ASSERT_TRUE(topo->refine(points, &m, &err)) << err;
+        ASSERT_EQ(m.triangleFace.size(), m.triangles.size());
+        for (const glm::uvec3& tri : m.triangles) ASSERT_LT(std::max({tri.x, tri.y, tri.z}), m.points.size());
+        for (int f : m.triangleFace) ASSERT_TRUE(f >= 0 && f < faces);
+        for (const glm::vec3& q : m.points) ASSERT_TRUE(std::isfinite(q.x + q.y + q.z)) << iter;
+        for (const glm::vec3& q : m.normals) ASSERT_TRUE(std::isfinite(q.x + q.y + q.z)) << iter;
+        if (topo->faceVaryingAvailable(0)) {
+            std::vector<float> values(ch.valueCount * 2, 0.5f), out;
+            ASSERT_TRUE(topo->refineFaceVarying(0, values.data(), ch.valueCount, 2, &out));
+            ASSERT_EQ(out.size(), m.triangles.size() * 3 * 2);
+            for (float v : out) ASSERT_NEAR(v, 0.5f, 1e-4f);  // weights sum to 1
+        }
+    }
+    EXPECT_GT(built, 250);
+}

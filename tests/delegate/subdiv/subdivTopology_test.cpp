@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -402,4 +403,66 @@ TEST(SubdivTopology, RandomTopologiesNeverCrash) {
         }
     }
     EXPECT_GT(built, 250);
+}
+
+TEST(SubdivTopology, NgonsAndTrianglesRefineWithOutwardNormals) {
+    // Pentagonal prism: two pentagons (extraordinary face centres) and five quads.
+    Cage prism;
+    for (int ring = 0; ring < 2; ++ring)
+        for (int k = 0; k < 5; ++k) {
+            float a = 2.0f * 3.14159265f * float(k) / 5.0f;
+            prism.points.emplace_back(std::cos(a), std::sin(a), ring == 0 ? -0.5f : 0.5f);
+        }
+    prism.topology.faceVertexCounts = {5, 5, 4, 4, 4, 4, 4};
+    prism.topology.faceVertexIndices = {4, 3, 2, 1, 0, 5, 6, 7, 8, 9};
+    for (int k = 0; k < 5; ++k)
+        for (int v : {k, (k + 1) % 5, 5 + (k + 1) % 5, 5 + k}) prism.topology.faceVertexIndices.push_back(v);
+    Built b = refineCage(prism, 2);
+    EXPECT_EQ(b.mesh.triangles.size(), 2u * (5 + 5 + 5 * 4) * 4);  // n quads per n-gon, then x4
+    for (size_t i = 0; i < b.mesh.points.size(); ++i)
+        ASSERT_GT(glm::dot(b.mesh.normals[i], b.mesh.points[i]), 0.0f);
+    expectNormalsFollowWinding(b.mesh);
+
+    // A cube cut into triangles: both triangle rules give a closed, symmetric, outward surface,
+    // and "smooth" differs from "catmullClark".
+    Cage tri = test::cube();
+    tri.topology.faceVertexCounts.assign(12, 3);
+    std::vector<int> idx;
+    const std::vector<int> quads = tri.topology.faceVertexIndices;
+    for (int f = 0; f < 6; ++f) {
+        const int* q = &quads[size_t(4 * f)];
+        for (int v : {q[0], q[1], q[2], q[0], q[2], q[3]}) idx.push_back(v);
+    }
+    tri.topology.faceVertexIndices = idx;
+    hd::SubdivTags smoothRule;
+    smoothRule.triangleSubdivisionRule = "smooth";
+    Built catmark = refineCage(tri, 2), smooth = refineCage(tri, 2, smoothRule);
+    ASSERT_EQ(catmark.mesh.points.size(), smooth.mesh.points.size());
+    float difference = 0.0f;
+    for (size_t i = 0; i < catmark.mesh.points.size(); ++i) {
+        difference = std::max(difference, glm::length(catmark.mesh.points[i] - smooth.mesh.points[i]));
+        ASSERT_GT(glm::dot(catmark.mesh.normals[i], catmark.mesh.points[i]), 0.0f);
+        ASSERT_GT(glm::dot(smooth.mesh.normals[i], smooth.mesh.points[i]), 0.0f);
+    }
+    EXPECT_GT(difference, 1e-3f);
+    expectNormalsFollowWinding(catmark.mesh);
+    expectNormalsFollowWinding(smooth.mesh);
+}
+
+TEST(SubdivTopology, ConcurrentReposingOfOneTopologyMatchesSerial) {
+    Cage c = test::grid(24);  // 24*24*16 quads: large enough for the parallel paths
+    Built b = refineCage(c, 2);
+    std::vector<std::vector<glm::vec3>> poses(4, c.points);
+    for (size_t k = 0; k < poses.size(); ++k)
+        for (glm::vec3& p : poses[k]) p.z = 0.1f * float(k) * std::sin(p.x + float(k));
+    std::vector<RefinedMesh> serial(poses.size()), parallel(poses.size());
+    for (size_t k = 0; k < poses.size(); ++k) ASSERT_TRUE(b.topology->refine(poses[k], &serial[k]));
+    std::vector<std::thread> threads;
+    for (size_t k = 0; k < poses.size(); ++k)
+        threads.emplace_back([&, k] { b.topology->refine(poses[k], &parallel[k]); });
+    for (auto& t : threads) t.join();
+    for (size_t k = 0; k < poses.size(); ++k) {
+        EXPECT_EQ(parallel[k].points, serial[k].points);
+        EXPECT_EQ(parallel[k].normals, serial[k].normals);
+    }
 }

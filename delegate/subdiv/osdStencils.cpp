@@ -24,7 +24,9 @@ struct SymbolicSource {
 
 /// Destination buffer for PrimvarRefiner that records each row as a stencil. PrimvarRefiner
 /// writes a row as Clear() followed by AddWithWeight() calls, one row at a time, so rows stream
-/// into a StencilsBuilder; rows written out of order are permuted at the end.
+/// into a StencilsBuilder; rows written out of order are permuted at the end. Interpolate()
+/// also adds finished destination rows into later ones (face points into edge and vertex
+/// points); those are expanded from the rows already recorded.
 class RowRecorder {
 public:
     struct Row {
@@ -32,29 +34,26 @@ public:
         int row;
         void Clear() { owner->clear(row); }
         void AddWithWeight(const Symbol& s, float w) { owner->add(row, s.index, w); }
+        void AddWithWeight(const Row& finished, float w) { owner->addRow(row, finished.row, w); }
     };
     Row operator[](int i) { return {this, i}; }
 
-    explicit RowRecorder(size_t rowCount) : _rowCount(rowCount) { _order.reserve(rowCount); }
+    explicit RowRecorder(size_t rowCount) : _rowCount(rowCount), _slot(rowCount, -1) {
+        _order.reserve(rowCount);
+    }
 
     Stencils finish() {
         Stencils built = _builder.finish();
-        if (_broken) throw std::runtime_error("limit mask rows were interleaved");
+        if (_broken) throw std::runtime_error("stencil rows were interleaved or written twice");
         bool inOrder = _order.size() == _rowCount;
         for (size_t k = 0; inOrder && k < _order.size(); ++k) inOrder = _order[k] == int(k);
         if (inOrder) return built;
         // Permute (rows never written stay empty, i.e. evaluate to zero).
-        std::vector<int> slot(_rowCount, -1);
-        for (size_t k = 0; k < _order.size(); ++k) {
-            if (_order[k] < 0 || size_t(_order[k]) >= _rowCount || slot[_order[k]] >= 0)
-                throw std::runtime_error("limit mask row written twice or out of range");
-            slot[_order[k]] = int(k);
-        }
         StencilsBuilder b;
         for (size_t r = 0; r < _rowCount; ++r) {
             b.beginRow();
-            if (slot[r] >= 0) {
-                for (int k = built.offsets[slot[r]]; k < built.offsets[slot[r] + 1]; ++k)
+            if (_slot[r] >= 0) {
+                for (int k = built.offsets[_slot[r]]; k < built.offsets[_slot[r] + 1]; ++k)
                     b.add(built.indices[k], built.weights[k]);
             }
             b.endRow();
@@ -64,9 +63,14 @@ public:
 
 private:
     void clear(int row) {
+        if (row < 0 || size_t(row) >= _rowCount || _slot[size_t(row)] >= 0) {
+            _broken = true;
+            return;
+        }
         if (_current >= 0) _builder.endRow();
         _builder.beginRow();
         _current = row;
+        _slot[size_t(row)] = int(_order.size());
         _order.push_back(row);
     }
     void add(int row, int index, float w) {
@@ -76,10 +80,26 @@ private:
         }
         _builder.add(index, w);
     }
+    void addRow(int row, int finished, float w) {
+        if (row != _current || finished == _current || finished < 0 ||
+            size_t(finished) >= _rowCount || _slot[size_t(finished)] < 0) {
+            _broken = true;
+            return;
+        }
+        // Copy first: adding may reallocate the arrays being read.
+        const Stencils& done = _builder.partial();
+        const int slot = _slot[size_t(finished)];
+        _scratch.assign(done.offsets[slot + 1] - done.offsets[slot], {});
+        for (int k = done.offsets[slot], i = 0; k < done.offsets[slot + 1]; ++k, ++i)
+            _scratch[size_t(i)] = {done.indices[k], done.weights[k] * w};
+        for (const auto& [index, weight] : _scratch) _builder.add(index, weight);
+    }
 
     size_t _rowCount;
     StencilsBuilder _builder;
-    std::vector<int> _order;
+    std::vector<int> _order;  ///< rows in recording order
+    std::vector<int> _slot;   ///< recording position of each row, -1 before its Clear()
+    std::vector<std::pair<int, float>> _scratch;
     int _current = -1;
     bool _broken = false;
 };
@@ -129,6 +149,29 @@ Stencils refinementStencils(const Far::TopologyRefiner& refiner, Interpolation m
     o.maxLevel = static_cast<unsigned>(refiner.GetMaxLevel());
     std::unique_ptr<const TableReal> table(FactoryReal::Create(refiner, o));
     return table ? fromFar(*table) : Stencils();
+}
+
+std::vector<Stencils> levelStencils(const Far::TopologyRefiner& refiner, Interpolation mode,
+                                    int channel) {
+    const Far::PrimvarRefiner primvars(refiner);
+    const SymbolicSource src;
+    std::vector<Stencils> chain;
+    for (int level = 1; level <= refiner.GetMaxLevel(); ++level) {
+        const Far::TopologyLevel& child = refiner.GetLevel(level);
+        const size_t rows = mode == Interpolation::FaceVarying
+                                ? size_t(child.GetNumFVarValues(channel))
+                                : size_t(child.GetNumVertices());
+        RowRecorder dst(rows);
+        switch (mode) {
+            case Interpolation::Vertex: primvars.Interpolate(level, src, dst); break;
+            case Interpolation::Varying: primvars.InterpolateVarying(level, src, dst); break;
+            case Interpolation::FaceVarying:
+                primvars.InterpolateFaceVarying(level, src, dst, channel);
+                break;
+        }
+        chain.push_back(dst.finish());
+    }
+    return chain;
 }
 
 LimitMasks vertexLimitMasks(const Far::TopologyRefiner& refiner) {

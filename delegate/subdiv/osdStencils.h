@@ -19,6 +19,12 @@ enum class Interpolation { Vertex, Varying, FaceVarying };
 Stencils refinementStencils(const Far::TopologyRefiner& refiner, Interpolation mode,
                             int channel = 0);
 
+/// The same refinement as a chain of local tables, one per level: table l-1 maps level l-1
+/// elements to level l elements (a handful of weights per row, against ~18 per row for the
+/// flattened Far table). Recorded by running PrimvarRefiner::Interpolate* on symbolic values.
+std::vector<Stencils> levelStencils(const Far::TopologyRefiner& refiner, Interpolation mode,
+                                    int channel = 0);
+
 /// Limit masks over the last level's vertices: position, and the two tangents whose cross
 /// product is the surface normal. Built once by running PrimvarRefiner::Limit on symbolic
 /// values, so that re-posing needs no refiner. Needs fullTopologyInLastLevel.

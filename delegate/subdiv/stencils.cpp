@@ -71,6 +71,28 @@ void Stencils::apply(const float* src, int components, float* dst) const {
                       [&](const tbb::blocked_range<size_t>& r) { range(r.begin(), r.end()); });
 }
 
+void applyChain(const std::vector<Stencils>& chain, const float* src, size_t count,
+                int components, float* dst) {
+    const size_t n = size_t(components);
+    if (chain.empty()) {
+        std::copy(src, src + count * n, dst);
+        return;
+    }
+    // Ping-pong between two per-thread buffers; the last table writes into dst.
+    thread_local std::vector<float> scratch[2];
+    const float* in = src;
+    for (size_t k = 0; k < chain.size(); ++k) {
+        float* out = dst;
+        if (k + 1 < chain.size()) {
+            std::vector<float>& buffer = scratch[k % 2];
+            buffer.resize(chain[k].rows() * n);
+            out = buffer.data();
+        }
+        chain[k].apply(in, components, out);
+        in = out;
+    }
+}
+
 void StencilsBuilder::add(int index, float weight) {
     _table.indices.push_back(index);
     _table.weights.push_back(weight);

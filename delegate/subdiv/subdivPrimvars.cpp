@@ -35,7 +35,7 @@ bool SubdivTopology::refineVertex(const float* values, size_t count, int compone
     }
     // Same stencils as the points, so the primvar sits at the limit like its point.
     std::vector<float> level(_refinedPoints * n);
-    _vertex.apply(values, components, level.data());
+    applyChain(_vertex, values, count, components, level.data());
     if (_limitP.empty()) {
         *out = std::move(level);
     } else {
@@ -56,7 +56,7 @@ bool SubdivTopology::refineVarying(const float* values, size_t count, int compon
     if (_varying.empty())
         return fail(error, "varying primvar: stencils not built (BuildOptions::varying)");
     out->resize(_refinedPoints * n);
-    _varying.apply(values, components, out->data());
+    applyChain(_varying, values, count, components, out->data());
     return true;
 }
 
@@ -73,8 +73,8 @@ bool SubdivTopology::refineFaceVarying(int channel, const float* values, size_t 
     std::vector<float> level, limit;
     const float* src = values;
     if (!fv.toLevel.empty()) {
-        level.resize(fv.toLevel.rows() * n);
-        fv.toLevel.apply(values, components, level.data());
+        level.resize(chainRows(fv.toLevel, count) * n);
+        applyChain(fv.toLevel, values, count, components, level.data());
         src = level.data();
     }
     if (!fv.limit.empty()) {

@@ -235,9 +235,14 @@ bool SubdivTopology::build(std::string* error) {
     lap(&_timings.refiner);
 
     try {
-        _vertex = refinementStencils(*refiner, Interpolation::Vertex);
+        // Per-level local tables by default; one flattened Far table as the reference path.
+        auto chain = [&](Interpolation mode, int channel) {
+            if (_options.flatStencils) return StencilChain{refinementStencils(*refiner, mode, channel)};
+            return levelStencils(*refiner, mode, channel);
+        };
+        _vertex = chain(Interpolation::Vertex, 0);
         lap(&_timings.vertexStencils);
-        if (_options.varying) _varying = refinementStencils(*refiner, Interpolation::Varying);
+        if (_options.varying) _varying = chain(Interpolation::Varying, 0);
         lap(&_timings.varyingStencils);
         if (_scheme != Scheme::Bilinear) {
             // Bilinear limit points are the refined points and its tangent masks are arbitrary
@@ -250,7 +255,7 @@ bool SubdivTopology::build(std::string* error) {
         lap(&_timings.limitMasks);
         for (size_t c = 0; c < _fvar.size(); ++c) {
             if (osdChannel[c] < 0) continue;
-            _fvar[c].toLevel = refinementStencils(*refiner, Interpolation::FaceVarying, osdChannel[c]);
+            _fvar[c].toLevel = chain(Interpolation::FaceVarying, osdChannel[c]);
             _fvar[c].limit = faceVaryingLimitMasks(*refiner, osdChannel[c]);
             if (isIdentity(_fvar[c].limit)) _fvar[c].limit = Stencils();
         }
@@ -259,7 +264,7 @@ bool SubdivTopology::build(std::string* error) {
         *error = std::string("building stencils failed: ") + e.what();
         return false;
     }
-    if (_vertex.empty()) {
+    if (_vertex.empty() || _vertex.back().rows() != size_t(refiner->GetLevel(_level).GetNumVertices())) {
         *error = "OpenSubdiv produced no stencils" +
                  (tOsdMessage.empty() ? std::string() : ": " + tOsdMessage);
         return false;
@@ -323,11 +328,16 @@ bool SubdivTopology::faceVaryingAvailable(int channel) const {
 }
 
 size_t SubdivTopology::memoryBytes() const {
-    size_t bytes = _vertex.bytes() + _varying.bytes() + _limitP.bytes() + _limitDu.bytes() +
+    auto chainBytes = [](const StencilChain& c) {
+        size_t b = 0;
+        for (const Stencils& s : c) b += s.bytes();
+        return b;
+    };
+    size_t bytes = chainBytes(_vertex) + chainBytes(_varying) + _limitP.bytes() + _limitDu.bytes() +
                    _limitDv.bytes() + _triangles.size() * sizeof(glm::uvec3) +
                    _triangleFace.size() * sizeof(int);
     for (const auto& f : _fvar)
-        bytes += f.toLevel.bytes() + f.limit.bytes() + f.corners.size() * sizeof(int);
+        bytes += chainBytes(f.toLevel) + f.limit.bytes() + f.corners.size() * sizeof(int);
     return bytes;
 }
 
@@ -340,14 +350,24 @@ std::string SubdivTopology::describe() const {
                       double(st.entries()) / double(st.rows()));
         return std::string(buf);
     };
+    // A chain prints as its last table's rows x (all entries / those rows), then its length.
+    auto chain = [](const char* name, const StencilChain& c) {
+        if (c.empty()) return std::string();
+        size_t entries = 0;
+        for (const Stencils& st : c) entries += st.entries();
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " %s %zux%.1f(%zu tables)", name, c.back().rows(),
+                      double(entries) / double(c.back().rows()), c.size());
+        return std::string(buf);
+    };
     std::string s = std::string(kNames[int(_scheme)]) + " level " + std::to_string(_level) + ": " +
                     std::to_string(_triangles.size()) + " triangles, " +
                     std::to_string(_refinedPoints) + " points; stencils (rows x entries/row):" +
-                    table("vertex", _vertex) + table("varying", _varying) +
+                    chain("vertex", _vertex) + chain("varying", _varying) +
                     table("limitP", _limitP) + table("limitDu", _limitDu) +
                     table("limitDv", _limitDv);
     for (size_t c = 0; c < _fvar.size(); ++c)
-        s += table(("fvar" + std::to_string(c)).c_str(), _fvar[c].toLevel) +
+        s += chain(("fvar" + std::to_string(c)).c_str(), _fvar[c].toLevel) +
              table(("fvarLimit" + std::to_string(c)).c_str(), _fvar[c].limit);
     return s;
 }
@@ -374,7 +394,7 @@ bool SubdivTopology::refine(const std::vector<glm::vec3>& coarsePoints, RefinedM
     // faulting in a fresh allocation every frame.
     thread_local std::vector<glm::vec3> levelPoints;
     levelPoints.resize(_refinedPoints);
-    _vertex.apply(&coarsePoints[0].x, 3, &levelPoints[0].x);
+    applyChain(_vertex, &coarsePoints[0].x, _pointCount, 3, &levelPoints[0].x);
     out->points.resize(_refinedPoints);
     out->normals.resize(_refinedPoints);
     if (_limitP.empty()) std::copy(levelPoints.begin(), levelPoints.end(), out->points.begin());

@@ -28,6 +28,10 @@ struct BuildOptions {
     int level = 1;  ///< uniform level; 0 = the cage itself (fan triangles, no normals)
     std::vector<FaceVaryingChannel> faceVarying;
     bool varying = true;  ///< also build the varying (linear) stencils
+    /// Refinement as one flattened Far::StencilTableFactory table per interpolation instead of
+    /// one small table per level. Same results; the reference path, kept for comparison
+    /// (about 2x the refinement-stencil memory and a slower build and re-pose).
+    bool flatStencils = false;
     /// Refusal threshold, so bad or hostile input cannot allocate without bound:
     /// 16M refined faces is 32M triangles, ~2 GB of stencils.
     size_t maxRefinedFaces = size_t(16) << 20;
@@ -125,7 +129,7 @@ private:
     struct FaceVaryingTables {
         bool available = false;
         size_t coarseValues = 0;
-        Stencils toLevel;           ///< coarse values -> last-level values (empty: identity)
+        StencilChain toLevel;       ///< coarse values -> last-level values (empty: identity)
         Stencils limit;             ///< last-level values -> limit values (empty: identity)
         std::vector<int> corners;   ///< value of each triangle corner (3 per triangle)
     };
@@ -143,8 +147,8 @@ private:
     size_t _refinedPoints = 0;
     std::vector<std::string> _warnings;
 
-    Stencils _vertex;    ///< coarse points -> last-level points (empty: identity, the cage)
-    Stencils _varying;   ///< linear; empty when not built or for the cage
+    StencilChain _vertex;   ///< coarse points -> last-level points (empty: identity, the cage)
+    StencilChain _varying;  ///< linear; empty when not built or for the cage
     Stencils _limitP;    ///< last level -> limit position (empty: the refined point itself)
     Stencils _limitDu;   ///< last level -> limit tangents (empty: normals from triangles)
     Stencils _limitDv;

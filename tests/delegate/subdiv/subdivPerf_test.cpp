@@ -35,7 +35,7 @@ Time timeOf(const auto& f) {
             cpuSeconds() - c0};
 }
 
-void measure(int n, int level, bool varying) {
+void measure(int n, int level, bool varying, bool flat = false) {
     test::Cage g = test::grid(n);
     // A gentle bump so the surface is not planar (no effect on the cost).
     for (glm::vec3& p : g.points) p.z = 0.1f * std::sin(p.x) * std::cos(p.y);
@@ -43,6 +43,7 @@ void measure(int n, int level, bool varying) {
     for (const glm::vec3& p : g.points) st.insert(st.end(), {p.x / n, p.y / n});
     BuildOptions o{level};
     o.varying = varying;
+    o.flatStencils = flat;
     o.faceVarying = {{g.topology.faceVertexIndices, g.points.size()}};
     std::unique_ptr<SubdivTopology> t;
     std::string err;
@@ -66,13 +67,13 @@ void measure(int n, int level, bool varying) {
     getrusage(RUSAGE_SELF, &ru);
     const BuildTimings& bt = t->timings();
     std::printf(
-        "grid %dx%d level %d, st channel, varying %s\n  %s\n"
+        "grid %dx%d level %d, st channel, varying %s, %s stencils\n  %s\n"
         "  build %.3f s wall, %.3f s cpu (refiner %.3f, vertex stencils %.3f, varying %.3f,"
         " limit masks %.3f, fvar %.3f, triangles %.3f)\n"
         "  stencil+topology memory %.1f MB, peak RSS so far %.1f MB\n"
         "  first refine %.1f ms wall (copies triangles); re-pose %.1f ms wall, %.1f ms cpu"
         " (points+normals); fvar st %.1f ms wall, %.1f ms cpu\n",
-        n, n, level, varying ? "on" : "off", t->describe().c_str(), build.wall, build.cpu,
+        n, n, level, varying ? "on" : "off", flat ? "flat Far" : "per-level", t->describe().c_str(), build.wall, build.cpu,
         bt.refiner, bt.vertexStencils, bt.varyingStencils, bt.limitMasks, bt.faceVarying,
         bt.triangles, double(t->memoryBytes()) / 1e6, double(ru.ru_maxrss) / 1e3,
         first.wall * 1e3, repose.wall * 1e3, repose.cpu * 1e3, fvar.wall * 1e3, fvar.cpu * 1e3);
@@ -82,4 +83,5 @@ void measure(int n, int level, bool varying) {
 }  // namespace
 
 TEST(SubdivPerf, Grid45Level4OneMillionTriangles) { measure(45, 4, false); }
+TEST(SubdivPerf, Grid45Level4FlatFarTables) { measure(45, 4, false, true); }
 TEST(SubdivPerf, Grid64Level4TwoMillionTriangles) { measure(64, 4, true); }

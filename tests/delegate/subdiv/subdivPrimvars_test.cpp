@@ -208,3 +208,74 @@ TEST(SubdivPrimvars, BadFaceVaryingChannelIsDroppedWithAWarning) {
     RefinedMesh m;
     EXPECT_TRUE(t->refine(g.points, &m));  // the geometry itself is fine
 }
+
+TEST(SubdivPrimvars, PerLevelChainsMatchFlatFarStencilTables) {
+    // The default per-level tables and OpenSubdiv's flattened StencilTableFactory tables are
+    // two factorings of the same refinement: every output must agree.
+    struct Case {
+        Cage cage;
+        hd::SubdivTags tags;
+        int level;
+    };
+    std::vector<Case> cases;
+    {
+        Case c{test::cube(), {}, 3};
+        c.tags.creaseIndices = {0, 1, 3};
+        c.tags.creaseLengths = {3};
+        c.tags.creaseSharpnesses = {2.5f};
+        c.tags.cornerIndices = {6};
+        c.tags.cornerSharpnesses = {10};
+        c.cage.topology.orientation = "leftHanded";
+        cases.push_back(c);
+    }
+    {
+        Case c{test::tetrahedron(), {}, 3};
+        c.cage.topology.scheme = "loop";
+        cases.push_back(c);
+    }
+    {
+        Case c{test::grid(4), {}, 2};
+        c.tags.interpolateBoundary = "edgeOnly";
+        c.tags.faceVaryingLinearInterpolation = "cornersOnly";
+        cases.push_back(c);
+    }
+    {
+        Case c{test::grid(3), {}, 2};
+        c.cage.topology.scheme = "bilinear";
+        cases.push_back(c);
+    }
+    for (size_t k = 0; k < cases.size(); ++k) {
+        const Case& c = cases[k];
+        std::vector<float> st;
+        BuildOptions perLevel{c.level};
+        perLevel.faceVarying = {islands(c.cage, &st)};
+        if (c.cage.topology.faceVertexCounts[0] != 4) {  // islands() assumes quads
+            st.clear();
+            FaceVaryingChannel ch{c.cage.topology.faceVertexIndices, c.cage.points.size()};
+            for (const glm::vec3& p : c.cage.points) st.insert(st.end(), {p.x, p.y});
+            perLevel.faceVarying = {ch};
+        }
+        BuildOptions flat = perLevel;
+        flat.flatStencils = true;
+        auto a = make(c.cage, perLevel, c.tags), b = make(c.cage, flat, c.tags);
+        RefinedMesh ma, mb;
+        ASSERT_TRUE(a->refine(c.cage.points, &ma));
+        ASSERT_TRUE(b->refine(c.cage.points, &mb));
+        ASSERT_EQ(ma.points.size(), mb.points.size()) << k;
+        EXPECT_EQ(ma.triangles, mb.triangles);
+        for (size_t i = 0; i < ma.points.size(); ++i) {
+            ASSERT_NEAR(glm::length(ma.points[i] - mb.points[i]), 0.0f, 1e-5f) << k;
+            ASSERT_NEAR(glm::length(ma.normals[i] - mb.normals[i]), 0.0f, 1e-4f) << k;
+        }
+        std::vector<float> fa, fb, va, vb;
+        const size_t values = perLevel.faceVarying[0].valueCount;
+        ASSERT_TRUE(a->refineFaceVarying(0, st.data(), values, 2, &fa));
+        ASSERT_TRUE(b->refineFaceVarying(0, st.data(), values, 2, &fb));
+        ASSERT_TRUE(a->refineVarying(&c.cage.points[0].x, c.cage.points.size(), 3, &va));
+        ASSERT_TRUE(b->refineVarying(&c.cage.points[0].x, c.cage.points.size(), 3, &vb));
+        ASSERT_EQ(fa.size(), fb.size());
+        for (size_t i = 0; i < fa.size(); ++i) ASSERT_NEAR(fa[i], fb[i], 1e-4f) << k;
+        ASSERT_EQ(va.size(), vb.size());
+        for (size_t i = 0; i < va.size(); ++i) ASSERT_NEAR(va[i], vb[i], 1e-5f) << k;
+    }
+}

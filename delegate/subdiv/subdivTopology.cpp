@@ -169,12 +169,18 @@ bool SubdivTopology::build(std::string* error) {
     installOsdCallbacks();
     SdcSetup setup = sdcSetup(_topology, _tags, &_warnings);
     _scheme = toScheme(setup.scheme);
-    const size_t estimate = refinedFaceEstimate(_topology, _scheme == Scheme::Loop, _level);
-    if (estimate > _options.maxRefinedFaces) {
-        *error = "level " + std::to_string(_level) + " would make about " +
-                 std::to_string(estimate) + " faces, above the limit of " +
-                 std::to_string(_options.maxRefinedFaces);
-        return false;
+    // Lower the level until the refinement fits the face budget (checked before allocating).
+    const int requested = _level;
+    size_t estimate = refinedFaceEstimate(_topology, _scheme == Scheme::Loop, _level);
+    while (_level > 0 && estimate > _options.maxRefinedFaces)
+        estimate = refinedFaceEstimate(_topology, _scheme == Scheme::Loop, --_level);
+    if (_level != requested)
+        _warnings.push_back("level " + std::to_string(requested) + " would exceed the limit of " +
+                            std::to_string(_options.maxRefinedFaces) + " refined faces; using level " +
+                            std::to_string(_level));
+    if (_level == 0) {
+        buildCage();
+        return true;
     }
 
     const std::vector<char> holes = holeFlags(_topology, &_warnings);

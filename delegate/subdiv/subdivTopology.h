@@ -32,9 +32,10 @@ struct BuildOptions {
     /// one small table per level. Same results; the reference path, kept for comparison
     /// (about 2x the refinement-stencil memory and a slower build and re-pose).
     bool flatStencils = false;
-    /// Refusal threshold, so bad or hostile input cannot allocate without bound:
-    /// 16M refined faces is 32M triangles, ~2 GB of stencils.
-    size_t maxRefinedFaces = size_t(16) << 20;
+    /// Face budget, so bad or hostile input cannot allocate without bound: a level whose
+    /// refinement would exceed it is lowered (with a warning). 8M faces is 16M triangles,
+    /// about 3.5 GB at the ~230 bytes per triangle measured with one st channel.
+    size_t maxRefinedFaces = size_t(8) << 20;
 
     bool operator==(const BuildOptions&) const = default;
 };
@@ -54,7 +55,7 @@ struct BuildTimings {
 
 /// One topology (hd::MeshTopology + hd::SubdivTags + level + face-varying channels) refined
 /// uniformly with OpenSubdiv, reduced to stencil tables. Building does the expensive work
-/// once (TopologyRefiner, RefineUniform, StencilTableFactory, limit masks) and then drops the
+/// once (TopologyRefiner, RefineUniform, per-level stencil tables, limit masks) and then drops the
 /// refiner; every refine*() call only applies cached stencils, so re-posing an animated cage
 /// costs milliseconds. A SubdivTopology is immutable: all methods are const and may be called
 /// concurrently. Rebuild it when topology, tags, level or face-varying indices change
@@ -65,9 +66,9 @@ struct BuildTimings {
 class SubdivTopology {
 public:
     /// Validates and builds. Returns nullptr with *error for unusable topology (bad counts,
-    /// out-of-range indices, faces < 3 vertices, topology OpenSubdiv rejects, a refinement above
-    /// maxRefinedFaces). Recoverable problems (bad creases, corners, holes, unknown tokens,
-    /// loop on non-triangles, a bad face-varying channel) become warnings().
+    /// out-of-range indices, faces < 3 vertices, topology OpenSubdiv rejects). Recoverable
+    /// problems (bad creases, corners, holes, unknown tokens, loop on non-triangles, a bad
+    /// face-varying channel, a level lowered to fit maxRefinedFaces) become warnings().
     static std::unique_ptr<SubdivTopology> create(const hd::MeshTopology& topology,
                                                   const hd::SubdivTags& tags, size_t pointCount,
                                                   const BuildOptions& options, std::string* error);

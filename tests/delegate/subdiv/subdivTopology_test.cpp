@@ -291,12 +291,20 @@ TEST(SubdivTopology, InvalidTopologyIsAnErrorNotACrash) {
     std::string err;
     EXPECT_FALSE(b.topology->refine(std::vector<glm::vec3>(7), &out, &err));
     EXPECT_NE(err.find("7 points"), std::string::npos);
-    // A refinement above the face budget is refused before allocating.
+    // A level above the face budget is lowered before allocating: 6 * 4^3 = 384 <= 1000.
     BuildOptions huge{8};
     huge.maxRefinedFaces = 1000;
     Cage c = test::cube();
-    EXPECT_FALSE(SubdivTopology::create(c.topology, {}, 8, huge, &err));
-    EXPECT_NE(err.find("limit"), std::string::npos);
+    auto lowered = SubdivTopology::create(c.topology, {}, 8, huge, &err);
+    ASSERT_TRUE(lowered) << err;
+    EXPECT_EQ(lowered->level(), 3);
+    ASSERT_EQ(lowered->warnings().size(), 1u);
+    EXPECT_NE(lowered->warnings()[0].find("using level 3"), std::string::npos);
+    huge.maxRefinedFaces = 5;  // not even the cage fits: level 0 is always allowed
+    lowered = SubdivTopology::create(c.topology, {}, 8, huge, &err);
+    ASSERT_TRUE(lowered) << err;
+    EXPECT_EQ(lowered->level(), 0);
+    EXPECT_EQ(lowered->triangleCount(), 12u);
 }
 
 TEST(SubdivTopology, NonManifoldAndDegenerateInputDoNotCrash) {

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstddef>
-
 #include <glm/glm.hpp>
 
 namespace principled::subdiv {
@@ -11,9 +10,9 @@ namespace principled::subdiv {
 /// The camera as adaptiveLevel() sees it.
 struct ScreenMetric {
     glm::vec3 cameraPosition{0.0f};
-    float verticalFov = 0.8f;      ///< radians (full angle)
-    int imageHeight = 1080;        ///< pixels
-    float targetEdgePixels = 1.5f; ///< wanted projected length of a refined edge
+    float verticalFov = 0.8f;       ///< radians (full angle)
+    int imageHeight = 1080;         ///< pixels
+    float targetEdgePixels = 1.5f;  ///< wanted projected length of a refined edge
     int maxLevel = 6;
 };
 

@@ -18,8 +18,8 @@ bool checkCage(const hd::MeshTopology& topology, size_t pointCount, std::string*
         total += size_t(counts[f]);
     }
     if (total != indices.size()) {
-        *error = "faceVertexCounts sum to " + std::to_string(total) + " but faceVertexIndices has " +
-                 std::to_string(indices.size()) + " entries";
+        *error = "faceVertexCounts sum to " + std::to_string(total) +
+                 " but faceVertexIndices has " + std::to_string(indices.size()) + " entries";
         return false;
     }
     size_t start = 0;
@@ -41,7 +41,8 @@ std::vector<char> holeFlags(const hd::MeshTopology& topology, std::vector<std::s
     std::vector<char> holes(topology.faceVertexCounts.size(), 0);
     for (int h : topology.holeIndices) {
         if (h < 0 || size_t(h) >= holes.size()) {
-            warnings->push_back("holeIndices entry " + std::to_string(h) + " is not a face; ignored");
+            warnings->push_back("holeIndices entry " + std::to_string(h) +
+                                " is not a face; ignored");
             continue;
         }
         holes[size_t(h)] = 1;
@@ -58,7 +59,8 @@ CageTriangles triangulateCage(const hd::MeshTopology& topology, const std::vecto
         const int n = topology.faceVertexCounts[f];
         if (!holes[f]) {
             for (int k = 1; k + 1 < n; ++k) {
-                unsigned c0 = unsigned(start), c1 = unsigned(start + k), c2 = unsigned(start + k + 1);
+                unsigned c0 = unsigned(start), c1 = unsigned(start + k),
+                         c2 = unsigned(start + k + 1);
                 if (flip) std::swap(c1, c2);
                 out.corners.emplace_back(c0, c1, c2);
                 out.triangles.emplace_back(idx[c0], idx[c1], idx[c2]);

@@ -2,10 +2,9 @@
 // The coarse polygon cage: validation, holes and fan triangulation (levels 0 and scheme none).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "delegate/hd/meshTopology.h"
 

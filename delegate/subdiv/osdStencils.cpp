@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/subdiv/osdStencils.h"
 
-#include <memory>
-#include <stdexcept>
-
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
+
+#include <memory>
+#include <stdexcept>
 
 namespace principled::subdiv {
 
@@ -28,7 +28,7 @@ struct SymbolicSource {
 /// also adds finished destination rows into later ones (face points into edge and vertex
 /// points); those are expanded from the rows already recorded.
 class RowRecorder {
-public:
+  public:
     struct Row {
         RowRecorder* owner;
         int row;
@@ -61,7 +61,7 @@ public:
         return b.finish();
     }
 
-private:
+  private:
     void clear(int row) {
         if (row < 0 || size_t(row) >= _rowCount || _slot[size_t(row)] >= 0) {
             _broken = true;
@@ -135,8 +135,7 @@ Stencils fromFar(const TableReal& table) {
 
 }  // namespace
 
-Stencils refinementStencils(const Far::TopologyRefiner& refiner, Interpolation mode,
-                            int channel) {
+Stencils refinementStencils(const Far::TopologyRefiner& refiner, Interpolation mode, int channel) {
     FactoryReal::Options o;
     o.interpolationMode = mode == Interpolation::Vertex    ? FactoryReal::INTERPOLATE_VERTEX
                           : mode == Interpolation::Varying ? FactoryReal::INTERPOLATE_VARYING
@@ -163,8 +162,12 @@ std::vector<Stencils> levelStencils(const Far::TopologyRefiner& refiner, Interpo
                                 : size_t(child.GetNumVertices());
         RowRecorder dst(rows);
         switch (mode) {
-            case Interpolation::Vertex: primvars.Interpolate(level, src, dst); break;
-            case Interpolation::Varying: primvars.InterpolateVarying(level, src, dst); break;
+            case Interpolation::Vertex:
+                primvars.Interpolate(level, src, dst);
+                break;
+            case Interpolation::Varying:
+                primvars.InterpolateVarying(level, src, dst);
+                break;
             case Interpolation::FaceVarying:
                 primvars.InterpolateFaceVarying(level, src, dst, channel);
                 break;

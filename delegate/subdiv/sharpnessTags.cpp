@@ -7,7 +7,9 @@ namespace principled::subdiv {
 
 namespace {
 
-bool validSharpness(float s) { return std::isfinite(s) && s >= 0.0f; }
+bool validSharpness(float s) {
+    return std::isfinite(s) && s >= 0.0f;
+}
 
 void splitCreases(const hd::SubdivTags& tags, size_t pointCount, SharpnessTags* out,
                   std::vector<std::string>* warnings) {
@@ -63,14 +65,16 @@ void corners(const hd::SubdivTags& tags, size_t pointCount, SharpnessTags* out,
              std::vector<std::string>* warnings) {
     if (tags.cornerIndices.size() != tags.cornerSharpnesses.size()) {
         if (!tags.cornerIndices.empty() || !tags.cornerSharpnesses.empty())
-            warnings->push_back("cornerIndices and cornerSharpnesses differ in size; corners ignored");
+            warnings->push_back(
+                "cornerIndices and cornerSharpnesses differ in size; corners ignored");
         return;
     }
     for (size_t i = 0; i < tags.cornerIndices.size(); ++i) {
         int v = tags.cornerIndices[i];
         float s = tags.cornerSharpnesses[i];
         if (v < 0 || size_t(v) >= pointCount || !validSharpness(s)) {
-            warnings->push_back("corner " + std::to_string(i) + " is out of range or has a bad sharpness; ignored");
+            warnings->push_back("corner " + std::to_string(i) +
+                                " is out of range or has a bad sharpness; ignored");
             continue;
         }
         out->cornerVertices.push_back(v);

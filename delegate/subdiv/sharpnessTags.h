@@ -10,7 +10,8 @@
 namespace principled::subdiv {
 
 /// Sharpness as OpenSubdiv's TopologyDescriptor takes it: one entry per edge (vertex pair)
-/// and per corner vertex. 10 is infinitely sharp in both USD and Sdc (Sdc::Crease::SHARPNESS_INFINITE).
+/// and per corner vertex. 10 is infinitely sharp in both USD and Sdc
+/// (Sdc::Crease::SHARPNESS_INFINITE).
 struct SharpnessTags {
     std::vector<int> edgeVertices;  ///< 2 per edge
     std::vector<float> edgeSharpness;

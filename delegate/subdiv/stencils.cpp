@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/subdiv/stencils.h"
 
-#include <algorithm>
-#include <utility>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <utility>
 
 namespace principled::subdiv {
 
@@ -55,11 +55,21 @@ size_t Stencils::sourceCount() const {
 void Stencils::apply(const float* src, int components, float* dst) const {
     auto range = [&](size_t begin, size_t end) {
         switch (components) {
-            case 1: applyFixed<1>(*this, src, dst, begin, end); break;
-            case 2: applyFixed<2>(*this, src, dst, begin, end); break;
-            case 3: applyFixed<3>(*this, src, dst, begin, end); break;
-            case 4: applyFixed<4>(*this, src, dst, begin, end); break;
-            default: applyAny(*this, src, components, dst, begin, end); break;
+            case 1:
+                applyFixed<1>(*this, src, dst, begin, end);
+                break;
+            case 2:
+                applyFixed<2>(*this, src, dst, begin, end);
+                break;
+            case 3:
+                applyFixed<3>(*this, src, dst, begin, end);
+                break;
+            case 4:
+                applyFixed<4>(*this, src, dst, begin, end);
+                break;
+            default:
+                applyAny(*this, src, components, dst, begin, end);
+                break;
         }
     };
     const size_t n = rows();
@@ -71,8 +81,8 @@ void Stencils::apply(const float* src, int components, float* dst) const {
                       [&](const tbb::blocked_range<size_t>& r) { range(r.begin(), r.end()); });
 }
 
-void applyChain(const std::vector<Stencils>& chain, const float* src, size_t count,
-                int components, float* dst) {
+void applyChain(const std::vector<Stencils>& chain, const float* src, size_t count, int components,
+                float* dst) {
     const size_t n = size_t(components);
     if (chain.empty()) {
         std::copy(src, src + count * n, dst);

@@ -35,7 +35,7 @@ using StencilChain = std::vector<Stencils>;
 
 /// Incrementally builds a Stencils table row by row (rows appended in order).
 class StencilsBuilder {
-public:
+  public:
     void beginRow() { _open = true; }
     void add(int index, float weight);
     void endRow();  ///< merges duplicate indices, drops exact zeros
@@ -43,7 +43,7 @@ public:
     /// The rows ended so far (for reading back finished rows while building).
     const Stencils& partial() const { return _table; }
 
-private:
+  private:
     Stencils _table;
     bool _open = false;
 };
@@ -51,8 +51,8 @@ private:
 /// Applies a chain of tables (table k maps the output of table k-1): src has
 /// chain.front().sourceCount() elements, dst receives chain.back().rows(). An empty chain
 /// copies `count` elements. Intermediate levels live in per-thread scratch buffers.
-void applyChain(const std::vector<Stencils>& chain, const float* src, size_t count,
-                int components, float* dst);
+void applyChain(const std::vector<Stencils>& chain, const float* src, size_t count, int components,
+                float* dst);
 
 /// Rows of the last table of a chain (`count` for an empty chain).
 inline size_t chainRows(const std::vector<Stencils>& chain, size_t count) {

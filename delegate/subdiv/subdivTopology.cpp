@@ -2,20 +2,20 @@
 // Building a SubdivTopology (OpenSubdiv Far) and re-posing it. Primvars: subdivPrimvars.cpp.
 #include "delegate/subdiv/subdivTopology.h"
 
-#include <algorithm>
-#include <atomic>
-#include <chrono>
-#include <cstdio>
-#include <cmath>
-#include <exception>
-#include <mutex>
-#include <numeric>
-
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <mutex>
+#include <numeric>
 
 #include "delegate/subdiv/cageMesh.h"
 #include "delegate/subdiv/osdStencils.h"
@@ -56,9 +56,12 @@ void installOsdCallbacks() {
 
 Scheme toScheme(Sdc::SchemeType s) {
     switch (s) {
-        case Sdc::SCHEME_LOOP: return Scheme::Loop;
-        case Sdc::SCHEME_BILINEAR: return Scheme::Bilinear;
-        default: return Scheme::CatmullClark;
+        case Sdc::SCHEME_LOOP:
+            return Scheme::Loop;
+        case Sdc::SCHEME_BILINEAR:
+            return Scheme::Bilinear;
+        default:
+            return Scheme::CatmullClark;
     }
 }
 
@@ -97,7 +100,9 @@ void parallelRange(size_t n, F&& f) {
 
 }  // namespace
 
-uint64_t SubdivTopology::refinerBuildCount() { return gRefinerBuilds.load(); }
+uint64_t SubdivTopology::refinerBuildCount() {
+    return gRefinerBuilds.load();
+}
 
 std::unique_ptr<SubdivTopology> SubdivTopology::create(const hd::MeshTopology& topology,
                                                        const hd::SubdivTags& tags,
@@ -176,8 +181,8 @@ bool SubdivTopology::build(std::string* error) {
         estimate = refinedFaceEstimate(_topology, _scheme == Scheme::Loop, --_level);
     if (_level != requested)
         _warnings.push_back("level " + std::to_string(requested) + " would exceed the limit of " +
-                            std::to_string(_options.maxRefinedFaces) + " refined faces; using level " +
-                            std::to_string(_level));
+                            std::to_string(_options.maxRefinedFaces) +
+                            " refined faces; using level " + std::to_string(_level));
     if (_level == 0) {
         buildCage();
         return true;
@@ -243,7 +248,8 @@ bool SubdivTopology::build(std::string* error) {
     try {
         // Per-level local tables by default; one flattened Far table as the reference path.
         auto chain = [&](Interpolation mode, int channel) {
-            if (_options.flatStencils) return StencilChain{refinementStencils(*refiner, mode, channel)};
+            if (_options.flatStencils)
+                return StencilChain{refinementStencils(*refiner, mode, channel)};
             return levelStencils(*refiner, mode, channel);
         };
         _vertex = chain(Interpolation::Vertex, 0);
@@ -270,7 +276,8 @@ bool SubdivTopology::build(std::string* error) {
         *error = std::string("building stencils failed: ") + e.what();
         return false;
     }
-    if (_vertex.empty() || _vertex.back().rows() != size_t(refiner->GetLevel(_level).GetNumVertices())) {
+    if (_vertex.empty() ||
+        _vertex.back().rows() != size_t(refiner->GetLevel(_level).GetNumVertices())) {
         *error = "OpenSubdiv produced no stencils" +
                  (tOsdMessage.empty() ? std::string() : ": " + tOsdMessage);
         return false;
@@ -314,8 +321,8 @@ bool SubdivTopology::build(std::string* error) {
     return true;  // the refiner is released here: only stencils are kept
 }
 
-bool SubdivTopology::matches(const hd::MeshTopology& t, const hd::SubdivTags& g,
-                             size_t pointCount, const BuildOptions& options) const {
+bool SubdivTopology::matches(const hd::MeshTopology& t, const hd::SubdivTags& g, size_t pointCount,
+                             const BuildOptions& options) const {
     const auto& a = _topology;
     const auto& b = _tags;
     return pointCount == _pointCount && options == _options && t.scheme == a.scheme &&
@@ -368,10 +375,10 @@ std::string SubdivTopology::describe() const {
     };
     std::string s = std::string(kNames[int(_scheme)]) + " level " + std::to_string(_level) + ": " +
                     std::to_string(_triangles.size()) + " triangles, " +
-                    std::to_string(_refinedPoints) + " points; stencils (rows x entries/row):" +
-                    chain("vertex", _vertex) + chain("varying", _varying) +
-                    table("limitP", _limitP) + table("limitDu", _limitDu) +
-                    table("limitDv", _limitDv);
+                    std::to_string(_refinedPoints) +
+                    " points; stencils (rows x entries/row):" + chain("vertex", _vertex) +
+                    chain("varying", _varying) + table("limitP", _limitP) +
+                    table("limitDu", _limitDu) + table("limitDv", _limitDv);
     for (size_t c = 0; c < _fvar.size(); ++c)
         s += chain(("fvar" + std::to_string(c)).c_str(), _fvar[c].toLevel) +
              table(("fvarLimit" + std::to_string(c)).c_str(), _fvar[c].limit);
@@ -382,8 +389,8 @@ bool SubdivTopology::refine(const std::vector<glm::vec3>& coarsePoints, RefinedM
                             std::string* error) const {
     if (coarsePoints.size() != _pointCount) {
         if (error)
-            *error = "refine: " + std::to_string(coarsePoints.size()) + " points given, topology has " +
-                     std::to_string(_pointCount);
+            *error = "refine: " + std::to_string(coarsePoints.size()) +
+                     " points given, topology has " + std::to_string(_pointCount);
         return false;
     }
     if (out->topologyId != _id) {

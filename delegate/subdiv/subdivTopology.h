@@ -3,11 +3,10 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "delegate/hd/meshTopology.h"
 #include "delegate/subdiv/refinedMesh.h"
@@ -44,12 +43,12 @@ enum class Scheme { None, CatmullClark, Loop, Bilinear };
 
 /// Where build time went (seconds), for docs/subdivision.md and profiling.
 struct BuildTimings {
-    double refiner = 0;        ///< TopologyRefinerFactory::Create + RefineUniform
-    double vertexStencils = 0; ///< StencilTableFactory, vertex interpolation
+    double refiner = 0;         ///< TopologyRefinerFactory::Create + RefineUniform
+    double vertexStencils = 0;  ///< StencilTableFactory, vertex interpolation
     double varyingStencils = 0;
-    double limitMasks = 0;     ///< position + tangent masks
-    double faceVarying = 0;    ///< fvar stencils + limit masks, all channels
-    double triangles = 0;      ///< coarse-face map, triangles, fvar corners
+    double limitMasks = 0;   ///< position + tangent masks
+    double faceVarying = 0;  ///< fvar stencils + limit masks, all channels
+    double triangles = 0;    ///< coarse-face map, triangles, fvar corners
     double total = 0;
 };
 
@@ -64,7 +63,7 @@ struct BuildTimings {
 /// Scheme "none" and level 0 give the cage itself: points copied, fan-triangulated faces,
 /// no normals (the caller computes them as for any polygon mesh).
 class SubdivTopology {
-public:
+  public:
     /// Validates and builds. Returns nullptr with *error for unusable topology (bad counts,
     /// out-of-range indices, faces < 3 vertices, topology OpenSubdiv rejects). Recoverable
     /// problems (bad creases, corners, holes, unknown tokens, loop on non-triangles, a bad
@@ -110,8 +109,8 @@ public:
     const std::vector<int>& triangleFace() const { return _triangleFace; }
     const std::vector<std::string>& warnings() const { return _warnings; }
     bool faceVaryingAvailable(int channel) const;
-    uint64_t id() const { return _id; }      ///< unique per instance, never 0
-    size_t memoryBytes() const;              ///< stencils + triangle arrays
+    uint64_t id() const { return _id; }  ///< unique per instance, never 0
+    size_t memoryBytes() const;          ///< stencils + triangle arrays
     /// One line: scheme, level, counts, and the rows / entries of every stencil table.
     std::string describe() const;
     const BuildTimings& timings() const { return _timings; }
@@ -120,7 +119,7 @@ public:
     /// check that re-posing does not rebuild.
     static uint64_t refinerBuildCount();
 
-private:
+  private:
     SubdivTopology() = default;
     bool build(std::string* error);
     void buildCage();
@@ -130,9 +129,9 @@ private:
     struct FaceVaryingTables {
         bool available = false;
         size_t coarseValues = 0;
-        StencilChain toLevel;       ///< coarse values -> last-level values (empty: identity)
-        Stencils limit;             ///< last-level values -> limit values (empty: identity)
-        std::vector<int> corners;   ///< value of each triangle corner (3 per triangle)
+        StencilChain toLevel;      ///< coarse values -> last-level values (empty: identity)
+        Stencils limit;            ///< last-level values -> limit values (empty: identity)
+        std::vector<int> corners;  ///< value of each triangle corner (3 per triangle)
     };
 
     // Inputs (kept for matches()).
@@ -150,8 +149,8 @@ private:
 
     StencilChain _vertex;   ///< coarse points -> last-level points (empty: identity, the cage)
     StencilChain _varying;  ///< linear; empty when not built or for the cage
-    Stencils _limitP;    ///< last level -> limit position (empty: the refined point itself)
-    Stencils _limitDu;   ///< last level -> limit tangents (empty: normals from triangles)
+    Stencils _limitP;       ///< last level -> limit position (empty: the refined point itself)
+    Stencils _limitDu;      ///< last level -> limit tangents (empty: normals from triangles)
     Stencils _limitDv;
     std::vector<glm::uvec3> _triangles;
     std::vector<int> _triangleFace;

@@ -20,7 +20,8 @@ E lookup(const hd::Token& token, const TokenValue<E> (&table)[N], E fallback, co
     if (token.empty()) return fallback;
     for (const auto& tv : table)
         if (token.str() == tv.token) return tv.value;
-    warnings->push_back(std::string("unknown ") + what + " \"" + token.str() + "\", using the default");
+    warnings->push_back(std::string("unknown ") + what + " \"" + token.str() +
+                        "\", using the default");
     return fallback;
 }
 
@@ -28,10 +29,9 @@ E lookup(const hd::Token& token, const TokenValue<E> (&table)[N], E fallback, co
 
 SdcSetup sdcSetup(const hd::MeshTopology& topology, const hd::SubdivTags& tags,
                   std::vector<std::string>* warnings) {
-    static const TokenValue<Sdc::SchemeType> kSchemes[] = {
-        {"catmullClark", Sdc::SCHEME_CATMARK},
-        {"loop", Sdc::SCHEME_LOOP},
-        {"bilinear", Sdc::SCHEME_BILINEAR}};
+    static const TokenValue<Sdc::SchemeType> kSchemes[] = {{"catmullClark", Sdc::SCHEME_CATMARK},
+                                                           {"loop", Sdc::SCHEME_LOOP},
+                                                           {"bilinear", Sdc::SCHEME_BILINEAR}};
     static const TokenValue<Sdc::Options::VtxBoundaryInterpolation> kBoundary[] = {
         {"none", Sdc::Options::VTX_BOUNDARY_NONE},
         {"edgeOnly", Sdc::Options::VTX_BOUNDARY_EDGE_ONLY},
@@ -44,11 +44,11 @@ SdcSetup sdcSetup(const hd::MeshTopology& topology, const hd::SubdivTags& tags,
         {"boundaries", Sdc::Options::FVAR_LINEAR_BOUNDARIES},
         {"all", Sdc::Options::FVAR_LINEAR_ALL}};
     static const TokenValue<Sdc::Options::TriangleSubdivision> kTriangle[] = {
-        {"catmullClark", Sdc::Options::TRI_SUB_CATMARK},
-        {"smooth", Sdc::Options::TRI_SUB_SMOOTH}};
+        {"catmullClark", Sdc::Options::TRI_SUB_CATMARK}, {"smooth", Sdc::Options::TRI_SUB_SMOOTH}};
 
     SdcSetup s;
-    s.scheme = lookup(topology.scheme, kSchemes, Sdc::SCHEME_CATMARK, "subdivisionScheme", warnings);
+    s.scheme =
+        lookup(topology.scheme, kSchemes, Sdc::SCHEME_CATMARK, "subdivisionScheme", warnings);
     if (s.scheme == Sdc::SCHEME_LOOP) {
         const auto& counts = topology.faceVertexCounts;
         if (!std::all_of(counts.begin(), counts.end(), [](int c) { return c == 3; })) {

@@ -2,11 +2,11 @@
 // UsdGeomMesh subdivision tokens -> OpenSubdiv Sdc scheme and options (private header).
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include <opensubdiv/sdc/options.h>
 #include <opensubdiv/sdc/types.h>
+
+#include <string>
+#include <vector>
 
 #include "delegate/hd/meshTopology.h"
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/subdiv/adaptiveLevel.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 using namespace principled::subdiv;
 
@@ -43,11 +43,12 @@ TEST(AdaptiveLevel, FarMeshesGetFewerLevelsAndResultsAreClamped) {
         EXPECT_LE(level, 6);
         previous = level;
     }
-    EXPECT_EQ(adaptiveLevel(lo, hi, 24, camera(1.5f)), 6);   // camera inside the sphere
+    EXPECT_EQ(adaptiveLevel(lo, hi, 24, camera(1.5f)), 6);  // camera inside the sphere
     EXPECT_EQ(adaptiveLevel(lo, hi, 24, camera(1e5f)), 0);
     EXPECT_LT(adaptiveLevel(lo, hi, 24, camera(400.0f)), adaptiveLevel(lo, hi, 24, camera(20.0f)));
     // More coarse faces (shorter cage edges) need fewer levels at the same distance.
-    EXPECT_LT(adaptiveLevel(lo, hi, 24 * 64, camera(20.0f)), adaptiveLevel(lo, hi, 24, camera(20.0f)));
+    EXPECT_LT(adaptiveLevel(lo, hi, 24 * 64, camera(20.0f)),
+              adaptiveLevel(lo, hi, 24, camera(20.0f)));
     ScreenMetric v = camera(20.0f);
     v.maxLevel = 2;
     EXPECT_EQ(adaptiveLevel(lo, hi, 24, v), 2);

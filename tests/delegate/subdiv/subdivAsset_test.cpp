@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // The usd-wg Pyramid asset (full_assets/SubdivisionSurfaces) with its crease and corner
 // variants, read with a minimal array scanner so this test needs no USD parser.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
-
-#include <gtest/gtest.h>
 
 #include "delegate/subdiv/subdivTopology.h"
 
@@ -42,8 +42,10 @@ bool loadPyramid(Pyramid* p) {
     std::stringstream ss;
     ss << f.rdbuf();
     p->text = ss.str();
-    for (double v : firstArray(p->text, "int[] faceVertexCounts")) p->topology.faceVertexCounts.push_back(int(v));
-    for (double v : firstArray(p->text, "int[] faceVertexIndices")) p->topology.faceVertexIndices.push_back(int(v));
+    for (double v : firstArray(p->text, "int[] faceVertexCounts"))
+        p->topology.faceVertexCounts.push_back(int(v));
+    for (double v : firstArray(p->text, "int[] faceVertexIndices"))
+        p->topology.faceVertexIndices.push_back(int(v));
     std::vector<double> xyz = firstArray(p->text, "point3f[] points");
     for (size_t i = 0; i + 2 < xyz.size(); i += 3)
         p->points.emplace_back(float(xyz[i]), float(xyz[i + 1]), float(xyz[i + 2]));
@@ -63,12 +65,17 @@ TEST(SubdivAsset, UsdWgPyramidCreasesAndCorners) {
     // The "edges" variant: every cage edge of the outer tetrahedron (points 0..3) at sharpness
     // 100 (>= 10 is infinitely sharp); the "corners" variant pins points 0 and 2 at 25.
     hd::SubdivTags edges;
-    for (double v : firstArray(p.text, "int[] creaseIndices")) edges.creaseIndices.push_back(int(v));
-    for (double v : firstArray(p.text, "int[] creaseLengths")) edges.creaseLengths.push_back(int(v));
-    for (double v : firstArray(p.text, "float[] creaseSharpnesses")) edges.creaseSharpnesses.push_back(float(v));
+    for (double v : firstArray(p.text, "int[] creaseIndices"))
+        edges.creaseIndices.push_back(int(v));
+    for (double v : firstArray(p.text, "int[] creaseLengths"))
+        edges.creaseLengths.push_back(int(v));
+    for (double v : firstArray(p.text, "float[] creaseSharpnesses"))
+        edges.creaseSharpnesses.push_back(float(v));
     hd::SubdivTags corners;
-    for (double v : firstArray(p.text, "int[] cornerIndices")) corners.cornerIndices.push_back(int(v));
-    for (double v : firstArray(p.text, "float[] cornerSharpnesses")) corners.cornerSharpnesses.push_back(float(v));
+    for (double v : firstArray(p.text, "int[] cornerIndices"))
+        corners.cornerIndices.push_back(int(v));
+    for (double v : firstArray(p.text, "float[] cornerSharpnesses"))
+        corners.cornerSharpnesses.push_back(float(v));
     ASSERT_EQ(edges.creaseLengths.size(), 6u);
     ASSERT_EQ(corners.cornerIndices.size(), 2u);
 
@@ -98,7 +105,8 @@ TEST(SubdivAsset, UsdWgPyramidCreasesAndCorners) {
     // (each crease is a single cage edge between two fixed crease corners).
     for (int v = 0; v < 4; ++v) EXPECT_LT(nearest(sharpEdges, p.points[v]), 1e-5f);
     for (size_t e = 0; e < 6; ++e) {
-        glm::vec3 a = p.points[edges.creaseIndices[2 * e]], b = p.points[edges.creaseIndices[2 * e + 1]];
+        glm::vec3 a = p.points[edges.creaseIndices[2 * e]],
+                  b = p.points[edges.creaseIndices[2 * e + 1]];
         int on = 0;
         for (const glm::vec3& x : sharpEdges.points) on += distanceToSegment(x, a, b) < 1e-5f;
         EXPECT_EQ(on, 9) << "crease " << e;  // 2^3 segments -> 9 points including the ends

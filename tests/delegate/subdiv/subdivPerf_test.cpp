@@ -1,13 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // Build and re-pose timings of large refinements (label "stress": not in the default run).
 // Run: ./build/bin/subdiv_perf   (figures recorded in docs/subdivision.md)
+#include <gtest/gtest.h>
 #include <sys/resource.h>
 
 #include <chrono>
 #include <cstdio>
 #include <ctime>
-
-#include <gtest/gtest.h>
 
 #include "delegate/subdiv/subdivTopology.h"
 #include "tests/delegate/subdiv/subdivTestMeshes.h"
@@ -47,7 +46,8 @@ void measure(int n, int level, bool varying, bool flat = false) {
     o.faceVarying = {{g.topology.faceVertexIndices, g.points.size()}};
     std::unique_ptr<SubdivTopology> t;
     std::string err;
-    Time build = timeOf([&] { t = SubdivTopology::create(g.topology, {}, g.points.size(), o, &err); });
+    Time build =
+        timeOf([&] { t = SubdivTopology::create(g.topology, {}, g.points.size(), o, &err); });
     ASSERT_TRUE(t) << err;
     RefinedMesh m;
     Time first = timeOf([&] { ASSERT_TRUE(t->refine(g.points, &m)); });
@@ -57,7 +57,8 @@ void measure(int n, int level, bool varying, bool flat = false) {
     for (int r = 0; r < runs; ++r) {
         for (glm::vec3& p : g.points) p.z += 0.01f;
         Time r1 = timeOf([&] { ASSERT_TRUE(t->refine(g.points, &m)); });
-        Time r2 = timeOf([&] { ASSERT_TRUE(t->refineFaceVarying(0, st.data(), g.points.size(), 2, &out)); });
+        Time r2 = timeOf(
+            [&] { ASSERT_TRUE(t->refineFaceVarying(0, st.data(), g.points.size(), 2, &out)); });
         repose.wall += r1.wall / runs;
         repose.cpu += r1.cpu / runs;
         fvar.wall += r2.wall / runs;
@@ -73,15 +74,21 @@ void measure(int n, int level, bool varying, bool flat = false) {
         "  stencil+topology memory %.1f MB, peak RSS so far %.1f MB\n"
         "  first refine %.1f ms wall (copies triangles); re-pose %.1f ms wall, %.1f ms cpu"
         " (points+normals); fvar st %.1f ms wall, %.1f ms cpu\n",
-        n, n, level, varying ? "on" : "off", flat ? "flat Far" : "per-level", t->describe().c_str(), build.wall, build.cpu,
-        bt.refiner, bt.vertexStencils, bt.varyingStencils, bt.limitMasks, bt.faceVarying,
-        bt.triangles, double(t->memoryBytes()) / 1e6, double(ru.ru_maxrss) / 1e3,
+        n, n, level, varying ? "on" : "off", flat ? "flat Far" : "per-level", t->describe().c_str(),
+        build.wall, build.cpu, bt.refiner, bt.vertexStencils, bt.varyingStencils, bt.limitMasks,
+        bt.faceVarying, bt.triangles, double(t->memoryBytes()) / 1e6, double(ru.ru_maxrss) / 1e3,
         first.wall * 1e3, repose.wall * 1e3, repose.cpu * 1e3, fvar.wall * 1e3, fvar.cpu * 1e3);
     EXPECT_EQ(t->triangleCount(), size_t(2) * size_t(n * n) << (2 * level));
 }
 
 }  // namespace
 
-TEST(SubdivPerf, Grid45Level4OneMillionTriangles) { measure(45, 4, false); }
-TEST(SubdivPerf, Grid45Level4FlatFarTables) { measure(45, 4, false, true); }
-TEST(SubdivPerf, Grid64Level4TwoMillionTriangles) { measure(64, 4, true); }
+TEST(SubdivPerf, Grid45Level4OneMillionTriangles) {
+    measure(45, 4, false);
+}
+TEST(SubdivPerf, Grid45Level4FlatFarTables) {
+    measure(45, 4, false, true);
+}
+TEST(SubdivPerf, Grid64Level4TwoMillionTriangles) {
+    measure(64, 4, true);
+}

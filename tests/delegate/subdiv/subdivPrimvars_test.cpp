@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <gtest/gtest.h>
 
 #include "delegate/subdiv/subdivTopology.h"
 #include "tests/delegate/subdiv/subdivTestMeshes.h"
@@ -157,7 +157,8 @@ TEST(SubdivPrimvars, FaceVaryingLinearAllKeepsEveryValueSmoothModesDoNot) {
         ASSERT_TRUE(t->refineFaceVarying(0, st.data(), g.points.size(), 2, &out));
         int found = 0;
         for (size_t c = 0; c < m.triangles.size() * 3; ++c) {
-            if (glm::length(m.points[m.triangles[c / 3][c % 3]] - glm::vec3(1, 1, 0)) > 1e-6f) continue;
+            if (glm::length(m.points[m.triangles[c / 3][c % 3]] - glm::vec3(1, 1, 0)) > 1e-6f)
+                continue;
             ++found;
             const float expected = std::string(mode) == "all" ? 0.7f : smooth;
             EXPECT_NEAR(out[2 * c], expected, 1e-5f) << mode;
@@ -190,7 +191,8 @@ TEST(SubdivPrimvars, CageLevelGathersFaceVaryingPerCorner) {
     ASSERT_TRUE(t->refineFaceVarying(0, st.data(), ch.valueCount, 2, &out));
     ASSERT_EQ(out.size(), 8u * 3u * 2u);
     // Triangle 0 = corners 0, 1, 2 of face 0.
-    EXPECT_EQ(std::vector<float>(out.begin(), out.begin() + 6), (std::vector<float>{0, 0, 1, 0, 1, 1}));
+    EXPECT_EQ(std::vector<float>(out.begin(), out.begin() + 6),
+              (std::vector<float>{0, 0, 1, 0, 1, 1}));
 }
 
 TEST(SubdivPrimvars, BadFaceVaryingChannelIsDroppedWithAWarning) {

@@ -2,9 +2,8 @@
 // Small cages for the subdivision tests: unit cube, planar grid, tetrahedron.
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "delegate/hd/meshTopology.h"
 
@@ -18,7 +17,7 @@ struct Cage {
 /// [-0.5, 0.5]^3, quads counter-clockwise seen from outside (face 0 is +z).
 inline Cage cube() {
     Cage c;
-    c.points = {{-.5f, -.5f, .5f}, {.5f, -.5f, .5f}, {-.5f, .5f, .5f},  {.5f, .5f, .5f},
+    c.points = {{-.5f, -.5f, .5f}, {.5f, -.5f, .5f}, {-.5f, .5f, .5f},   {.5f, .5f, .5f},
                 {-.5f, .5f, -.5f}, {.5f, .5f, -.5f}, {-.5f, -.5f, -.5f}, {.5f, -.5f, -.5f}};
     c.topology.faceVertexCounts = {4, 4, 4, 4, 4, 4};
     c.topology.faceVertexIndices = {0, 1, 3, 2, 2, 3, 5, 4, 4, 5, 7, 6,
@@ -36,7 +35,8 @@ inline Cage grid(int n) {
         for (int i = 0; i < n; ++i) {
             int v = j * (n + 1) + i;
             c.topology.faceVertexCounts.push_back(4);
-            for (int k : {v, v + 1, v + n + 2, v + n + 1}) c.topology.faceVertexIndices.push_back(k);
+            for (int k : {v, v + 1, v + n + 2, v + n + 1})
+                c.topology.faceVertexIndices.push_back(k);
         }
     }
     return c;

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/subdiv/subdivTopology.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <thread>
-
-#include <gtest/gtest.h>
 
 #include "tests/delegate/subdiv/subdivTestMeshes.h"
 
@@ -87,7 +87,7 @@ TEST(SubdivTopology, CubeLimitIsSymmetricInsideTheCageWithOutwardNormals) {
     for (size_t i = 0; i < b.mesh.points.size(); ++i) {
         const glm::vec3& p = b.mesh.points[i];
         ASSERT_LE(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}), 0.5f + 1e-6f);
-        ASSERT_TRUE(hasPointNear(b.mesh, -p, 1e-5f));                          // point symmetry
+        ASSERT_TRUE(hasPointNear(b.mesh, -p, 1e-5f));                        // point symmetry
         ASSERT_TRUE(hasPointNear(b.mesh, glm::vec3(p.y, p.z, p.x), 1e-5f));  // axis rotation
         ASSERT_GT(glm::dot(b.mesh.normals[i], p), 0.0f);  // outward on a convex surface
     }
@@ -154,7 +154,8 @@ TEST(SubdivTopology, InfinitelySharpCreaseStaysOnTheCageEdges) {
     for (const glm::vec3& p : b.mesh.points) {
         ASSERT_LE(p.z, 0.5f + 1e-6f);
         bool atTop = std::abs(p.z - 0.5f) < 1e-5f;
-        bool onRim = std::abs(std::abs(p.x) - 0.5f) < 1e-5f || std::abs(std::abs(p.y) - 0.5f) < 1e-5f;
+        bool onRim =
+            std::abs(std::abs(p.x) - 0.5f) < 1e-5f || std::abs(std::abs(p.y) - 0.5f) < 1e-5f;
         if (atTop && onRim) ++onEdge;
     }
     EXPECT_EQ(onEdge, 4 << level);  // every refined vertex of the rim: 4 * 2^L
@@ -220,15 +221,18 @@ TEST(SubdivTopology, LevelZeroAndSchemeNoneGiveTheCage) {
         Cage c = test::cube();
         c.topology.holeIndices = {5};
         int level = 2;
-        if (variant == 0) level = 0;
-        else c.topology.scheme = "none";
+        if (variant == 0)
+            level = 0;
+        else
+            c.topology.scheme = "none";
         Built b = refineCage(c, level);
         EXPECT_FALSE(b.topology->subdivided());
         EXPECT_EQ(b.mesh.points, c.points);
         EXPECT_TRUE(b.mesh.normals.empty());
         ASSERT_EQ(b.mesh.triangles.size(), 10u);
         for (size_t t = 0; t < b.mesh.triangles.size(); ++t)  // outward winding
-            EXPECT_GT(glm::dot(triangleNormal(b.mesh, t), b.mesh.points[b.mesh.triangles[t].x]), 0.0f);
+            EXPECT_GT(glm::dot(triangleNormal(b.mesh, t), b.mesh.points[b.mesh.triangles[t].x]),
+                      0.0f);
     }
     Cage lh = test::cube();
     lh.topology.orientation = "leftHanded";
@@ -312,7 +316,7 @@ TEST(SubdivTopology, NonManifoldAndDegenerateInputDoNotCrash) {
     hd::MeshTopology t;
     t.faceVertexCounts = {4, 4, 4, 4};
     t.faceVertexIndices = {0, 1, 2, 3, 1, 0, 4, 5, 0, 1, 6, 7, 2, 2, 8, 3};
-    std::vector<glm::vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, -1, 0},
+    std::vector<glm::vec3> p = {{0, 0, 0},  {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, -1, 0},
                                 {1, -1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 2, 0}, {5, 5, 5}};
     std::string err;
     auto topo = SubdivTopology::create(t, {}, p.size(), BuildOptions{2}, &err);
@@ -320,7 +324,8 @@ TEST(SubdivTopology, NonManifoldAndDegenerateInputDoNotCrash) {
         RefinedMesh m;
         ASSERT_TRUE(topo->refine(p, &m, &err)) << err;
         for (const glm::vec3& q : m.points) ASSERT_TRUE(std::isfinite(q.x + q.y + q.z));
-        for (const glm::uvec3& tri : m.triangles) ASSERT_LT(std::max({tri.x, tri.y, tri.z}), m.points.size());
+        for (const glm::uvec3& tri : m.triangles)
+            ASSERT_LT(std::max({tri.x, tri.y, tri.z}), m.points.size());
     } else {
         EXPECT_FALSE(err.empty());
     }
@@ -353,7 +358,8 @@ TEST(SubdivTopology, RandomTopologiesNeverCrash) {
     };
     const char* schemes[] = {"catmullClark", "loop", "bilinear", "none"};
     const char* boundaries[] = {"none", "edgeOnly", "edgeAndCorner"};
-    const char* fvarModes[] = {"none", "cornersOnly", "cornersPlus1", "cornersPlus2", "boundaries", "all"};
+    const char* fvarModes[] = {"none",         "cornersOnly", "cornersPlus1",
+                               "cornersPlus2", "boundaries",  "all"};
     int built = 0;
     for (int iter = 0; iter < 1000; ++iter) {
         const int pointCount = 1 + int(next(10));
@@ -365,7 +371,8 @@ TEST(SubdivTopology, RandomTopologiesNeverCrash) {
             int n = next(10) == 0 ? int(next(3)) : 3 + int(next(3));
             t.faceVertexCounts.push_back(n);
             for (int k = 0; k < n; ++k)
-                t.faceVertexIndices.push_back(next(30) == 0 ? pointCount : int(next(uint32_t(pointCount))));
+                t.faceVertexIndices.push_back(next(30) == 0 ? pointCount
+                                                            : int(next(uint32_t(pointCount))));
         }
         if (next(3) == 0) t.holeIndices.push_back(int(next(uint32_t(faces + 1))));
         hd::SubdivTags tags;
@@ -374,7 +381,8 @@ TEST(SubdivTopology, RandomTopologiesNeverCrash) {
         if (next(2)) {
             int len = 2 + int(next(3));
             tags.creaseLengths = {len};
-            for (int k = 0; k < len; ++k) tags.creaseIndices.push_back(int(next(uint32_t(pointCount))));
+            for (int k = 0; k < len; ++k)
+                tags.creaseIndices.push_back(int(next(uint32_t(pointCount))));
             tags.creaseSharpnesses = {float(next(12))};
         }
         if (next(2)) {
@@ -384,10 +392,12 @@ TEST(SubdivTopology, RandomTopologiesNeverCrash) {
         BuildOptions o{int(next(3))};
         FaceVaryingChannel ch;
         ch.valueCount = 1 + next(6);
-        for (size_t k = 0; k < t.faceVertexIndices.size(); ++k) ch.indices.push_back(int(next(uint32_t(ch.valueCount))));
+        for (size_t k = 0; k < t.faceVertexIndices.size(); ++k)
+            ch.indices.push_back(int(next(uint32_t(ch.valueCount))));
         o.faceVarying = {ch};
         std::vector<glm::vec3> points(static_cast<size_t>(pointCount));
-        for (glm::vec3& p : points) p = glm::vec3(float(next(100)), float(next(100)), float(next(100))) * 0.01f;
+        for (glm::vec3& p : points)
+            p = glm::vec3(float(next(100)), float(next(100)), float(next(100))) * 0.01f;
 
         std::string err;
         auto topo = SubdivTopology::create(t, tags, points.size(), o, &err);
@@ -399,7 +409,8 @@ TEST(SubdivTopology, RandomTopologiesNeverCrash) {
         RefinedMesh m;
         ASSERT_TRUE(topo->refine(points, &m, &err)) << err;
         ASSERT_EQ(m.triangleFace.size(), m.triangles.size());
-        for (const glm::uvec3& tri : m.triangles) ASSERT_LT(std::max({tri.x, tri.y, tri.z}), m.points.size());
+        for (const glm::uvec3& tri : m.triangles)
+            ASSERT_LT(std::max({tri.x, tri.y, tri.z}), m.points.size());
         for (int f : m.triangleFace) ASSERT_TRUE(f >= 0 && f < faces);
         for (const glm::vec3& q : m.points) ASSERT_TRUE(std::isfinite(q.x + q.y + q.z)) << iter;
         for (const glm::vec3& q : m.normals) ASSERT_TRUE(std::isfinite(q.x + q.y + q.z)) << iter;
@@ -424,7 +435,8 @@ TEST(SubdivTopology, NgonsAndTrianglesRefineWithOutwardNormals) {
     prism.topology.faceVertexCounts = {5, 5, 4, 4, 4, 4, 4};
     prism.topology.faceVertexIndices = {4, 3, 2, 1, 0, 5, 6, 7, 8, 9};
     for (int k = 0; k < 5; ++k)
-        for (int v : {k, (k + 1) % 5, 5 + (k + 1) % 5, 5 + k}) prism.topology.faceVertexIndices.push_back(v);
+        for (int v : {k, (k + 1) % 5, 5 + (k + 1) % 5, 5 + k})
+            prism.topology.faceVertexIndices.push_back(v);
     Built b = refineCage(prism, 2);
     EXPECT_EQ(b.mesh.triangles.size(), 2u * (5 + 5 + 5 * 4) * 4);  // n quads per n-gon, then x4
     for (size_t i = 0; i < b.mesh.points.size(); ++i)
@@ -448,7 +460,8 @@ TEST(SubdivTopology, NgonsAndTrianglesRefineWithOutwardNormals) {
     ASSERT_EQ(catmark.mesh.points.size(), smooth.mesh.points.size());
     float difference = 0.0f;
     for (size_t i = 0; i < catmark.mesh.points.size(); ++i) {
-        difference = std::max(difference, glm::length(catmark.mesh.points[i] - smooth.mesh.points[i]));
+        difference =
+            std::max(difference, glm::length(catmark.mesh.points[i] - smooth.mesh.points[i]));
         ASSERT_GT(glm::dot(catmark.mesh.normals[i], catmark.mesh.points[i]), 0.0f);
         ASSERT_GT(glm::dot(smooth.mesh.normals[i], smooth.mesh.points[i]), 0.0f);
     }

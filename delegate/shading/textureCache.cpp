@@ -47,6 +47,38 @@ std::string takeError(TextureSystem* system) {
     return e;
 }
 
+std::string formatName(TextureSystem* system, TextureSystem::TextureHandle* handle,
+                       TextureSystem::Perthread* thread) {
+    OIIO::ustring name;
+    if (!system->get_texture_info(handle, thread, 0, OIIO::ustring("fileformat"),
+                                  OIIO::TypeString, &name))
+        (void)takeError(system);
+    return name.string();
+}
+
+bool contains(const std::string& text, std::string_view word) {
+    return OIIO::Strutil::icontains(text, word);
+}
+
+ColorTag colorTag(const OIIO::ImageSpec& spec, const std::string& format) {
+    std::string icc = std::string(spec.get_string_attribute("ICCProfile:profile_description")) + " " +
+                      std::string(spec.get_string_attribute("photoshop:ICCProfile"));
+    std::string cs = spec.get_string_attribute("oiio:ColorSpace");
+    float gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
+    // 0.1: the tolerance USD's Hio uses when it reads a file's gamma to decide sRGB or linear.
+    if (std::abs(gamma - 1.0f) < 0.1f || contains(icc, "linear") ||
+        OIIO::Strutil::iequals(cs, "linear") || OIIO::Strutil::iequals(cs, "scene_linear") ||
+        OIIO::Strutil::iequals(cs, "lin_srgb"))
+        return ColorTag::Linear;
+    if (std::abs(gamma - 2.2f) < 0.1f || contains(icc, "sRGB") ||
+        spec.get_int_attribute("Exif:ColorSpace", 0) == 1)
+        return ColorTag::Srgb;
+    // PNG and JPEG readers default the label to sRGB; other formats only report what they read.
+    if (OIIO::Strutil::iequals(cs, "sRGB") && format != "png" && format != "jpeg")
+        return ColorTag::Srgb;
+    return ColorTag::Unknown;
+}
+
 }  // namespace
 
 TextureCache::TextureCache() : TextureCache(Options()) {}
@@ -108,10 +140,7 @@ TextureOpenResult TextureCache::open(const std::string& path) {
     tex->channels = spec.nchannels;
     tex->bitsPerChannel = static_cast<int>(spec.format.size()) * 8;
     tex->isFloat = spec.format.is_floating_point();
-    // The reader's "oiio:ColorSpace" is what the file declares (PNG sRGB/iCCP chunks, EXR
-    // chromaticities, ...); OpenImageIO does not convert the pixels (checked in the tests).
-    std::string cs = spec.get_string_attribute("oiio:ColorSpace");
-    tex->taggedSrgb = OIIO::Strutil::iequals(cs, "sRGB");
+    tex->colorTag = colorTag(spec, formatName(system, handle, thread));
     std::string wrap = spec.get_string_attribute("wrapmodes");
     if (!wrap.empty()) {
         auto comma = wrap.find(',');

@@ -18,6 +18,9 @@ namespace principled::shading {
 /// resolved against the file when a program is compiled).
 enum class Wrap : uint8_t { Black, Clamp, Repeat, Mirror };
 
+/// What a file's metadata states about its encoding (see TextureCache::open for the rules).
+enum class ColorTag : uint8_t { Unknown, Srgb, Linear };
+
 /// A texture file as the cache opened it. Owned by the cache; stays valid until the cache is
 /// destroyed (invalidation re-reads pixels but keeps the object).
 struct Texture {
@@ -27,7 +30,7 @@ struct Texture {
     int channels = 0;       ///< channels in the file (lookups read at most 4)
     int bitsPerChannel = 0; ///< 8, 16, 32 (float) ...
     bool isFloat = false;
-    bool taggedSrgb = false;      ///< the file's colour-space metadata says sRGB
+    ColorTag colorTag = ColorTag::Unknown;  ///< explicit colour-space metadata, if any
     bool hasWrapMetadata = false; ///< the file carries "wrapmodes"
     Wrap metadataWrapS = Wrap::Black;
     Wrap metadataWrapT = Wrap::Black;
@@ -62,6 +65,11 @@ public:
     /// Resolves a file to a handle (once per path; later calls return the same Texture). A
     /// missing or unreadable file gives texture == nullptr and an error naming the path and
     /// the reason; firstReport is true only on the first such result, so callers log it once.
+    ///
+    /// The colour tag counts only explicit statements: an ICC profile named sRGB or linear, Exif
+    /// ColorSpace = 1 (sRGB), a PNG gAMA of 2.2 or 1.0, or oiio:ColorSpace from formats that
+    /// record it. OpenImageIO 2.4 labels every PNG and JPEG "sRGB" even when the file says
+    /// nothing, so that label alone is ignored for them.
     TextureOpenResult open(const std::string& path);
 
     /// Filtered lookup at st (USD convention: (0,0) is the bottom-left of the image) with the

@@ -53,25 +53,62 @@ void setSlot(PreviewSurfaceParams& p, Slot slot, const glm::vec4& v, int count) 
     glm::vec3 c = count >= 3 ? glm::vec3(v) : glm::vec3(v.x);
     float f = v.x;
     switch (slot) {
-        case Slot::DiffuseColor: p.diffuseColor = c; break;
-        case Slot::EmissiveColor: p.emissiveColor = c; break;
-        case Slot::SpecularColor: p.specularColor = c; break;
-        case Slot::Normal: p.normal = c; break;
-        case Slot::Metallic: p.metallic = f; break;
-        case Slot::Roughness: p.roughness = f; break;
-        case Slot::Clearcoat: p.clearcoat = f; break;
-        case Slot::ClearcoatRoughness: p.clearcoatRoughness = f; break;
-        case Slot::Opacity: p.opacity = f; break;
-        case Slot::Ior: p.ior = f; break;
-        case Slot::Subsurface: p.subsurface = f; break;
-        case Slot::Specular: p.specular = f; break;
-        case Slot::SpecularTint: p.specularTint = f; break;
-        case Slot::Anisotropic: p.anisotropic = f; break;
-        case Slot::Sheen: p.sheen = f; break;
-        case Slot::SheenTint: p.sheenTint = f; break;
-        case Slot::ClearcoatGloss: p.clearcoatGloss = f; break;
-        case Slot::SpecTrans: p.specTrans = f; break;
-        case Slot::Count: break;
+        case Slot::DiffuseColor:
+            p.diffuseColor = c;
+            break;
+        case Slot::EmissiveColor:
+            p.emissiveColor = c;
+            break;
+        case Slot::SpecularColor:
+            p.specularColor = c;
+            break;
+        case Slot::Normal:
+            p.normal = c;
+            break;
+        case Slot::Metallic:
+            p.metallic = f;
+            break;
+        case Slot::Roughness:
+            p.roughness = f;
+            break;
+        case Slot::Clearcoat:
+            p.clearcoat = f;
+            break;
+        case Slot::ClearcoatRoughness:
+            p.clearcoatRoughness = f;
+            break;
+        case Slot::Opacity:
+            p.opacity = f;
+            break;
+        case Slot::Ior:
+            p.ior = f;
+            break;
+        case Slot::Subsurface:
+            p.subsurface = f;
+            break;
+        case Slot::Specular:
+            p.specular = f;
+            break;
+        case Slot::SpecularTint:
+            p.specularTint = f;
+            break;
+        case Slot::Anisotropic:
+            p.anisotropic = f;
+            break;
+        case Slot::Sheen:
+            p.sheen = f;
+            break;
+        case Slot::SheenTint:
+            p.sheenTint = f;
+            break;
+        case Slot::ClearcoatGloss:
+            p.clearcoatGloss = f;
+            break;
+        case Slot::SpecTrans:
+            p.specTrans = f;
+            break;
+        case Slot::Count:
+            break;
     }
 }
 
@@ -97,18 +134,18 @@ int primvarComponents(std::string_view type) {
 
 // Builds a program node by node; each node is compiled once into one register.
 class MaterialProgram::Compiler {
-public:
+  public:
     Compiler(const MaterialNetwork& net, TextureCache& cache, std::vector<std::string>* notes,
              MaterialProgram& prog)
         : _net(net), _cache(cache), _notes(notes), _prog(prog) {}
 
     void compileSurface(const MaterialNode& surface);
 
-private:
+  private:
     struct RegInfo {
         bool constant = true;
-        Token root;                   ///< primvar the value derives from linearly (st chains)
-        glm::mat2 jacobian{1.0f};     ///< d value.xy / d root
+        Token root;                ///< primvar the value derives from linearly (st chains)
+        glm::mat2 jacobian{1.0f};  ///< d value.xy / d root
     };
 
     std::optional<int16_t> newRegister(const glm::vec4& init, bool constant) {
@@ -165,12 +202,18 @@ std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::connection(
     Operand o;
     o.reg = *reg;
     if (id == "UsdUVTexture") {
-        if (out == "r") o = {*reg, 0, 1};
-        else if (out == "g") o = {*reg, 1, 1};
-        else if (out == "b") o = {*reg, 2, 1};
-        else if (out == "a") o = {*reg, 3, 1};
-        else if (out == "rgb" || out.empty()) o = {*reg, 0, 3};
-        else if (out == "rgba") o = {*reg, 0, 4};  // removed in spec 2.3, still in old files
+        if (out == "r")
+            o = {*reg, 0, 1};
+        else if (out == "g")
+            o = {*reg, 1, 1};
+        else if (out == "b")
+            o = {*reg, 2, 1};
+        else if (out == "a")
+            o = {*reg, 3, 1};
+        else if (out == "rgb" || out.empty())
+            o = {*reg, 0, 3};
+        else if (out == "rgba")
+            o = {*reg, 0, 4};  // removed in spec 2.3, still in old files
         else {
             note(consumer, std::string("input '") + input + "' reads unknown output '" + out +
                                "' of " + up->path.str() + "; using its value or fallback");
@@ -189,8 +232,8 @@ std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::vec2Input(
     if (auto c = connection(node, input)) return c;
     glm::vec2 v = fallback;
     if (auto it = node.parameters.find(Token(input)); it != node.parameters.end())
-        if (auto n = numeric(it->second)) v = n->second == 1 ? glm::vec2(n->first.x)
-                                                             : glm::vec2(n->first);
+        if (auto n = numeric(it->second))
+            v = n->second == 1 ? glm::vec2(n->first.x) : glm::vec2(n->first);
     auto reg = newRegister(glm::vec4(v, 0.0f, 0.0f), true);
     if (!reg) return std::nullopt;
     return Operand{*reg, 0, 2};
@@ -214,8 +257,10 @@ std::optional<int16_t> MaterialProgram::Compiler::compileNode(const Path& path) 
         reg = compileTexture(*node);
     } else if (id.rfind("UsdPrimvarReader_", 0) == 0) {
         int n = primvarComponents(std::string_view(id).substr(17));
-        if (n > 0) reg = compilePrimvarReader(*node, n);
-        else note(*node, "'" + id + "' cannot feed a surface input; using the fallback");
+        if (n > 0)
+            reg = compilePrimvarReader(*node, n);
+        else
+            note(*node, "'" + id + "' cannot feed a surface input; using the fallback");
     } else if (id == "UsdTransform2d") {
         reg = compileTransform(*node);
     } else {
@@ -242,8 +287,8 @@ std::optional<int16_t> MaterialProgram::Compiler::compileTexture(const MaterialN
         op.footprintJacobian = in.jacobian;
     }
     _prog._textures.push_back(op);
-    _prog._ops.push_back({Op::Kind::Texture, *reg, *st,
-                          static_cast<int16_t>(_prog._textures.size() - 1)});
+    _prog._ops.push_back(
+        {Op::Kind::Texture, *reg, *st, static_cast<int16_t>(_prog._textures.size() - 1)});
     return reg;
 }
 
@@ -255,7 +300,8 @@ std::optional<int16_t> MaterialProgram::Compiler::compilePrimvarReader(const Mat
         if (auto n = numeric(it->second)) op.fallback = n->first;
     std::string varname;
     if (auto it = node.parameters.find(Token("varname")); it != node.parameters.end())
-        if (auto s = getString(it->second)) varname = *s;  // a string since spec 2.3, a token before
+        if (auto s = getString(it->second))
+            varname = *s;  // a string since spec 2.3, a token before
     if (varname.empty()) {
         note(node, "no varname; using the reader's fallback");
         return newRegister(op.fallback, true);
@@ -268,8 +314,8 @@ std::optional<int16_t> MaterialProgram::Compiler::compilePrimvarReader(const Mat
         _prog._primvarsRead.end())
         _prog._primvarsRead.push_back(op.name);
     _prog._primvars.push_back(op);
-    _prog._ops.push_back({Op::Kind::Primvar, *reg, Operand{},
-                          static_cast<int16_t>(_prog._primvars.size() - 1)});
+    _prog._ops.push_back(
+        {Op::Kind::Primvar, *reg, Operand{}, static_cast<int16_t>(_prog._primvars.size() - 1)});
     return reg;
 }
 
@@ -303,8 +349,8 @@ std::optional<int16_t> MaterialProgram::Compiler::compileTransform(const Materia
         _info[*reg].jacobian = t.linear * _info[in->reg].jacobian;  // chain rule
     }
     _prog._transforms.push_back(t);
-    _prog._ops.push_back({Op::Kind::Transform, *reg, *in,
-                          static_cast<int16_t>(_prog._transforms.size() - 1)});
+    _prog._ops.push_back(
+        {Op::Kind::Transform, *reg, *in, static_cast<int16_t>(_prog._transforms.size() - 1)});
     return reg;
 }
 
@@ -332,8 +378,8 @@ void MaterialProgram::Compiler::compileSurface(const MaterialNode& surface) {
     }
     auto constant = [&](const char* name) -> const Value* {
         if (surface.inputConnections.count(Token(name)))
-            note(surface, std::string("input '") + name +
-                              "' is interfaceOnly; its connection is ignored");
+            note(surface,
+                 std::string("input '") + name + "' is interfaceOnly; its connection is ignored");
         auto it = surface.parameters.find(Token(name));
         return it == surface.parameters.end() ? nullptr : &it->second;
     };
@@ -343,7 +389,8 @@ void MaterialProgram::Compiler::compileSurface(const MaterialNode& surface) {
         if (auto f = getFloat(*v)) base.opacityThreshold = *f;
     if (const Value* v = constant("opacityMode")) {
         auto mode = getString(*v).value_or("");
-        if (mode == "presence") base.opacityMode = OpacityMode::Presence;
+        if (mode == "presence")
+            base.opacityMode = OpacityMode::Presence;
         else if (mode != "transparent")
             note(surface, "opacityMode '" + mode + "' is not transparent|presence; ignored");
     }

@@ -4,10 +4,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "delegate/hd/materialNetwork.h"
 #include "delegate/shading/previewSurfaceParams.h"
@@ -29,7 +28,7 @@ namespace principled::shading {
 /// The program keeps a pointer to the TextureCache it was compiled with: the cache must
 /// outlive it.
 class MaterialProgram {
-public:
+  public:
     /// Registers per program (each a vec4); networks needing more are truncated with a note.
     static constexpr int kMaxRegisters = 64;
 
@@ -57,12 +56,28 @@ public:
 
     /// The UsdPreviewSurface inputs the program can drive (for tests and diagnostics).
     enum class Slot : uint8_t {
-        DiffuseColor, EmissiveColor, SpecularColor, Normal, Metallic, Roughness, Clearcoat,
-        ClearcoatRoughness, Opacity, Ior, Subsurface, Specular, SpecularTint, Anisotropic, Sheen,
-        SheenTint, ClearcoatGloss, SpecTrans, Count
+        DiffuseColor,
+        EmissiveColor,
+        SpecularColor,
+        Normal,
+        Metallic,
+        Roughness,
+        Clearcoat,
+        ClearcoatRoughness,
+        Opacity,
+        Ior,
+        Subsurface,
+        Specular,
+        SpecularTint,
+        Anisotropic,
+        Sheen,
+        SheenTint,
+        ClearcoatGloss,
+        SpecTrans,
+        Count
     };
 
-private:
+  private:
     /// A value read from a register: `count` components starting at `offset`.
     struct Operand {
         int16_t reg = -1;
@@ -71,13 +86,13 @@ private:
     };
     struct Op {
         enum class Kind : uint8_t { Texture, Primvar, Transform } kind;
-        int16_t out;      ///< register written
-        Operand in;       ///< st (Texture) or in (Transform)
-        int16_t index;    ///< into _textures, _primvars or _transforms
+        int16_t out;    ///< register written
+        Operand in;     ///< st (Texture) or in (Transform)
+        int16_t index;  ///< into _textures, _primvars or _transforms
     };
     struct TextureOp {
         UvTexture texture;
-        hd::Token footprintPrimvar;  ///< the primvar st derives from (empty: constant st)
+        hd::Token footprintPrimvar;         ///< the primvar st derives from (empty: constant st)
         glm::mat2 footprintJacobian{1.0f};  ///< d st / d primvar along the graph
     };
     struct PrimvarOp {

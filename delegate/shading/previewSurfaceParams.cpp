@@ -8,9 +8,15 @@ namespace principled::shading {
 
 namespace {
 
-float clamp01(float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; }
-glm::vec3 clamp01(const glm::vec3& v) { return {clamp01(v.x), clamp01(v.y), clamp01(v.z)}; }
-float nonNegative(float v) { return std::isfinite(v) && v > 0.0f ? v : 0.0f; }
+float clamp01(float v) {
+    return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
+}
+glm::vec3 clamp01(const glm::vec3& v) {
+    return {clamp01(v.x), clamp01(v.y), clamp01(v.z)};
+}
+float nonNegative(float v) {
+    return std::isfinite(v) && v > 0.0f ? v : 0.0f;
+}
 
 void apply(const std::optional<float>& v, float* out) {
     if (v && std::isfinite(*v)) *out = *v;
@@ -20,7 +26,10 @@ void apply(const std::optional<float>& v, float* out) {
 // set them when present, so this file builds against either version of MaterialParams.
 template <typename Params>
 void setExplicitF0(Params& p, const glm::vec3& f0) {
-    if constexpr (requires { p.specularWorkflow = true; p.specularColor = f0; }) {
+    if constexpr (requires {
+                      p.specularWorkflow = true;
+                      p.specularColor = f0;
+                  }) {
         p.specularWorkflow = true;
         p.specularColor = f0;
     }

@@ -3,9 +3,8 @@
 // express) as values, and the mapping of those values onto the principled parameters.
 #pragma once
 
-#include <optional>
-
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "delegate/shading/shadedMaterial.h"
 

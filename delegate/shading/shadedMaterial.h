@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 #include "bsdf/bsdf.h"
@@ -19,14 +18,14 @@ enum class OpacityMode : uint8_t {
 /// The evaluated material. Every field is finite and inside its valid range.
 struct ShadedMaterial {
     bsdf::MaterialParams params;
-    glm::vec3 emission{0.0f};          ///< added radiance, >= 0
-    float opacity = 1.0f;              ///< [0,1]
-    float opacityThreshold = 0.0f;     ///< [0,1]; > 0 makes opacity a cutout
+    glm::vec3 emission{0.0f};       ///< added radiance, >= 0
+    float opacity = 1.0f;           ///< [0,1]
+    float opacityThreshold = 0.0f;  ///< [0,1]; > 0 makes opacity a cutout
     OpacityMode opacityMode = OpacityMode::Transparent;
     /// Specular workflow (useSpecularWorkflow = 1): F0 colour, edge white, no metal. Also
     /// approximated in params.specular/specularTint for BSDFs without an explicit F0.
     bool specularWorkflow = false;
-    glm::vec3 specularColor{0.0f};     ///< [0,1]
+    glm::vec3 specularColor{0.0f};  ///< [0,1]
     /// Normal input in tangent space (z along the geometric/shading normal), unit length. The
     /// integrator builds the tangent frame; hasNormalMap is false when it is the constant +z.
     bool hasNormalMap = false;

@@ -12,7 +12,7 @@ namespace principled::shading {
 /// The shading point as seen by a material. Called from render threads; implementations must
 /// be cheap and must not allocate.
 class ShadingContext {
-public:
+  public:
     virtual ~ShadingContext() = default;
 
     /// The primvar `name` interpolated at the shading point, `components` floats (1-4) written

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/shading/textureCache.h"
 
-#include <algorithm>
-#include <cmath>
-#include <filesystem>
-
 #include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/strutil.h>
 #include <OpenImageIO/texture.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
 
 namespace principled::shading {
 
@@ -17,26 +17,36 @@ using OIIO::TextureOpt;
 using OIIO::TextureSystem;
 using OIIO::ustring;
 
-TextureSystem* ts(void* p) { return static_cast<TextureSystem*>(p); }
+TextureSystem* ts(void* p) {
+    return static_cast<TextureSystem*>(p);
+}
 
 TextureOpt::Wrap toOiio(Wrap w) {
     switch (w) {
-        case Wrap::Black: return TextureOpt::WrapBlack;
-        case Wrap::Clamp: return TextureOpt::WrapClamp;
-        case Wrap::Repeat: return TextureOpt::WrapPeriodic;
-        case Wrap::Mirror: return TextureOpt::WrapMirror;
+        case Wrap::Black:
+            return TextureOpt::WrapBlack;
+        case Wrap::Clamp:
+            return TextureOpt::WrapClamp;
+        case Wrap::Repeat:
+            return TextureOpt::WrapPeriodic;
+        case Wrap::Mirror:
+            return TextureOpt::WrapMirror;
     }
     return TextureOpt::WrapBlack;
 }
 
 // OpenImageIO writes "wrapmodes" as "swrap,twrap" with its own names (periodic, clamp, ...).
 bool fromOiioName(std::string_view name, Wrap* out) {
-    if (name == "black") *out = Wrap::Black;
-    else if (name == "clamp") *out = Wrap::Clamp;
+    if (name == "black")
+        *out = Wrap::Black;
+    else if (name == "clamp")
+        *out = Wrap::Clamp;
     else if (name == "periodic" || name == "periodic_pow2" || name == "periodic_sharedborder")
         *out = Wrap::Repeat;
-    else if (name == "mirror") *out = Wrap::Mirror;
-    else return false;
+    else if (name == "mirror")
+        *out = Wrap::Mirror;
+    else
+        return false;
     return true;
 }
 
@@ -50,8 +60,8 @@ std::string takeError(TextureSystem* system) {
 std::string formatName(TextureSystem* system, TextureSystem::TextureHandle* handle,
                        TextureSystem::Perthread* thread) {
     OIIO::ustring name;
-    if (!system->get_texture_info(handle, thread, 0, OIIO::ustring("fileformat"),
-                                  OIIO::TypeString, &name))
+    if (!system->get_texture_info(handle, thread, 0, OIIO::ustring("fileformat"), OIIO::TypeString,
+                                  &name))
         (void)takeError(system);
     return name.string();
 }
@@ -61,8 +71,8 @@ bool contains(const std::string& text, std::string_view word) {
 }
 
 ColorTag colorTag(const OIIO::ImageSpec& spec, const std::string& format) {
-    std::string icc = std::string(spec.get_string_attribute("ICCProfile:profile_description")) + " " +
-                      std::string(spec.get_string_attribute("photoshop:ICCProfile"));
+    std::string icc = std::string(spec.get_string_attribute("ICCProfile:profile_description")) +
+                      " " + std::string(spec.get_string_attribute("photoshop:ICCProfile"));
     std::string cs = spec.get_string_attribute("oiio:ColorSpace");
     float gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
     // 0.1: the tolerance USD's Hio uses when it reads a file's gamma to decide sRGB or linear.
@@ -177,17 +187,20 @@ glm::vec4 TextureCache::sample(const Texture& texture, Wrap wrapS, Wrap wrapT, g
     int n = std::min(texture.channels, 4);
     float px[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     bool ok = system->texture(static_cast<TextureSystem::TextureHandle*>(texture.handle),
-                              system->get_perthread_info(), opt, s, t, d.x, -d.y, d.z, -d.w, n,
-                              px);
+                              system->get_perthread_info(), opt, s, t, d.x, -d.y, d.z, -d.w, n, px);
     if (!ok) {
         (void)system->geterror();  // the file went bad after open(): black, never a crash
         return glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     }
     switch (n) {
-        case 1: return {px[0], px[0], px[0], 1.0f};
-        case 2: return {px[0], px[0], px[0], px[1]};
-        case 3: return {px[0], px[1], px[2], 1.0f};
-        default: return {px[0], px[1], px[2], px[3]};
+        case 1:
+            return {px[0], px[0], px[0], 1.0f};
+        case 2:
+            return {px[0], px[0], px[0], px[1]};
+        case 3:
+            return {px[0], px[1], px[2], 1.0f};
+        default:
+            return {px[0], px[1], px[2], px[3]};
     }
 }
 

@@ -4,13 +4,12 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <set>
 #include <string>
-
-#include <glm/glm.hpp>
 
 namespace principled::shading {
 
@@ -27,11 +26,11 @@ struct Texture {
     std::string path;
     int width = 0;
     int height = 0;
-    int channels = 0;       ///< channels in the file (lookups read at most 4)
-    int bitsPerChannel = 0; ///< 8, 16, 32 (float) ...
+    int channels = 0;        ///< channels in the file (lookups read at most 4)
+    int bitsPerChannel = 0;  ///< 8, 16, 32 (float) ...
     bool isFloat = false;
     ColorTag colorTag = ColorTag::Unknown;  ///< explicit colour-space metadata, if any
-    bool hasWrapMetadata = false; ///< the file carries "wrapmodes"
+    bool hasWrapMetadata = false;           ///< the file carries "wrapmodes"
     Wrap metadataWrapS = Wrap::Black;
     Wrap metadataWrapT = Wrap::Black;
     void* handle = nullptr;  ///< OIIO::TextureSystem::TextureHandle*
@@ -49,11 +48,11 @@ struct TextureOpenResult {
 /// Thread safety: open() and invalidate() lock; sample() is lock-free in this class and may be
 /// called from any number of render threads (OpenImageIO keeps per-thread state itself).
 class TextureCache {
-public:
+  public:
     struct Options {
         float maxMemoryMB = 1024.0f;  ///< tile memory held by OpenImageIO's cache
         int maxOpenFiles = 100;
-        bool autoMip = true;          ///< build mip levels for files that have none (PNG, JPEG)
+        bool autoMip = true;  ///< build mip levels for files that have none (PNG, JPEG)
     };
 
     TextureCache();
@@ -86,7 +85,7 @@ public:
     /// Bytes of tile memory currently held (for diagnostics).
     size_t memoryUsed() const;
 
-private:
+  private:
     void* _system = nullptr;  ///< OIIO::TextureSystem*
     mutable std::mutex _mutex;
     std::map<std::string, std::unique_ptr<Texture>> _textures;

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 namespace principled::shading {

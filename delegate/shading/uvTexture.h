@@ -3,10 +3,9 @@
 // space, scale and bias, fallback).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "delegate/hd/materialNetwork.h"
 #include "delegate/shading/textureCache.h"
@@ -18,7 +17,7 @@ struct UvTexture {
     const Texture* texture = nullptr;  ///< null: the file is missing or unreadable -> fallback
     Wrap wrapS = Wrap::Black;
     Wrap wrapT = Wrap::Black;
-    bool decodeSrgb = false;           ///< sourceColorSpace resolved (raw | sRGB | auto)
+    bool decodeSrgb = false;  ///< sourceColorSpace resolved (raw | sRGB | auto)
     glm::vec4 scale{1.0f};
     glm::vec4 bias{0.0f};
     glm::vec4 fallback{0.0f, 0.0f, 0.0f, 1.0f};

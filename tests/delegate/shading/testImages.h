@@ -3,19 +3,18 @@
 // temporary directory.
 #pragma once
 
+#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
-
 namespace principled::shading::test {
 
 /// A fresh directory under the system temp dir, removed when the object dies.
 class TempDir {
-public:
+  public:
     TempDir() {
         _path = std::filesystem::temp_directory_path() /
                 ("principled_shading_" + std::to_string(::getpid()) + "_" +
@@ -28,7 +27,7 @@ public:
     }
     std::string file(const std::string& name) const { return (_path / name).string(); }
 
-private:
+  private:
     static int& counter() {
         static int n = 0;
         return n;

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/shading/textureCache.h"
 
-#include <fstream>
-
 #include <gtest/gtest.h>
+
+#include <fstream>
 
 #include "testImages.h"
 
@@ -38,7 +38,7 @@ void expectNear(const glm::vec4& a, const glm::vec4& b, float tol = 1e-5f) {
 }
 
 class TextureCacheTest : public ::testing::Test {
-protected:
+  protected:
     TempDir dir;
     TextureCache cache;
 };
@@ -105,10 +105,18 @@ TEST_F(TextureCacheTest, ChannelCountRules) {
         glm::vec4 c = code(2, 1);
         glm::vec4 got = cache.sample(*t, Wrap::Black, Wrap::Black, centre(2, 1));
         switch (n) {
-            case 1: expectNear(got, glm::vec4(c.x, c.x, c.x, 1.0f)); break;
-            case 2: expectNear(got, glm::vec4(c.x, c.x, c.x, c.y)); break;
-            case 3: expectNear(got, glm::vec4(c.x, c.y, c.z, 1.0f)); break;
-            default: expectNear(got, c); break;
+            case 1:
+                expectNear(got, glm::vec4(c.x, c.x, c.x, 1.0f));
+                break;
+            case 2:
+                expectNear(got, glm::vec4(c.x, c.x, c.x, c.y));
+                break;
+            case 3:
+                expectNear(got, glm::vec4(c.x, c.y, c.z, 1.0f));
+                break;
+            default:
+                expectNear(got, c);
+                break;
         }
     }
 }
@@ -191,7 +199,8 @@ TEST_F(TextureCacheTest, LargeFootprintFiltersTowardsTheMean) {
 
 // Every texture of the usd-wg TextureFileFormatTests corpus opens and reads finite values.
 TEST_F(TextureCacheTest, UsdWgTextureFileFormatsLoad) {
-    const std::string root = PRINCIPLED_SOURCE_DIR "/../shared/usd-wg/test_assets/TextureFileFormatTests/";
+    const std::string root =
+        PRINCIPLED_SOURCE_DIR "/../shared/usd-wg/test_assets/TextureFileFormatTests/";
     struct Case {
         const char* file;
         int channels;
@@ -199,12 +208,9 @@ TEST_F(TextureCacheTest, UsdWgTextureFileFormatsLoad) {
     };
     const Case cases[] = {
         {"jpeg_cmyk_8-bit.jpg", 3, 8},  // OpenImageIO converts CMYK to RGB
-        {"jpeg_grayscale_8-bit.jpg", 1, 8},
-        {"jpeg_rgb_8-bit.jpg", 3, 8},
-        {"png_grayscale_8-bit.png", 2, 8},
-        {"png_grayscale_16-bit.png", 2, 16},
-        {"png_rgb_8-bit.png", 4, 8},
-        {"png_rgb_16-bit.png", 4, 16},
+        {"jpeg_grayscale_8-bit.jpg", 1, 8}, {"jpeg_rgb_8-bit.jpg", 3, 8},
+        {"png_grayscale_8-bit.png", 2, 8},  {"png_grayscale_16-bit.png", 2, 16},
+        {"png_rgb_8-bit.png", 4, 8},        {"png_rgb_16-bit.png", 4, 16},
         {"png_rgb_32-bit.png", 4, 16},  // named 32-bit (RGBA x 8), stored 16 bits per channel
     };
     for (const Case& c : cases) {

@@ -13,8 +13,7 @@ using principled::shading::test::writeImage;
 
 namespace {
 
-hd::MaterialNode textureNode(const std::string& file,
-                             std::map<hd::Token, hd::Value> params = {}) {
+hd::MaterialNode textureNode(const std::string& file, std::map<hd::Token, hd::Value> params = {}) {
     hd::MaterialNode n;
     n.path = hd::Path("/M/Tex");
     n.identifier = hd::Token("UsdUVTexture");
@@ -37,7 +36,7 @@ void expectNear(const glm::vec4& a, const glm::vec4& b, float tol = 1e-4f) {
 }
 
 class UvTextureTest : public ::testing::Test {
-protected:
+  protected:
     TempDir dir;
     TextureCache cache;
     std::vector<std::string> notes;
@@ -83,8 +82,8 @@ TEST_F(UvTextureTest, AutoKeepsFloatSixteenBitAndGreyscaleRaw) {
     }
     // Forced sRGB on a float file decodes.
     UvTexture forced = UvTexture::resolve(
-        textureNode(exr, {{hd::Token("sourceColorSpace"), hd::Value(hd::Token("sRGB"))}}),
-        cache, &notes);
+        textureNode(exr, {{hd::Token("sourceColorSpace"), hd::Value(hd::Token("sRGB"))}}), cache,
+        &notes);
     EXPECT_TRUE(forced.decodeSrgb);
     EXPECT_NEAR(forced.sample(cache, mid).x, srgbToLinear(0.25f), 1e-5f);
 }
@@ -119,10 +118,10 @@ TEST_F(UvTextureTest, ScaleAndBiasApplyAfterDecoding) {
 
     std::string png = dir.file("sb8.png");
     ASSERT_TRUE(writeFlat(png, 3, glm::vec4(kCode), OIIO::TypeDesc::UINT8));
-    UvTexture s = UvTexture::resolve(
-        textureNode(png, {{hd::Token("scale"), hd::Value(glm::vec4(-1.0f))},
-                          {hd::Token("bias"), hd::Value(glm::vec4(1.0f))}}),
-        cache, &notes);
+    UvTexture s =
+        UvTexture::resolve(textureNode(png, {{hd::Token("scale"), hd::Value(glm::vec4(-1.0f))},
+                                             {hd::Token("bias"), hd::Value(glm::vec4(1.0f))}}),
+                           cache, &notes);
     float lin = srgbToLinear(kCode);
     expectNear(s.sample(cache, mid), glm::vec4(1 - lin, 1 - lin, 1 - lin, 0.0f));
 }
@@ -153,21 +152,25 @@ TEST_F(UvTextureTest, WrapTokensAndUseMetadata) {
     std::string plain = dir.file("plain.exr"), tagged = dir.file("tagged.exr");
     std::vector<float> px = {0, 1, 0, 1};
     ASSERT_TRUE(writeImage(plain, 2, 2, 1, px, OIIO::TypeDesc::FLOAT));
-    ASSERT_TRUE(writeImage(tagged, 2, 2, 1, px, OIIO::TypeDesc::FLOAT,
-                           {{"wrapmodes", "periodic,mirror"}}));
+    ASSERT_TRUE(
+        writeImage(tagged, 2, 2, 1, px, OIIO::TypeDesc::FLOAT, {{"wrapmodes", "periodic,mirror"}}));
     glm::vec2 outside(1.25f, 0.5f);
     auto wrapNode = [&](const std::string& f, const char* w) {
         return textureNode(f, {{hd::Token("wrapS"), hd::Value(hd::Token(w))},
                                {hd::Token("wrapT"), hd::Value(hd::Token(w))}});
     };
-    EXPECT_NEAR(UvTexture::resolve(wrapNode(plain, "black"), cache, &notes)
-                    .sample(cache, outside).x, 0.0f, 1e-5f);
-    EXPECT_NEAR(UvTexture::resolve(wrapNode(plain, "clamp"), cache, &notes)
-                    .sample(cache, outside).x, 1.0f, 1e-5f);
-    EXPECT_NEAR(UvTexture::resolve(wrapNode(plain, "repeat"), cache, &notes)
-                    .sample(cache, outside).x, 0.0f, 1e-5f);
-    EXPECT_NEAR(UvTexture::resolve(wrapNode(plain, "mirror"), cache, &notes)
-                    .sample(cache, outside).x, 1.0f, 1e-5f);
+    EXPECT_NEAR(
+        UvTexture::resolve(wrapNode(plain, "black"), cache, &notes).sample(cache, outside).x, 0.0f,
+        1e-5f);
+    EXPECT_NEAR(
+        UvTexture::resolve(wrapNode(plain, "clamp"), cache, &notes).sample(cache, outside).x, 1.0f,
+        1e-5f);
+    EXPECT_NEAR(
+        UvTexture::resolve(wrapNode(plain, "repeat"), cache, &notes).sample(cache, outside).x, 0.0f,
+        1e-5f);
+    EXPECT_NEAR(
+        UvTexture::resolve(wrapNode(plain, "mirror"), cache, &notes).sample(cache, outside).x, 1.0f,
+        1e-5f);
     // useMetadata without metadata: black (the fallback mode is the default input value too).
     UvTexture noMeta = UvTexture::resolve(textureNode(plain), cache, &notes);
     EXPECT_EQ(noMeta.wrapS, Wrap::Black);

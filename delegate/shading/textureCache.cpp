@@ -17,6 +17,9 @@ using OIIO::TextureOpt;
 using OIIO::TextureSystem;
 using OIIO::ustring;
 
+constexpr std::string_view kUdimToken = "<UDIM>";
+constexpr int kUdimTiles = 100;  // 1001-1100: UsdPreviewSurface spec 2.5
+
 TextureSystem* ts(void* p) {
     return static_cast<TextureSystem*>(p);
 }
@@ -112,6 +115,56 @@ TextureCache::~TextureCache() {
 
 TextureOpenResult TextureCache::open(const std::string& path) {
     std::lock_guard<std::mutex> lock(_mutex);
+    return path.find(kUdimToken) == std::string::npos ? openFile(path) : openUdim(path);
+}
+
+TextureOpenResult TextureCache::openUdim(const std::string& pattern) {
+    TextureOpenResult result;
+    if (auto it = _textures.find(pattern); it != _textures.end()) {
+        result.texture = it->second.get();
+        return result;
+    }
+    if (auto f = _failures.find(pattern); f != _failures.end()) {
+        result.error = f->second;
+        return result;
+    }
+    auto set = std::make_unique<Texture>();
+    set->udimTiles.assign(kUdimTiles, nullptr);
+    const Texture* first = nullptr;
+    size_t at = pattern.find(kUdimToken);
+    for (int i = 0; i < kUdimTiles; ++i) {
+        std::string tile = pattern;
+        tile.replace(at, kUdimToken.size(), std::to_string(1001 + i));
+        std::error_code ec;
+        if (!std::filesystem::exists(tile, ec)) continue;
+        TextureOpenResult r = openFile(tile);
+        if (r.texture) {
+            set->udimTiles[i] = r.texture;
+            if (!first) first = r.texture;
+        } else if (r.firstReport) {
+            result.error += (result.error.empty() ? "" : "; ") + r.error;
+        }
+    }
+    if (!first) {
+        std::string e = "texture '" + pattern + "': no UDIM tile 1001-1100 found";
+        if (!result.error.empty()) e += " (" + result.error + ")";
+        _failures.emplace(pattern, e);
+        result.error = e;
+        result.firstReport = _reported.insert(pattern).second;
+        return result;
+    }
+    std::vector<const Texture*> tiles = std::move(set->udimTiles);
+    *set = *first;
+    set->path = pattern;
+    set->handle = nullptr;
+    set->udimTiles = std::move(tiles);
+    result.texture = set.get();
+    result.firstReport = !result.error.empty();
+    _textures.emplace(pattern, std::move(set));
+    return result;
+}
+
+TextureOpenResult TextureCache::openFile(const std::string& path) {
     TextureOpenResult result;
     if (auto it = _textures.find(path); it != _textures.end()) {
         result.texture = it->second.get();
@@ -167,8 +220,24 @@ TextureOpenResult TextureCache::open(const std::string& path) {
     return result;
 }
 
-glm::vec4 TextureCache::sample(const Texture& texture, Wrap wrapS, Wrap wrapT, glm::vec2 st,
-                               const glm::vec4& footprint) const {
+bool TextureCache::lookup(const Texture& texture, Wrap wrapS, Wrap wrapT, glm::vec2 st,
+                          const glm::vec4& footprint, glm::vec4* rgba) const {
+    float s = std::isfinite(st.x) ? st.x : 0.0f;
+    float t = std::isfinite(st.y) ? st.y : 0.0f;
+    glm::vec4 d = footprint;
+    for (int i = 0; i < 4; ++i)
+        if (!std::isfinite(d[i])) d[i] = 0.0f;
+    if (texture.udimTiles.empty()) return lookupFile(texture, wrapS, wrapT, s, t, d, rgba);
+    // UDIM: tile 1001 + u + 10 v holds [u, u+1) x [v, v+1), v counted upwards like t.
+    float fu = std::floor(s), fv = std::floor(t);
+    if (fu < 0.0f || fu >= 10.0f || fv < 0.0f || fv >= 10.0f) return false;
+    const Texture* tile = texture.udimTiles[static_cast<int>(fu) + 10 * static_cast<int>(fv)];
+    if (!tile) return false;
+    return lookupFile(*tile, Wrap::Clamp, Wrap::Clamp, s - fu, t - fv, d, rgba);
+}
+
+bool TextureCache::lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, float s, float t,
+                              const glm::vec4& d, glm::vec4* rgba) const {
     TextureSystem* system = ts(_system);
     TextureOpt opt;
     opt.swrap = toOiio(wrapS);
@@ -176,32 +245,31 @@ glm::vec4 TextureCache::sample(const Texture& texture, Wrap wrapS, Wrap wrapT, g
     // Bilinear within a level (exact at texel centres), trilinear/anisotropic across levels.
     opt.interpmode = TextureOpt::InterpBilinear;
     opt.fill = 0.0f;
-    float s = std::isfinite(st.x) ? st.x : 0.0f;
-    float t = std::isfinite(st.y) ? st.y : 0.0f;
-    glm::vec4 d = footprint;
-    for (int i = 0; i < 4; ++i)
-        if (!std::isfinite(d[i])) d[i] = 0.0f;
     // st (0,0) is the bottom-left texel in USD; OpenImageIO's t runs from the top row down.
     // Flipping t keeps black/clamp/repeat/mirror wrapping intact (all symmetric about 0 and 1).
     t = 1.0f - t;
     int n = std::min(texture.channels, 4);
     float px[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    bool ok = system->texture(static_cast<TextureSystem::TextureHandle*>(texture.handle),
-                              system->get_perthread_info(), opt, s, t, d.x, -d.y, d.z, -d.w, n, px);
-    if (!ok) {
-        (void)system->geterror();  // the file went bad after open(): black, never a crash
-        return glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    if (!system->texture(static_cast<TextureSystem::TextureHandle*>(texture.handle),
+                         system->get_perthread_info(), opt, s, t, d.x, -d.y, d.z, -d.w, n, px)) {
+        (void)system->geterror();  // the file went bad after open(): no data, never a crash
+        return false;
     }
     switch (n) {
         case 1:
-            return {px[0], px[0], px[0], 1.0f};
+            *rgba = {px[0], px[0], px[0], 1.0f};
+            break;
         case 2:
-            return {px[0], px[0], px[0], px[1]};
+            *rgba = {px[0], px[0], px[0], px[1]};
+            break;
         case 3:
-            return {px[0], px[1], px[2], 1.0f};
+            *rgba = {px[0], px[1], px[2], 1.0f};
+            break;
         default:
-            return {px[0], px[1], px[2], px[3]};
+            *rgba = {px[0], px[1], px[2], px[3]};
+            break;
     }
+    return true;
 }
 
 void TextureCache::invalidate() {

@@ -62,10 +62,10 @@ UvTexture UvTexture::resolve(const MaterialNode& node, TextureCache& cache,
     if (const Value* v = param(node, "file"))
         if (auto s = getString(*v)) file = *s;
     TextureOpenResult opened = cache.open(file);
-    if (!opened.texture) {
-        if (opened.firstReport)
-            notes->push_back(node.path.str() + ": " + opened.error + "; using the fallback");
-    }
+    if (opened.firstReport)
+        notes->push_back(
+            node.path.str() + ": " + opened.error +
+            (opened.texture ? "; missing tiles use the fallback" : "; using the fallback"));
     t.texture = opened.texture;
     const Texture* tex = t.texture;
     t.wrapS = resolveWrap(tokenParam(node, "wrapS", "useMetadata"), tex && tex->hasWrapMetadata,
@@ -94,7 +94,8 @@ UvTexture UvTexture::resolve(const MaterialNode& node, TextureCache& cache,
 glm::vec4 UvTexture::sample(const TextureCache& cache, glm::vec2 st,
                             const glm::vec4& footprint) const {
     if (!texture) return fallback;
-    glm::vec4 c = cache.sample(*texture, wrapS, wrapT, st, footprint);
+    glm::vec4 c;
+    if (!cache.lookup(*texture, wrapS, wrapT, st, footprint, &c)) return fallback;
     if (decodeSrgb) {
         // Decoded after filtering (as Cycles does for 8-bit sRGB): alpha is never encoded.
         c.x = srgbToLinear(c.x);

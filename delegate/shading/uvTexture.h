@@ -30,7 +30,7 @@ struct UvTexture {
 
     /// The node's rgba output at st (bottom-left origin) with screen footprint
     /// (ds/dx, dt/dx, ds/dy, dt/dy): decoded (sRGB -> linear on rgb), then tex * scale + bias.
-    /// A missing file gives the fallback unchanged. Thread-safe, no allocation.
+    /// A missing file or UDIM tile gives the fallback unchanged. Thread-safe, no allocation.
     glm::vec4 sample(const TextureCache& cache, glm::vec2 st,
                      const glm::vec4& footprint = glm::vec4(0.0f)) const;
 };

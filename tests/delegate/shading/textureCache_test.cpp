@@ -229,3 +229,38 @@ TEST_F(TextureCacheTest, UsdWgTextureFileFormatsLoad) {
         }
     }
 }
+
+TEST_F(TextureCacheTest, UdimTilesByStAndBottomUpRows) {
+    // Tiles 1001 (u 0-1), 1002 (u 1-2) and 1011 (v 1-2); each 2x2, top file row 1, bottom 0,
+    // red channel = tile number - 1000.
+    auto tile = [&](int number) {
+        std::vector<float> px;
+        for (int row = 0; row < 2; ++row)
+            for (int x = 0; x < 2; ++x)
+                px.insert(px.end(), {float(number - 1000), row == 0 ? 1.0f : 0.0f, 0.0f});
+        return writeImage(dir.file("t." + std::to_string(number) + ".exr"), 2, 2, 3, px,
+                          OIIO::TypeDesc::FLOAT);
+    };
+    ASSERT_TRUE(tile(1001) && tile(1002) && tile(1011));
+    TextureOpenResult r = cache.open(dir.file("t.<UDIM>.exr"));
+    ASSERT_NE(r.texture, nullptr) << r.error;
+    EXPECT_TRUE(r.error.empty());
+    EXPECT_EQ(r.texture->channels, 3);
+    ASSERT_EQ(r.texture->udimTiles.size(), 100u);
+    const Texture& t = *r.texture;
+    auto at = [&](float s, float tt) { return cache.sample(t, Wrap::Black, Wrap::Black, {s, tt}); };
+    EXPECT_NEAR(at(0.5f, 0.25f).x, 1.0f, 1e-5f);
+    EXPECT_NEAR(at(0.5f, 0.25f).y, 0.0f, 1e-5f);  // bottom half of tile 1001: bottom row
+    EXPECT_NEAR(at(0.5f, 0.75f).y, 1.0f, 1e-5f);
+    EXPECT_NEAR(at(1.5f, 0.5f).x, 2.0f, 1e-5f);
+    EXPECT_NEAR(at(0.5f, 1.25f).x, 11.0f, 1e-5f);
+    EXPECT_NEAR(at(0.5f, 1.25f).y, 0.0f, 1e-5f);
+    glm::vec4 none(7.0f);
+    EXPECT_FALSE(cache.lookup(t, Wrap::Black, Wrap::Black, {2.5f, 0.5f}, glm::vec4(0), &none));
+    EXPECT_FALSE(cache.lookup(t, Wrap::Black, Wrap::Black, {-0.5f, 0.5f}, glm::vec4(0), &none));
+    EXPECT_EQ(none, glm::vec4(7.0f));
+
+    TextureOpenResult empty = cache.open(dir.file("none.<UDIM>.exr"));
+    EXPECT_EQ(empty.texture, nullptr);
+    EXPECT_NE(empty.error.find("none.<UDIM>.exr"), std::string::npos) << empty.error;
+}

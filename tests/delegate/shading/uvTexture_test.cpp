@@ -209,3 +209,16 @@ TEST_F(UvTextureTest, UsdWgCorpusColourSpaces) {
     }
     EXPECT_TRUE(notes.empty());
 }
+
+TEST_F(UvTextureTest, MissingUdimTileGivesTheFallback) {
+    ASSERT_TRUE(writeFlat(dir.file("u.1001.exr"), 3, glm::vec4(0.5f), OIIO::TypeDesc::FLOAT));
+    UvTexture t =
+        UvTexture::resolve(textureNode(dir.file("u.<UDIM>.exr"),
+                                       {{hd::Token("fallback"), hd::Value(glm::vec4(0, 1, 0, 1))},
+                                        {hd::Token("scale"), hd::Value(glm::vec4(2.0f))}}),
+                           cache, &notes);
+    ASSERT_NE(t.texture, nullptr);
+    expectNear(t.sample(cache, mid), glm::vec4(1.0f, 1.0f, 1.0f, 2.0f));
+    expectNear(t.sample(cache, glm::vec2(1.5f, 0.5f)), glm::vec4(0, 1, 0, 1));
+    EXPECT_TRUE(notes.empty());
+}

@@ -72,6 +72,22 @@ void textureSample(benchmark::State& state) {
 }
 BENCHMARK(textureSample)->ArgsProduct({{0, 1}, {0, 1, 8}});
 
+// Scanline-coherent st (one texel apart, as neighbouring camera rays on a facing plane).
+void textureSampleCoherent(benchmark::State& state) {
+    Fixture& f = Fixture::get();
+    TextureCache cache;
+    const Texture* t = cache.open(state.range(0) ? f.exr : f.png8).texture;
+    int i = 0;
+    for (auto _ : state) {
+        glm::vec2 st((i & (kSize - 1)) + 0.5f, (i >> 10 & (kSize - 1)) + 0.5f);
+        glm::vec4 c = cache.sample(*t, Wrap::Repeat, Wrap::Repeat, st / float(kSize));
+        benchmark::DoNotOptimize(c);
+        ++i;
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(textureSampleCoherent)->Arg(0)->Arg(1);
+
 hd::MaterialNetwork texturedNetwork(const std::string& file) {
     hd::MaterialNetwork net;
     hd::MaterialNode st, tex, surf;

@@ -465,3 +465,47 @@ TEST_F(MaterialProgramTest, EvaluateAllocatesNothingAndIsThreadSafe) {
     for (auto& th : threads) th.join();
     EXPECT_EQ(mismatches.load(), 0);
 }
+
+// usd-wg NormalsTextureBiasAndScale: three normal maps with different encodings and
+// scale/bias must give the same tangent normals (the README: "should appear nearly the same").
+TEST_F(MaterialProgramTest, UsdWgNormalMapEncodingsAgree) {
+    const std::string root =
+        PRINCIPLED_SOURCE_DIR "/../shared/usd-wg/test_assets/NormalsTextureBiasAndScale/";
+    auto program = [&](const char* file, glm::vec4 scale, glm::vec4 bias) {
+        Net n;
+        n.add("/M/UV", "UsdPrimvarReader_float2", {{Token("varname"), Value(Token("st"))}})
+            .texture("/M/N", root + file,
+                     {{Token("scale"), Value(scale)},
+                      {Token("bias"), Value(bias)},
+                      {Token("sourceColorSpace"), Value(Token("raw"))},
+                      {Token("wrapS"), Value(Token("repeat"))},
+                      {Token("wrapT"), Value(Token("repeat"))}})
+            .connect("/M/N", "st", "/M/UV", "result")
+            .surfaceFrom("normal", "/M/N", "rgb")
+            .surface("diffuseColor", Value(glm::vec3(0.486275f)))
+            .surface("roughness", Value(1.0f));
+        return compile(n);
+    };
+    MaterialProgram plain = program("r_normal_map.png", glm::vec4(2), glm::vec4(-1));
+    MaterialProgram reversedX = program("r_normal_map_reversed_x_0_bias_z.png",
+                                        glm::vec4(-2, 2, 1, 2), glm::vec4(1, -1, 0, -1));
+    MaterialProgram reversedY =
+        program("r_normal_map_reversed_y.png", glm::vec4(2, -2, 2, 2), glm::vec4(-1, 1, -1, -1));
+    EXPECT_TRUE(notes.empty()) << notes.front();
+    int tilted = 0;
+    float worst = 0.0f;
+    constexpr int n = 64;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            ctx.values["st"] = glm::vec4((x + 0.5f) / n, (y + 0.5f) / n, 0, 0);
+            ShadedMaterial a = plain.evaluate(ctx);
+            ShadedMaterial b = reversedX.evaluate(ctx);
+            ShadedMaterial c = reversedY.evaluate(ctx);
+            ASSERT_TRUE(a.hasNormalMap);
+            worst = std::max({worst, glm::length(a.tangentNormal - b.tangentNormal),
+                              glm::length(a.tangentNormal - c.tangentNormal)});
+            if (a.tangentNormal.z < 0.95f) ++tilted;
+        }
+    EXPECT_LT(worst, 0.03f);        // 8-bit quantisation: 2/255 per component after scale 2
+    EXPECT_GT(tilted, n * n / 50);  // the "R" relief is there
+}

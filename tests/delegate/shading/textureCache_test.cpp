@@ -264,3 +264,36 @@ TEST_F(TextureCacheTest, UdimTilesByStAndBottomUpRows) {
     EXPECT_EQ(empty.texture, nullptr);
     EXPECT_NE(empty.error.find("none.<UDIM>.exr"), std::string::npos) << empty.error;
 }
+
+TEST(TextureCacheMemory, TileMemoryStaysNearTheLimit) {
+    // A 2048x2048 RGB float texture is 48 MB; with a 16 MB limit random lookups keep evicting.
+    // The file is tiled (64x64, uncompressed) so a miss reads one tile: an untiled file that
+    // does not fit the cache re-reads whole scanline blocks and is ~100x slower per miss.
+    TempDir dir;
+    constexpr int n = 2048;
+    std::vector<float> px(size_t(n) * n * 3, 0.5f);
+    std::string exr = dir.file("big.exr");
+    {
+        auto out = OIIO::ImageOutput::create(exr);
+        ASSERT_TRUE(out);
+        OIIO::ImageSpec spec(n, n, 3, OIIO::TypeDesc::FLOAT);
+        spec.tile_width = spec.tile_height = 64;
+        spec.attribute("compression", "none");
+        ASSERT_TRUE(out->open(exr, spec));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+        ASSERT_TRUE(out->close());
+    }
+    TextureCache::Options options;
+    options.maxMemoryMB = 16.0f;
+    TextureCache cache(options);
+    const Texture* t = cache.open(exr).texture;
+    ASSERT_NE(t, nullptr);
+    uint32_t h = 1;
+    for (int i = 0; i < 4000; ++i) {
+        h = h * 1664525u + 1013904223u;  // Numerical Recipes LCG
+        glm::vec2 st((h >> 8 & 0xfff) / 4096.0f, (h >> 20) / 4096.0f);
+        EXPECT_NEAR(cache.sample(*t, Wrap::Repeat, Wrap::Repeat, st).x, 0.5f, 1e-6f);
+    }
+    EXPECT_GT(cache.memoryUsed(), 0u);
+    EXPECT_LT(cache.memoryUsed(), size_t(20) << 20);  // 16 MB + a few tiles of slack
+}

@@ -48,10 +48,15 @@ constexpr SlotInfo kSlots[] = {
 constexpr const char* kOtherInputs[] = {"useSpecularWorkflow", "opacityThreshold", "opacityMode",
                                         "displacement", "occlusion"};
 
-// v holds `count` meaningful components; a scalar feeding a colour is splatted.
+// v holds `count` meaningful components; a scalar feeding a colour is splatted. A non-finite
+// scalar keeps the current (authored or fallback) value, as the constant mapping does; colours
+// are sanitised per component by mapPreviewSurface().
 void setSlot(PreviewSurfaceParams& p, Slot slot, const glm::vec4& v, int count) {
     glm::vec3 c = count >= 3 ? glm::vec3(v) : glm::vec3(v.x);
     float f = v.x;
+    bool colour = slot == Slot::DiffuseColor || slot == Slot::EmissiveColor ||
+                  slot == Slot::SpecularColor || slot == Slot::Normal;
+    if (!colour && !std::isfinite(f)) return;
     switch (slot) {
         case Slot::DiffuseColor:
             p.diffuseColor = c;
@@ -357,6 +362,15 @@ std::optional<int16_t> MaterialProgram::Compiler::compileTransform(const Materia
 void MaterialProgram::Compiler::compileSurface(const MaterialNode& surface) {
     PreviewSurfaceParams& base = _prog._base;
     for (const SlotInfo& s : kSlots) {
+        // The authored value first: it stays when a connection is unusable or yields NaN.
+        if (auto it = surface.parameters.find(Token(s.name)); it != surface.parameters.end()) {
+            if (auto n = numeric(it->second)) {
+                setSlot(base, s.slot, n->first, s.color ? n->second : 1);
+            } else {
+                note(surface,
+                     std::string("input '") + s.name + "' has a non-numeric value; ignored");
+            }
+        }
         if (auto c = connection(surface, s.name)) {
             if (isConstant(*c)) {
                 setSlot(base, s.slot, constantValue(*c), c->count);
@@ -364,17 +378,7 @@ void MaterialProgram::Compiler::compileSurface(const MaterialNode& surface) {
                 _prog._bindings.push_back({s.slot, *c});
                 if (s.slot == Slot::Normal) base.normalVaries = true;
             }
-            continue;
         }
-        auto it = surface.parameters.find(Token(s.name));
-        if (it == surface.parameters.end()) continue;
-        auto n = numeric(it->second);
-        if (!n) {
-            note(surface, std::string("input '") + s.name + "' has a non-numeric value; ignored");
-            continue;
-        }
-        if (!s.color && n->second != 1) n->second = 1;  // a vector feeding a float: first value
-        setSlot(base, s.slot, n->first, n->second);
     }
     auto constant = [&](const char* name) -> const Value* {
         if (surface.inputConnections.count(Token(name)))

@@ -181,6 +181,29 @@ TEST_F(MaterialProgramTest, ConstantNetworkIsEvaluatedOnce) {
     EXPECT_TRUE(notes.empty());
 }
 
+TEST_F(MaterialProgramTest, NonFiniteScalarsKeepTheirFallback) {
+    Net n;
+    n.surface("roughness", Value(NAN)).surface("metallic", Value(INFINITY));
+    ShadedMaterial m = compile(n).evaluate(ctx);
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.5f);
+    EXPECT_FLOAT_EQ(m.params.metallic, 0.0f);
+    // A NaN texel on a scalar input keeps the authored value.
+    std::string exr = dir.file("nan.exr");
+    std::vector<float> px(4, NAN);
+    ASSERT_TRUE(writeImage(exr, 2, 2, 1, px, OIIO::TypeDesc::FLOAT));
+    Net t;
+    t.stReader()
+        .texture("/M/T", exr)
+        .connect("/M/T", "st", "/M/St", "result")
+        .surface("roughness", Value(0.25f))
+        .surfaceFrom("roughness", "/M/T", "r")
+        .surfaceFrom("diffuseColor", "/M/T", "rgb");
+    ctx.values["st"] = glm::vec4(0.5f);
+    m = compile(t).evaluate(ctx);
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.25f);
+    expectFinite(m);
+}
+
 TEST_F(MaterialProgramTest, EmptyOrForeignNetworkGivesDefaultsWithANote) {
     hd::MaterialNetwork empty;
     MaterialProgram p = MaterialProgram::compile(empty, cache, &notes);

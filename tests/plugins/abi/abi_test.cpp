@@ -1,0 +1,312 @@
+// SPDX-License-Identifier: Apache-2.0
+// The C ABI driven the way a viewport drives it: settings, camera, resolution, AOVs,
+// progressive passes, and incremental edits whose render stats show what was rebuilt.
+// Delegates come from the real plugin (PRINCIPLED_PLUGIN_PATH) and, for comparison, from the
+// statically linked table (prdCreateDelegateFromApi).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include "plugins/abi/principled_c.h"
+#include "plugins/embree/embreePlugin.h"
+
+using ::testing::HasSubstr;
+
+namespace {
+
+// A grey Lambertian quad (z = 0, facing +Z) filling the left half of an orthographic view,
+// lit head-on by a distant light.
+const char* kScene = R"(#usda 1.0
+(
+    upAxis = "Y"
+)
+def Xform "World"
+{
+    def Mesh "Plane" (prepend apiSchemas = ["MaterialBindingAPI"])
+    {
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        point3f[] points = [(-10, -10, 0), (0, -10, 0), (0, 10, 0), (-10, 10, 0)]
+        rel material:binding = </World/Mat>
+    }
+    def Material "Mat"
+    {
+        token outputs:surface.connect = </World/Mat/S.outputs:surface>
+        def Shader "S"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor = (0.5, 0.5, 0.5)
+            float inputs:ior = 1
+            float inputs:roughness = 1
+            token outputs:surface
+        }
+    }
+    def DistantLight "Sun"
+    {
+        float inputs:intensity = 2
+        float inputs:angle = 0
+    }
+    def Camera "Cam"
+    {
+        token projection = "orthographic"
+        float horizontalAperture = 200
+        float verticalAperture = 200
+        double3 xformOp:translate = (0, 0, 10)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+    def Camera "Other"
+    {
+        double3 xformOp:translate = (0, 0, 30)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+}
+)";
+
+class AbiTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        setenv("PRINCIPLED_PLUGIN_PATH", PRINCIPLED_EMBREE_PLUGIN_DIR, 1);
+    }
+    void SetUp() override {
+        ASSERT_EQ(prdCreateDelegate("PrincipledEmbreeRenderer", &d), PRD_OK) << prdLastError(nullptr);
+        ASSERT_EQ(prdSetResolution(d, 16, 16), PRD_OK);
+        ASSERT_EQ(prdSetSettingInt(d, "convergedSamplesPerPixel", 4), PRD_OK);
+        ASSERT_EQ(prdSetSettingInt(d, "defaultLighting", 0), PRD_OK);
+        ASSERT_EQ(prdBindAov(d, "color"), PRD_OK);
+        ASSERT_EQ(prdOpenStageString(d, kScene, "abi.usda"), PRD_OK) << prdLastError(d);
+    }
+    void TearDown() override { prdDestroyDelegate(d); }
+
+    void renderToConvergence() {
+        int converged = 0;
+        for (int i = 0; i < 64 && !converged; ++i) ASSERT_EQ(prdRenderPass(d, &converged), PRD_OK);
+        ASSERT_EQ(converged, 1);
+    }
+    /// Mean red of the left (plane) and right (empty) halves.
+    std::pair<double, double> halves() {
+        PrdBufferView v{};
+        EXPECT_EQ(prdMapAov(d, "color", &v), PRD_OK) << prdLastError(d);
+        const float* px = static_cast<const float*>(v.data);
+        double left = 0, right = 0;
+        for (int y = 0; y < v.height; ++y)
+            for (int x = 0; x < v.width; ++x)
+                (x < v.width / 2 ? left : right) += px[4 * (y * v.width + x)];
+        double n = v.width * v.height / 2.0;
+        return {left / n, right / n};
+    }
+    std::map<std::string, double> stats() {
+        std::map<std::string, double> out;
+        int n = 0;
+        EXPECT_EQ(prdStatCount(d, &n), PRD_OK);
+        for (int i = 0; i < n; ++i) {
+            const char* k = nullptr;
+            double v = 0;
+            EXPECT_EQ(prdStat(d, i, &k, &v), PRD_OK);
+            out[k] = v;
+        }
+        return out;
+    }
+
+    PrdDelegate* d = nullptr;
+};
+
+}  // namespace
+
+TEST_F(AbiTest, RendersTheAnalyticLambertValue) {
+    renderToConvergence();
+    auto [left, right] = halves();
+    // Delta distant light head-on on a Lambertian: L = albedo * E / pi.
+    EXPECT_NEAR(left, 0.5 * 2.0 / M_PI, 1e-3);
+    EXPECT_EQ(right, 0.0);
+    int converged = 0, done = 0, target = 0;
+    EXPECT_EQ(prdProgress(d, &converged, &done, &target), PRD_OK);
+    EXPECT_EQ(converged, 1);
+    EXPECT_EQ(done, 4);
+    EXPECT_EQ(target, 4);
+}
+
+TEST_F(AbiTest, SettingsAreDescribedTypedAndChecked) {
+    int n = 0;
+    ASSERT_EQ(prdSettingCount(d, &n), PRD_OK);
+    std::map<std::string, PrdSettingDescriptor> byKey;
+    for (int i = 0; i < n; ++i) {
+        PrdSettingDescriptor s{};
+        ASSERT_EQ(prdSettingDescriptor(d, i, &s), PRD_OK);
+        byKey[s.key] = s;
+    }
+    ASSERT_TRUE(byKey.count("convergedSamplesPerPixel"));
+    EXPECT_EQ(byKey["convergedSamplesPerPixel"].type, PRD_TYPE_INT);
+    EXPECT_STREQ(byKey["convergedSamplesPerPixel"].defaultText, "64");
+    EXPECT_EQ(byKey["shadingModel"].type, PRD_TYPE_STRING);
+    EXPECT_EQ(byKey["clampIndirect"].type, PRD_TYPE_FLOAT);
+
+    const char* text = nullptr;
+    ASSERT_EQ(prdGetSetting(d, "convergedSamplesPerPixel", &text), PRD_OK);
+    EXPECT_STREQ(text, "4");
+    ASSERT_EQ(prdSetSettingString(d, "shadingModel", "ue4"), PRD_OK);
+    ASSERT_EQ(prdGetSetting(d, "shadingModel", &text), PRD_OK);
+    EXPECT_STREQ(text, "ue4");
+    EXPECT_EQ(prdSetSettingInt(d, "clampIndirect", 3), PRD_OK);  // an int for a float is fine
+    ASSERT_EQ(prdGetSetting(d, "clampIndirect", &text), PRD_OK);
+    EXPECT_STREQ(text, "3");
+
+    EXPECT_EQ(prdSetSettingString(d, "shadingModel", "phong"), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(d),
+                 "prdSetSettingString: render setting 'shadingModel': must be 'disney' or 'ue4', not 'phong'");
+    EXPECT_EQ(prdSetSettingInt(d, "convergedSamplesPerPixel", 0), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(prdSetSettingFloat(d, "seed", 1.5), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(d), "prdSetSettingFloat: render setting 'seed' is an int; set it with prdSetSettingInt");
+    EXPECT_EQ(prdSetSettingInt(d, "sampels", 1), PRD_ERROR_NOT_FOUND);
+    EXPECT_THAT(prdLastError(d), HasSubstr("unknown render setting 'sampels'; settings: convergedSamplesPerPixel, seed"));
+    EXPECT_EQ(prdSetSettingInt(d, "seed", 7), PRD_OK);
+    EXPECT_STREQ(prdLastError(d), "");  // cleared by a successful call
+}
+
+TEST_F(AbiTest, CameraAndResolution) {
+    const char* cam = nullptr;
+    ASSERT_EQ(prdGetCamera(d, &cam), PRD_OK);
+    EXPECT_STREQ(cam, "/World/Cam");
+    EXPECT_EQ(prdSetCamera(d, "/World/Nope"), PRD_ERROR_NOT_FOUND);
+    EXPECT_STREQ(prdLastError(d), "prdSetCamera: camera '/World/Nope' not found in the stage; cameras: "
+                                  "/World/Cam, /World/Other");
+    ASSERT_EQ(prdSetCamera(d, "/World/Other"), PRD_OK);
+    ASSERT_EQ(prdGetCamera(d, &cam), PRD_OK);
+    EXPECT_STREQ(cam, "/World/Other");
+
+    EXPECT_EQ(prdSetResolution(d, 0, 10), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(d), "prdSetResolution: resolution 0x10 must be between 1x1 and 32768x32768");
+    ASSERT_EQ(prdSetResolution(d, 20, 10), PRD_OK);
+    int converged = 0;
+    ASSERT_EQ(prdRenderPass(d, &converged), PRD_OK);
+    PrdBufferView v{};
+    ASSERT_EQ(prdMapAov(d, "color", &v), PRD_OK);
+    EXPECT_EQ(v.width, 20);
+    EXPECT_EQ(v.height, 10);
+}
+
+TEST_F(AbiTest, AovsAreListedAndDescribed) {
+    int n = 0;
+    ASSERT_EQ(prdAovCount(d, &n), PRD_OK);
+    std::map<std::string, PrdAovInfo> byName;
+    for (int i = 0; i < n; ++i) {
+        PrdAovInfo a{};
+        ASSERT_EQ(prdAovInfo(d, i, &a), PRD_OK);
+        byName[a.name] = a;
+    }
+    ASSERT_TRUE(byName.count("color"));
+    ASSERT_TRUE(byName.count("primId"));
+    EXPECT_EQ(byName["primId"].format, PRD_FORMAT_INT32);
+    EXPECT_EQ(byName["primId"].multiSampled, 0);
+    ASSERT_EQ(prdBindAov(d, "primId"), PRD_OK);
+    renderToConvergence();
+    PrdBufferView v{};
+    ASSERT_EQ(prdMapAov(d, "primId", &v), PRD_OK);
+    EXPECT_EQ(v.format, PRD_FORMAT_INT32);
+    EXPECT_EQ(v.channels, 1);
+    ASSERT_EQ(prdUnbindAov(d, "primId"), PRD_OK);
+    EXPECT_EQ(prdMapAov(d, "primId", &v), PRD_ERROR_NOT_BOUND);
+    EXPECT_EQ(prdUnbindAov(d, "primId"), PRD_ERROR_NOT_BOUND);
+    EXPECT_EQ(prdAovInfo(d, n, &byName["x"]), PRD_ERROR_NOT_FOUND);
+}
+
+TEST_F(AbiTest, MaterialEditRerendersWithoutAnyBvhBuild) {
+    renderToConvergence();
+    double before = halves().first;
+    double builds = stats()["blasBuilds"];
+    double rebuilt = stats()["meshesRebuilt"];
+    const double red[3] = {1.0, 0.0, 0.0};
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Mat/S", "inputs:diffuseColor", red, 3), PRD_OK)
+        << prdLastError(d);
+    int converged = 1;
+    ASSERT_EQ(prdRenderPass(d, &converged), PRD_OK);
+    EXPECT_EQ(converged, 0);  // the edit restarted accumulation
+    renderToConvergence();
+    EXPECT_NEAR(halves().first, 2.0 * before, 1e-3);  // red albedo 1 instead of 0.5
+    EXPECT_EQ(stats()["blasBuilds"], builds);
+    EXPECT_EQ(stats()["meshesRebuilt"], rebuilt);
+}
+
+TEST_F(AbiTest, LightEditScalesTheImageExactly) {
+    renderToConvergence();
+    double before = halves().first;
+    const double intensity = 6.0;
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Sun", "inputs:intensity", &intensity, 1), PRD_OK);
+    renderToConvergence();
+    EXPECT_NEAR(halves().first, 3.0 * before, 1e-4);
+}
+
+TEST_F(AbiTest, TransformEditMovesTheMeshWithoutRebuildingIt) {
+    renderToConvergence();
+    auto [left, right] = halves();
+    ASSERT_GT(left, 0.1);
+    double rebuilt = stats()["meshesRebuilt"];
+    // Move the quad 10 units right: it now fills the right half.
+    const double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 10, 0, 0, 1};
+    ASSERT_EQ(prdSetLocalTransform(d, "/World/Plane", m), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    auto [left2, right2] = halves();
+    EXPECT_EQ(left2, 0.0);
+    EXPECT_NEAR(right2, left, 1e-3);
+    EXPECT_EQ(stats()["meshesRebuilt"], rebuilt);
+    EXPECT_GT(stats()["transformUpdates"], 0.0);
+}
+
+TEST_F(AbiTest, PointsEditRebuildsThatMesh) {
+    renderToConvergence();
+    double rebuilt = stats()["meshesRebuilt"];
+    const double pts[12] = {0, -10, 0, 10, -10, 0, 10, 10, 0, 0, 10, 0};  // the right half
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "points", pts, 12), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    auto [left, right] = halves();
+    EXPECT_EQ(left, 0.0);
+    EXPECT_GT(right, 0.1);
+    EXPECT_GT(stats()["meshesRebuilt"], rebuilt);
+}
+
+TEST_F(AbiTest, EditErrorsAreStatusesWithMessages) {
+    const double one = 1.0, two[2] = {1, 2};
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Nope", "inputs:x", &one, 1), PRD_ERROR_NOT_FOUND);
+    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: no prim at '/World/Nope'");
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "xformOp:translate", &one, 1), PRD_ERROR_UNSUPPORTED);
+    EXPECT_THAT(prdLastError(d), HasSubstr("edit transforms with prdSetLocalTransform"));
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "faceVertexCounts", &one, 1), PRD_ERROR_UNSUPPORTED);
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Mat/S", "inputs:diffuseColor", two, 2),
+              PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: '/World/Mat/S.inputs:diffuseColor': expected 3 "
+                                  "numbers for a 3-vector or color, got 2");
+    EXPECT_EQ(prdSetAttributeString(d, "/World/Mat/S", "inputs:roughness", "rough"), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "points", nullptr, 3), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: values is NULL");
+}
+
+TEST(AbiDirect, StaticallyLinkedTableRendersTheSameImageAsThePlugin) {
+    setenv("PRINCIPLED_PLUGIN_PATH", PRINCIPLED_EMBREE_PLUGIN_DIR, 1);
+    auto render = [](PrdDelegate* d) {
+        EXPECT_EQ(prdSetResolution(d, 8, 8), PRD_OK);
+        EXPECT_EQ(prdSetSettingInt(d, "convergedSamplesPerPixel", 2), PRD_OK);
+        EXPECT_EQ(prdBindAov(d, "color"), PRD_OK);
+        EXPECT_EQ(prdOpenStageString(d, kScene, "abi.usda"), PRD_OK);
+        int converged = 0;
+        while (!converged) EXPECT_EQ(prdRenderPass(d, &converged), PRD_OK);
+        PrdBufferView v{};
+        EXPECT_EQ(prdMapAov(d, "color", &v), PRD_OK);
+        const float* p = static_cast<const float*>(v.data);
+        return std::vector<float>(p, p + 8 * 8 * 4);
+    };
+    PrdDelegate* direct = nullptr;
+    PrdDelegate* loaded = nullptr;
+    ASSERT_EQ(prdCreateDelegateFromApi(prdEmbreeRendererApi(), nullptr, &direct), PRD_OK);
+    ASSERT_EQ(prdCreateDelegate(nullptr, &loaded), PRD_OK);  // highest priority: Embree
+    EXPECT_EQ(render(direct), render(loaded));
+    prdDestroyDelegate(direct);
+    prdDestroyDelegate(loaded);
+
+    EXPECT_EQ(prdCreateDelegateFromApi(prdEmbreeRendererApi(), "Cycles", &direct), PRD_ERROR_NOT_FOUND);
+    EXPECT_STREQ(prdLastError(nullptr),
+                 "prdCreateDelegate: this plugin provides 'PrincipledEmbreeRenderer', not 'Cycles'");
+    EXPECT_EQ(direct, nullptr);
+}

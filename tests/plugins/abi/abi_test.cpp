@@ -66,11 +66,14 @@ def Xform "World"
 }
 )";
 
+/// The registry reads the variable once per process: every test sets the same value.
+void usePluginPath() {
+    setenv("PRINCIPLED_PLUGIN_PATH", PRINCIPLED_EMBREE_PLUGIN_DIR ":" PRD_TEST_PLUGIN_DIR, 1);
+}
+
 class AbiTest : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        setenv("PRINCIPLED_PLUGIN_PATH", PRINCIPLED_EMBREE_PLUGIN_DIR, 1);
-    }
+    static void SetUpTestSuite() { usePluginPath(); }
     void SetUp() override {
         ASSERT_EQ(prdCreateDelegate("PrincipledEmbreeRenderer", &d), PRD_OK) << prdLastError(nullptr);
         ASSERT_EQ(prdSetResolution(d, 16, 16), PRD_OK);
@@ -283,8 +286,63 @@ TEST_F(AbiTest, EditErrorsAreStatusesWithMessages) {
     EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: values is NULL");
 }
 
+TEST_F(AbiTest, CameraParameterEditChangesTheFraming) {
+    renderToConvergence();
+    double left = halves().first;
+    // 400 tenths: the view is 40 units square, so the quad covers a quarter of the left half.
+    const double aperture = 400;
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "horizontalAperture", &aperture, 1), PRD_OK)
+        << prdLastError(d);
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "verticalAperture", &aperture, 1), PRD_OK);
+    renderToConvergence();
+    EXPECT_NEAR(halves().first, 0.25 * left, 1e-3);
+}
+
+TEST_F(AbiTest, OpeningAStageWithoutTheRequestedCameraFailsAndLeavesNoStage) {
+    ASSERT_EQ(prdSetCamera(d, "/World/Other"), PRD_OK);
+    const char* other = R"(#usda 1.0
+def Camera "OnlyCam"
+{
+}
+)";
+    EXPECT_EQ(prdOpenStageString(d, other, "other.usda"), PRD_ERROR_NOT_FOUND);
+    EXPECT_STREQ(prdLastError(d), "prdOpenStageString: camera '/World/Other' not found in the stage; "
+                                  "cameras: /OnlyCam");
+    EXPECT_EQ(prdRenderPass(d, nullptr), PRD_ERROR_NO_STAGE);
+    ASSERT_EQ(prdSetCamera(d, nullptr), PRD_OK);
+    ASSERT_EQ(prdOpenStageString(d, other, "other.usda"), PRD_OK);
+    const char* cam = nullptr;
+    ASSERT_EQ(prdGetCamera(d, &cam), PRD_OK);
+    EXPECT_STREQ(cam, "/OnlyCam");
+}
+
+TEST(AbiRegistry, RenderersAreListedByPriorityAndPluginFailuresAreStatuses) {
+    usePluginPath();
+    ASSERT_EQ(prdRendererCount(), 3);
+    PrdRendererInfo info{};
+    ASSERT_EQ(prdRendererInfo(0, &info), PRD_OK);
+    EXPECT_STREQ(info.typeName, "PrincipledEmbreeRenderer");
+    EXPECT_STREQ(info.pluginName, "hdPrincipled");
+    ASSERT_EQ(prdRendererInfo(1, &info), PRD_OK);
+    EXPECT_STREQ(info.typeName, "FakeRenderer");
+    ASSERT_EQ(prdRendererInfo(2, &info), PRD_OK);
+    EXPECT_STREQ(info.typeName, "FutureRenderer");
+    EXPECT_EQ(info.loaded, 0);
+    EXPECT_EQ(prdRendererInfo(3, &info), PRD_ERROR_NOT_FOUND);
+    EXPECT_STREQ(prdLastError(nullptr), "prdRendererInfo: index 3 out of range (3 renderers)");
+    EXPECT_STREQ(prdRegistryDiagnostics(), "");
+
+    PrdDelegate* d = nullptr;
+    EXPECT_EQ(prdCreateDelegate("Fake", &d), PRD_ERROR_UNSUPPORTED);
+    EXPECT_STREQ(prdLastError(nullptr), "prdCreateDelegate: fake plugin: create always fails");
+    EXPECT_EQ(d, nullptr);
+    EXPECT_EQ(prdCreateDelegate("FutureRenderer", &d), PRD_ERROR_PLUGIN);
+    EXPECT_THAT(prdLastError(nullptr), HasSubstr("has ABI version 999; this host needs 1"));
+    EXPECT_EQ(d, nullptr);
+}
+
 TEST(AbiDirect, StaticallyLinkedTableRendersTheSameImageAsThePlugin) {
-    setenv("PRINCIPLED_PLUGIN_PATH", PRINCIPLED_EMBREE_PLUGIN_DIR, 1);
+    usePluginPath();
     auto render = [](PrdDelegate* d) {
         EXPECT_EQ(prdSetResolution(d, 8, 8), PRD_OK);
         EXPECT_EQ(prdSetSettingInt(d, "convergedSamplesPerPixel", 2), PRD_OK);

@@ -2,9 +2,13 @@
 #include "plugins/embree/editableSceneDelegate.h"
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
 
 #include "delegate/hd/tokens.h"
 #include "scene_adapter/usda/stage.h"
+#include "scene_adapter/valueConvert.h"
 #include "scene_adapter/xformOps.h"
 
 namespace principled::plugins {
@@ -15,6 +19,7 @@ namespace {
 
 // 0.1: camera lengths are authored in tenths of a scene unit (the adapter's kCameraUnit).
 constexpr double kCameraUnit = 0.1;
+constexpr double kDefaultTimeNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Records what a scene delegate inserts, so the same prims can be inserted into the real
 /// index with another scene delegate. Supports exactly the types of the real delegate.
@@ -207,9 +212,7 @@ EditResult EditableSceneDelegate::setAttribute(RenderIndex* index, const std::st
     using Code = EditResult::Code;
     const usd::Prim* prim = _stage.prim(primPath);
     if (!prim) return {Code::NotFound, "no prim at '" + primPath + "'"};
-    if (attribute.rfind("xformOp", 0) == 0)
-        return {Code::Unsupported, "'" + attribute + "': edit transforms with prdSetLocalTransform "
-                                   "(xformOp values are not editable one by one yet)"};
+    if (attribute.rfind("xformOp:", 0) == 0) return setXformOp(index, primPath, attribute, value);
     Path id(primPath);
     std::string why;
     auto store = [&](const Value& current, const std::string& key) -> std::optional<EditResult> {
@@ -315,12 +318,111 @@ EditResult EditableSceneDelegate::setLocalTransform(RenderIndex* index, const st
         (&m[0][0])[i] = matrix[i];
     }
     _localOverrides[primPath] = m;
+    _opOverrides.erase(primPath);  // the whole matrix wins over earlier op edits
+    markTransformDirty(index, primPath);
+    return {};
+}
+
+void EditableSceneDelegate::markTransformDirty(RenderIndex* index, const std::string& primPath) {
     for (const Inserted& e : _inserted) {
         if (!isAtOrBelow(e.id.str(), primPath)) continue;
         if (e.isRprim) index->changeTracker().markRprimDirty(e.id, RprimDirty::Transform);
         else if (e.type == tokens::camera() || isLightType(e.type))
             index->changeTracker().markSprimDirty(e.id, SprimDirty::Transform);
     }
+}
+
+namespace {
+
+/// USDA text for a value of an xform op (scalars, tuples, quaternions, matrices).
+std::optional<std::string> usdaText(const Value& v) {
+    char buf[64];
+    auto num = [&](double x) {
+        std::snprintf(buf, sizeof buf, "%.17g", x);
+        return std::string(buf);
+    };
+    auto tuple = [&](const float* p, int n) {
+        std::string out = "(";
+        for (int i = 0; i < n; ++i) out += (i ? ", " : "") + num(p[i]);
+        return out + ")";
+    };
+    if (auto f = getFloat(v); f && !std::holds_alternative<double>(v)) return num(*f);
+    if (auto* d = std::get_if<double>(&v)) return num(*d);
+    if (auto* x = std::get_if<glm::vec2>(&v)) return tuple(&x->x, 2);
+    if (auto* x = std::get_if<glm::vec3>(&v)) return tuple(&x->x, 3);
+    if (auto* x = std::get_if<glm::vec4>(&v)) return tuple(&x->x, 4);
+    if (auto* m = std::get_if<glm::dmat4>(&v)) {
+        std::string out = "(";
+        for (int r = 0; r < 4; ++r) {  // USD rows = glm columns (see shapeLike)
+            out += r ? ", (" : "(";
+            for (int c = 0; c < 4; ++c) out += (c ? ", " : "") + num((*m)[r][c]);
+            out += ")";
+        }
+        return out + ")";
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+EditResult EditableSceneDelegate::setXformOp(RenderIndex* index, const std::string& primPath,
+                                             const std::string& attribute, const EditValue& value) {
+    using Code = EditResult::Code;
+    const usd::Prim* prim = _stage.prim(primPath);
+    if (!prim) return {Code::NotFound, "no prim at '" + primPath + "'"};
+    const usd::Attribute* orderAttr = prim->attribute("xformOpOrder");
+    const std::vector<std::string>* order = nullptr;
+    usd::Value orderValue;
+    if (orderAttr) {
+        orderValue = orderAttr->get(_time);
+        order = orderValue.strings();
+    }
+    auto inOrder = [&](const std::string& name) {
+        if (!order) return false;
+        for (const std::string& op : *order)
+            if (op == name || op == "!invert!" + name) return true;
+        return false;
+    };
+    if (!inOrder(attribute))
+        return {Code::Unsupported, "'" + attribute + "' is not in the xformOpOrder of '" + primPath +
+                                       "' (adding ops is not supported; use prdSetLocalTransform)"};
+    const usd::Attribute* attr = prim->attribute(attribute);
+    Value current = attr && attr->hasValue() ? adapter::toHdValue(attr->get(_time)) : Value();
+    std::string why;
+    auto v = shapeLike(current, value, &why);
+    if (!v) return {Code::BadValue, "'" + primPath + "." + attribute + "': " + why};
+    if (!attr) return {Code::Unsupported, "'" + attribute + "' has no authored type"};
+
+    // Re-evaluate the op stack with the adapter's own evaluator on a one-prim stage that holds
+    // the ops with the edited values.
+    auto ops = _opOverrides[primPath];
+    ops[attribute] = *v;
+    std::string text = "#usda 1.0\ndef Xform \"P\"\n{\n";
+    std::string orderText;
+    for (const std::string& entry : *order) {
+        orderText += (orderText.empty() ? "\"" : ", \"") + entry + "\"";
+        if (entry == "!resetXformStack!") continue;
+        std::string name = entry.rfind("!invert!", 0) == 0 ? entry.substr(8) : entry;
+        const usd::Attribute* a = prim->attribute(name);
+        if (!a || !a->hasValue()) continue;  // the evaluator warns and skips it, as the adapter did
+        auto it = ops.find(name);
+        Value opValue = it != ops.end() ? it->second : adapter::toHdValue(a->get(_time));
+        auto valueText = usdaText(opValue);
+        if (!valueText) return {Code::Unsupported, "xform op '" + name + "' has a value type that cannot be edited"};
+        text += "    " + a->typeName() + " " + name + " = " + *valueText + "\n";
+    }
+    text += "    uniform token[] xformOpOrder = [" + orderText + "]\n}\n";
+    std::unique_ptr<usd::Stage> scratch;
+    try {
+        scratch = usd::Stage::openString(text, primPath + " (edited xform ops)");
+    } catch (const std::exception& e) {
+        return {Code::BadValue, "'" + primPath + "." + attribute + "': " + e.what()};
+    }
+    std::string warning;
+    adapter::LocalTransform local = adapter::computeLocalTransform(*scratch->prim("/P"), kDefaultTimeNaN, &warning);
+    _opOverrides[primPath] = std::move(ops);
+    _localOverrides[primPath] = local.matrix;
+    markTransformDirty(index, primPath);
     return {};
 }
 

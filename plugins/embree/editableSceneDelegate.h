@@ -42,9 +42,14 @@ public:
 
     /// Overrides `attribute` of `primPath` and marks the prims it affects dirty in `index`.
     /// Supported: shader inputs of a bound material network ("inputs:*"), light inputs,
-    /// camera parameters, and on geometry "points", "normals", "primvars:*", "doubleSided".
+    /// camera parameters, on geometry "points", "normals", "primvars:*", "doubleSided", and
+    /// "xformOp:*" values of any prim (setXformOp).
     EditResult setAttribute(hd::RenderIndex* index, const std::string& primPath,
                             const std::string& attribute, const EditValue& value);
+    /// Sets one op of the prim's xformOpOrder ("xformOp:translate", "xformOp:rotateXYZ:pivot")
+    /// and re-evaluates its local transform; marks like setLocalTransform.
+    EditResult setXformOp(hd::RenderIndex* index, const std::string& primPath,
+                          const std::string& attribute, const EditValue& value);
     /// Replaces the local transform of `primPath` (USD order: 16 values, translation in
     /// 12..14) and marks every rprim, camera and light at or below it.
     EditResult setLocalTransform(hd::RenderIndex* index, const std::string& primPath,
@@ -75,6 +80,7 @@ private:
     };
     const hd::Value* override(const hd::Path& id, const std::string& attribute) const;
     glm::dmat4 worldTransform(const std::string& primPath) const;
+    void markTransformDirty(hd::RenderIndex* index, const std::string& primPath);
 
     const usd::Stage& _stage;
     adapter::UsdSceneDelegate _base;
@@ -82,6 +88,7 @@ private:
     std::vector<Inserted> _inserted;
     std::map<hd::Path, std::map<std::string, hd::Value>> _overrides;
     std::map<std::string, glm::dmat4> _localOverrides;  ///< prim path -> local matrix
+    std::map<std::string, std::map<std::string, hd::Value>> _opOverrides;  ///< prim -> op -> value
 };
 
 }  // namespace principled::plugins

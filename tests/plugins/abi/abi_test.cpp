@@ -258,6 +258,23 @@ TEST_F(AbiTest, TransformEditMovesTheMeshWithoutRebuildingIt) {
     EXPECT_GT(stats()["transformUpdates"], 0.0);
 }
 
+TEST_F(AbiTest, XformOpEditMovesTheCamera) {
+    renderToConvergence();
+    double left = halves().first;
+    double rebuilt = stats()["meshesRebuilt"];
+    // The camera slides 5 units right: the quad's right edge (x = 0) moves to a quarter width.
+    const double t[3] = {5, 0, 10};
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "xformOp:translate", t, 3), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    EXPECT_NEAR(halves().first, 0.5 * left, 1e-3);
+    EXPECT_EQ(stats()["meshesRebuilt"], rebuilt);
+    // Back where it was: the same image as before the edit.
+    const double back[3] = {0, 0, 10};
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "xformOp:translate", back, 3), PRD_OK);
+    renderToConvergence();
+    EXPECT_NEAR(halves().first, left, 1e-6);
+}
+
 TEST_F(AbiTest, PointsEditRebuildsThatMesh) {
     renderToConvergence();
     double rebuilt = stats()["meshesRebuilt"];
@@ -275,7 +292,11 @@ TEST_F(AbiTest, EditErrorsAreStatusesWithMessages) {
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Nope", "inputs:x", &one, 1), PRD_ERROR_NOT_FOUND);
     EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: no prim at '/World/Nope'");
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "xformOp:translate", &one, 1), PRD_ERROR_UNSUPPORTED);
-    EXPECT_THAT(prdLastError(d), HasSubstr("edit transforms with prdSetLocalTransform"));
+    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: 'xformOp:translate' is not in the xformOpOrder of "
+                                  "'/World/Plane' (adding ops is not supported; use prdSetLocalTransform)");
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "xformOp:translate", &one, 1), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: '/World/Cam.xformOp:translate': expected 3 numbers "
+                                  "for a 3-vector or color, got 1");
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "faceVertexCounts", &one, 1), PRD_ERROR_UNSUPPORTED);
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Mat/S", "inputs:diffuseColor", two, 2),
               PRD_ERROR_INVALID_ARGUMENT);

@@ -55,6 +55,9 @@ std::string registryDiagnostics;
 
 }  // namespace
 
+/// Lets the scene builder (sceneBuilder.cpp) report through prdLastError(NULL).
+void prdSetThreadError(const std::string& message) { tlsError = message; }
+
 extern "C" {
 
 uint32_t prdAbiVersion(void) { return PRD_ABI_VERSION; }

@@ -95,6 +95,61 @@ PRD_API PrdStatus prdSetLocalTransform(PrdDelegate* delegate, const char* primPa
 PRD_API PrdStatus prdSetAttributeString(PrdDelegate* delegate, const char* primPath,
                                         const char* attribute, const char* value);
 
+/* ---- Host-supplied scenes ------------------------------------------------------------ */
+
+/** Builds a scene from host data (a DCC's meshes, materials, lights, cameras) as USDA text
+ *  that prdOpenStageFromBuilder opens like any stage, so edits, AOVs and warnings work the
+ *  same. Builder calls report failures through prdLastError(NULL). Prim paths are absolute
+ *  ("/World/Mesh"); missing ancestors become Xforms. */
+typedef struct PrdSceneBuilder PrdSceneBuilder;
+
+PRD_API PrdStatus prdSceneBuilderCreate(PrdSceneBuilder** out);
+PRD_API void prdSceneBuilderDestroy(PrdSceneBuilder* builder);
+/** Stage metadata: up axis "Y" or "Z" (default "Y") and meters per unit (default 0.01). */
+PRD_API PrdStatus prdSceneSetStageMetadata(PrdSceneBuilder* b, const char* upAxis,
+                                           double metersPerUnit);
+/** Defines a prim of a USD type ("Xform", "Camera", "DistantLight", "SphereLight", ...). */
+PRD_API PrdStatus prdSceneAddPrim(PrdSceneBuilder* b, const char* path, const char* typeName);
+/** A polygon mesh: `pointCount` points (3 floats each), `faceCount` faces with their vertex
+ *  counts, `indexCount` vertex indices. Subdivision is off ("none"). */
+PRD_API PrdStatus prdSceneAddMesh(PrdSceneBuilder* b, const char* path, const float* points,
+                                  size_t pointCount, const int* faceVertexCounts,
+                                  size_t faceCount, const int* faceVertexIndices,
+                                  size_t indexCount);
+/** Authors attribute `name` of USD type `typeName` ("float", "color3f", "double3",
+ *  "matrix4d", "normal3f[]", "texCoord2f[]", ...) from `count` numbers (an array's tuples
+ *  flattened). `interpolation` (may be NULL) is authored as metadata for primvars. */
+PRD_API PrdStatus prdSceneSetAttribute(PrdSceneBuilder* b, const char* path,
+                                       const char* typeName, const char* name,
+                                       const double* values, size_t count,
+                                       const char* interpolation);
+/** Authors a token, string or asset attribute (typeName "token", "string" or "asset"). */
+PRD_API PrdStatus prdSceneSetAttributeString(PrdSceneBuilder* b, const char* path,
+                                             const char* typeName, const char* name,
+                                             const char* value);
+/** The prim's local transform (16 values, USD order, translation in 12..14). */
+PRD_API PrdStatus prdSceneSetTransform(PrdSceneBuilder* b, const char* path,
+                                       const double matrix[16]);
+/** A UsdPreviewSurface material at `path` (its shader is `path`/Surface). */
+PRD_API PrdStatus prdSceneAddMaterial(PrdSceneBuilder* b, const char* path);
+/** A surface input: 1 number -> float, 3 -> color3f ("normal" -> normal3f); integers for
+ *  "useSpecularWorkflow". */
+PRD_API PrdStatus prdSceneSetMaterialInput(PrdSceneBuilder* b, const char* materialPath,
+                                           const char* input, const double* values,
+                                           size_t count);
+/** Connects a surface input to an image (UsdUVTexture reading primvar "st"); `channel` is
+ *  "rgb" for colors or "r"/"g"/"b"/"a" for scalars. */
+PRD_API PrdStatus prdSceneSetMaterialTexture(PrdSceneBuilder* b, const char* materialPath,
+                                             const char* input, const char* file,
+                                             const char* channel);
+/** Binds a material to a prim (material:binding). */
+PRD_API PrdStatus prdSceneBindMaterial(PrdSceneBuilder* b, const char* primPath,
+                                       const char* materialPath);
+/** The USDA text built so far; valid until the next builder call. */
+PRD_API PrdStatus prdSceneToUsda(PrdSceneBuilder* b, const char** text);
+/** Opens the built scene on a delegate (like prdOpenStageString). */
+PRD_API PrdStatus prdOpenStageFromBuilder(PrdDelegate* delegate, PrdSceneBuilder* b);
+
 /* ---- Settings ------------------------------------------------------------------------ */
 
 PRD_API PrdStatus prdSetSettingInt(PrdDelegate* delegate, const char* key, int64_t value);

@@ -389,3 +389,87 @@ TEST(AbiDirect, StaticallyLinkedTableRendersTheSameImageAsThePlugin) {
                  "prdCreateDelegate: this plugin provides 'PrincipledEmbreeRenderer', not 'Cycles'");
     EXPECT_EQ(direct, nullptr);
 }
+
+namespace {
+
+/// kScene rebuilt from host data through the scene builder.
+PrdSceneBuilder* buildHostScene() {
+    PrdSceneBuilder* b = nullptr;
+    EXPECT_EQ(prdSceneBuilderCreate(&b), PRD_OK);
+    const float points[] = {-10, -10, 0, 0, -10, 0, 0, 10, 0, -10, 10, 0};
+    const int counts[] = {4}, indices[] = {0, 1, 2, 3};
+    EXPECT_EQ(prdSceneAddMesh(b, "/World/Plane", points, 4, counts, 1, indices, 4), PRD_OK) << prdLastError(nullptr);
+    EXPECT_EQ(prdSceneAddMaterial(b, "/World/Mat"), PRD_OK);
+    const double grey[3] = {0.5, 0.5, 0.5}, one = 1.0, two = 2.0, zero = 0.0;
+    EXPECT_EQ(prdSceneSetMaterialInput(b, "/World/Mat", "diffuseColor", grey, 3), PRD_OK);
+    EXPECT_EQ(prdSceneSetMaterialInput(b, "/World/Mat", "ior", &one, 1), PRD_OK);
+    EXPECT_EQ(prdSceneSetMaterialInput(b, "/World/Mat", "roughness", &one, 1), PRD_OK);
+    EXPECT_EQ(prdSceneBindMaterial(b, "/World/Plane", "/World/Mat"), PRD_OK);
+    EXPECT_EQ(prdSceneAddPrim(b, "/World/Sun", "DistantLight"), PRD_OK);
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Sun", "float", "inputs:intensity", &two, 1, nullptr), PRD_OK);
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Sun", "float", "inputs:angle", &zero, 1, nullptr), PRD_OK);
+    EXPECT_EQ(prdSceneAddPrim(b, "/World/Cam", "Camera"), PRD_OK);
+    EXPECT_EQ(prdSceneSetAttributeString(b, "/World/Cam", "token", "projection", "orthographic"), PRD_OK);
+    const double aperture = 200;
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Cam", "float", "horizontalAperture", &aperture, 1, nullptr), PRD_OK);
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Cam", "float", "verticalAperture", &aperture, 1, nullptr), PRD_OK);
+    const double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 10, 1};
+    EXPECT_EQ(prdSceneSetTransform(b, "/World/Cam", m), PRD_OK);
+    return b;
+}
+
+}  // namespace
+
+TEST_F(AbiTest, HostBuiltSceneRendersLikeTheSameUsdaText) {
+    renderToConvergence();
+    auto [left, right] = halves();
+    PrdSceneBuilder* b = buildHostScene();
+    ASSERT_EQ(prdOpenStageFromBuilder(d, b), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    auto [left2, right2] = halves();
+    EXPECT_NEAR(left2, left, 1e-6);
+    EXPECT_EQ(right2, right);
+    const char* text = nullptr;
+    ASSERT_EQ(prdSceneToUsda(b, &text), PRD_OK);
+    EXPECT_THAT(text, HasSubstr("def Mesh \"Plane\" (prepend apiSchemas = [\"MaterialBindingAPI\"])"));
+    EXPECT_THAT(text, HasSubstr("matrix4d xformOp:transform = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 10, 1))"));
+    // Edits work on host-built scenes too.
+    const double red[3] = {1, 0, 0};
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Mat/Surface", "inputs:diffuseColor", red, 3), PRD_OK);
+    renderToConvergence();
+    EXPECT_NEAR(halves().first, 2 * left, 1e-3);
+    prdSceneBuilderDestroy(b);
+}
+
+TEST(SceneBuilder, ErrorsAreStatusesWithMessages) {
+    PrdSceneBuilder* b = nullptr;
+    ASSERT_EQ(prdSceneBuilderCreate(&b), PRD_OK);
+    const float pts[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const int three[] = {3}, bad[] = {0, 1, 5}, ok[] = {0, 1, 2};
+    EXPECT_EQ(prdSceneAddMesh(b, "World/M", pts, 3, three, 1, ok, 3), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(nullptr), "prdSceneAddMesh: prim path 'World/M' must be absolute, like /World/Mesh");
+    EXPECT_EQ(prdSceneAddMesh(b, "/World/M", pts, 3, three, 1, bad, 3), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(nullptr), "prdSceneAddMesh: index 5 at 2 is out of range (3 points)");
+    EXPECT_EQ(prdSceneAddMesh(b, "/World/M", pts, 3, three, 1, ok, 2), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(nullptr), "prdSceneAddMesh: face vertex counts add up to 3 but 2 indices were given");
+    ASSERT_EQ(prdSceneAddMesh(b, "/World/M", pts, 3, three, 1, ok, 3), PRD_OK);
+    EXPECT_EQ(prdSceneAddPrim(b, "/World/M", "Xform"), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(nullptr), "prdSceneAddPrim: prim '/World/M' already exists");
+    const double n2[2] = {0, 1};
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/M", "normal3f[]", "primvars:normals", n2, 2, "vertex"),
+              PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(nullptr),
+                 "prdSceneSetAttribute: 'primvars:normals' of type normal3f[] needs a multiple of 3 numbers, got 2");
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Nope", "float", "x", n2, 1, nullptr), PRD_ERROR_NOT_FOUND);
+    EXPECT_EQ(prdSceneSetMaterialInput(b, "/World/M", "diffuseColor", n2, 1), PRD_ERROR_NOT_FOUND);
+    EXPECT_EQ(prdSceneBindMaterial(nullptr, "/a", "/b"), PRD_ERROR_NULL_HANDLE);
+    EXPECT_STREQ(prdLastError(nullptr), "prdSceneBindMaterial: builder is NULL");
+    const double normals[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    ASSERT_EQ(prdSceneSetAttribute(b, "/World/M", "normal3f[]", "primvars:normals", normals, 9, "vertex"), PRD_OK);
+    const char* text = nullptr;
+    ASSERT_EQ(prdSceneToUsda(b, &text), PRD_OK);
+    EXPECT_THAT(text, HasSubstr("normal3f[] primvars:normals = [(0, 0, 1), (0, 0, 1), (0, 0, 1)] "
+                                "(interpolation = \"vertex\")"));
+    EXPECT_THAT(text, HasSubstr("def Xform \"World\"\n{\n    def Mesh \"M\"\n    {\n"));
+    prdSceneBuilderDestroy(b);
+}

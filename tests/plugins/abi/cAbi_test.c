@@ -163,6 +163,42 @@ int main(void) {
         CHECK(rays > 0.0);
     }
 
+    /* The same kind of scene from host data, as a DCC would hand it over. */
+    {
+        PrdSceneBuilder* b = NULL;
+        const float pts[] = {-5, -5, 0, 5, -5, 0, 5, 5, 0, -5, 5, 0};
+        const int counts[] = {4}, indices[] = {0, 1, 2, 3};
+        const double grey[3] = {0.5, 0.5, 0.5}, intensity = 3.0;
+        const double cam[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 10, 1};
+        CHECK_STATUS(prdSceneBuilderCreate(&b), PRD_OK);
+        CHECK_STATUS(prdSceneAddMesh(b, "/Host/Quad", pts, 4, counts, 1, indices, 4), PRD_OK);
+        CHECK_STATUS(prdSceneAddMaterial(b, "/Host/Grey"), PRD_OK);
+        CHECK_STATUS(prdSceneSetMaterialInput(b, "/Host/Grey", "diffuseColor", grey, 3), PRD_OK);
+        CHECK_STATUS(prdSceneBindMaterial(b, "/Host/Quad", "/Host/Grey"), PRD_OK);
+        CHECK_STATUS(prdSceneAddPrim(b, "/Host/Sun", "DistantLight"), PRD_OK);
+        CHECK_STATUS(prdSceneSetAttribute(b, "/Host/Sun", "float", "inputs:intensity", &intensity, 1, NULL), PRD_OK);
+        CHECK_STATUS(prdSceneAddPrim(b, "/Host/Cam", "Camera"), PRD_OK);
+        CHECK_STATUS(prdSceneSetTransform(b, "/Host/Cam", cam), PRD_OK);
+        CHECK_STATUS(prdSceneAddMesh(b, "relative/path", pts, 4, counts, 1, indices, 4), PRD_ERROR_INVALID_ARGUMENT);
+        CHECK_CONTAINS(prdLastError(NULL), "must be absolute");
+        CHECK_STATUS(prdOpenStageFromBuilder(d, b), PRD_OK);
+        converged = 0;
+        passes = 0;
+        while (!converged && passes < 100) {
+            CHECK_STATUS(prdRenderPass(d, &converged), PRD_OK);
+            ++passes;
+        }
+        CHECK_STATUS(prdMapAov(d, "color", &view), PRD_OK);
+        nonzero = 0;
+        if (view.data) {
+            const float* px = (const float*)view.data;
+            for (i = 0; i < view.width * view.height * view.channels; ++i)
+                if (isfinite(px[i]) && px[i] > 0.0f) ++nonzero;
+        }
+        CHECK(nonzero > 0);
+        prdSceneBuilderDestroy(b);
+    }
+
     prdDestroyDelegate(d);
     if (failures) {
         fprintf(stderr, "%d check(s) failed\n", failures);

@@ -326,4 +326,20 @@ const PrdRendererApi* PluginRegistry::load(std::string_view name, std::string* e
     return api;
 }
 
+std::string describePlugins(PluginRegistry& registry) {
+    std::ostringstream out;
+    auto list = registry.renderers();
+    if (list.empty()) out << "no renderer plugins found\n";
+    for (const RendererEntry& e : list) {
+        out << (e.pluginName.empty() ? "(unnamed)" : e.pluginName) << ": " << e.typeName << " \""
+            << e.displayName << "\" priority " << e.priority
+            << (registry.isLoaded(e.typeName) ? " (loaded)" : "") << "\n    " << e.libraryPath << "\n";
+    }
+    out << "search path:";
+    for (const std::string& p : registry.searchPaths()) out << "\n    " << p;
+    out << "\n";
+    for (const std::string& d : registry.diagnostics()) out << "warning: " << d << "\n";
+    return out.str();
+}
+
 }  // namespace principled::plugins

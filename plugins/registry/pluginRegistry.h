@@ -96,4 +96,9 @@ private:
     std::map<std::string, Library> _libraries;  ///< by library path
 };
 
+/// What `principled plugins` prints: one line per renderer, highest priority first
+/// ("hdPrincipled: PrincipledEmbreeRenderer \"Embree\" priority 99 (loaded)\n    <library>"),
+/// then the search path and every diagnostic. For CLIs and logs.
+std::string describePlugins(PluginRegistry& registry);
+
 }  // namespace principled::plugins

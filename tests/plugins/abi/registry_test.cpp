@@ -231,3 +231,15 @@ TEST(RegistryDefaults, BuiltinFolderHoldsTheEmbreePlugin) {
     EXPECT_EQ(e->pluginName, "hdPrincipled");
     EXPECT_EQ(e->priority, 99);
 }
+
+TEST_F(RegistryTest, DescribePluginsListsRenderersSearchPathAndWarnings) {
+    write("b", manifest("hdPrincipled", "/x/lib.so", "PrincipledEmbreeRenderer", "Embree", 99));
+    std::string bad = write("c", "{");
+    PluginRegistry r({root()});
+    EXPECT_EQ(describePlugins(r),
+              "hdPrincipled: PrincipledEmbreeRenderer \"Embree\" priority 99\n    /x/lib.so\n"
+              "search path:\n    " + root() + "\n"
+              "warning: " + bad + ": malformed JSON: [json.exception.parse_error.101] parse error at "
+              "line 1, column 2: syntax error while parsing object key - unexpected end of input; "
+              "expected string literal\n");
+}

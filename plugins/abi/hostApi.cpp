@@ -1,14 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // The host side of the C ABI (principled_c.h): finds renderers through the plugin registry and
 // forwards every call to the plugin's table, keeping the last error per handle.
-#include "plugins/abi/principled_c.h"
-
 #include <exception>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
+#include "plugins/abi/principled_c.h"
 #include "plugins/registry/pluginRegistry.h"
 
 struct PrdDelegate {
@@ -56,29 +55,45 @@ std::string registryDiagnostics;
 }  // namespace
 
 /// Lets the scene builder (sceneBuilder.cpp) report through prdLastError(NULL).
-void prdSetThreadError(const std::string& message) { tlsError = message; }
+void prdSetThreadError(const std::string& message) {
+    tlsError = message;
+}
 
 extern "C" {
 
-uint32_t prdAbiVersion(void) { return PRD_ABI_VERSION; }
+uint32_t prdAbiVersion(void) {
+    return PRD_ABI_VERSION;
+}
 
 const char* prdStatusName(PrdStatus status) {
     switch (status) {
-        case PRD_OK: return "PRD_OK";
-        case PRD_ERROR_NULL_HANDLE: return "PRD_ERROR_NULL_HANDLE";
-        case PRD_ERROR_INVALID_ARGUMENT: return "PRD_ERROR_INVALID_ARGUMENT";
-        case PRD_ERROR_NOT_FOUND: return "PRD_ERROR_NOT_FOUND";
-        case PRD_ERROR_IO: return "PRD_ERROR_IO";
-        case PRD_ERROR_NO_STAGE: return "PRD_ERROR_NO_STAGE";
-        case PRD_ERROR_NOT_BOUND: return "PRD_ERROR_NOT_BOUND";
-        case PRD_ERROR_UNSUPPORTED: return "PRD_ERROR_UNSUPPORTED";
-        case PRD_ERROR_PLUGIN: return "PRD_ERROR_PLUGIN";
-        case PRD_ERROR_INTERNAL: return "PRD_ERROR_INTERNAL";
+        case PRD_OK:
+            return "PRD_OK";
+        case PRD_ERROR_NULL_HANDLE:
+            return "PRD_ERROR_NULL_HANDLE";
+        case PRD_ERROR_INVALID_ARGUMENT:
+            return "PRD_ERROR_INVALID_ARGUMENT";
+        case PRD_ERROR_NOT_FOUND:
+            return "PRD_ERROR_NOT_FOUND";
+        case PRD_ERROR_IO:
+            return "PRD_ERROR_IO";
+        case PRD_ERROR_NO_STAGE:
+            return "PRD_ERROR_NO_STAGE";
+        case PRD_ERROR_NOT_BOUND:
+            return "PRD_ERROR_NOT_BOUND";
+        case PRD_ERROR_UNSUPPORTED:
+            return "PRD_ERROR_UNSUPPORTED";
+        case PRD_ERROR_PLUGIN:
+            return "PRD_ERROR_PLUGIN";
+        case PRD_ERROR_INTERNAL:
+            return "PRD_ERROR_INTERNAL";
     }
     return "PRD_ERROR_UNKNOWN_STATUS";
 }
 
-const char* prdLastError(const PrdDelegate* d) { return d ? d->error.c_str() : tlsError.c_str(); }
+const char* prdLastError(const PrdDelegate* d) {
+    return d ? d->error.c_str() : tlsError.c_str();
+}
 
 int prdRendererCount(void) {
     try {
@@ -96,9 +111,10 @@ PrdStatus prdRendererInfo(int index, PrdRendererInfo* info) {
         static std::mutex keepMutex;
         auto list = PluginRegistry::instance().renderers();
         if (index < 0 || index >= static_cast<int>(list.size()))
-            return failNoHandle(PRD_ERROR_NOT_FOUND,
-                                "prdRendererInfo: index " + std::to_string(index) +
-                                    " out of range (" + std::to_string(list.size()) + " renderers)");
+            return failNoHandle(PRD_ERROR_NOT_FOUND, "prdRendererInfo: index " +
+                                                         std::to_string(index) + " out of range (" +
+                                                         std::to_string(list.size()) +
+                                                         " renderers)");
         std::lock_guard lock(keepMutex);
         const principled::plugins::RendererEntry* e = nullptr;
         for (const auto& k : keep)
@@ -143,16 +159,17 @@ PrdStatus prdCreateDelegateFromApi(const PrdRendererApi* api, const char* typeNa
                             "prdCreateDelegate: plugin table has ABI version " +
                                 std::to_string(api->abiVersion) + " and size " +
                                 std::to_string(api->structSize) + "; this host needs version " +
-                                std::to_string(PRD_ABI_VERSION) + " and size >= " +
-                                std::to_string(sizeof(PrdRendererApi)));
+                                std::to_string(PRD_ABI_VERSION) +
+                                " and size >= " + std::to_string(sizeof(PrdRendererApi)));
     try {
         PrdSession* session = nullptr;
         const char* error = nullptr;
         PrdStatus s = api->create(typeName ? typeName : "", &session, &error);
         if (s != PRD_OK || !session)
-            return failNoHandle(s == PRD_OK ? PRD_ERROR_INTERNAL : s,
-                                std::string("prdCreateDelegate: ") +
-                                    (error && *error ? error : "the plugin could not create a delegate"));
+            return failNoHandle(
+                s == PRD_OK ? PRD_ERROR_INTERNAL : s,
+                std::string("prdCreateDelegate: ") +
+                    (error && *error ? error : "the plugin could not create a delegate"));
         auto* d = new PrdDelegate;
         d->api = api;
         d->session = session;
@@ -193,8 +210,9 @@ void prdDestroyDelegate(PrdDelegate* d) {
 }
 
 PrdStatus prdOpenStageFile(PrdDelegate* d, const char* path) {
-    return forward(d, "prdOpenStageFile",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->openStageFile(s, path); });
+    return forward(d, "prdOpenStageFile", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->openStageFile(s, path);
+    });
 }
 PrdStatus prdOpenStageString(PrdDelegate* d, const char* text, const char* displayName) {
     return forward(d, "prdOpenStageString", [&](const PrdRendererApi* a, PrdSession* s) {
@@ -219,8 +237,9 @@ PrdStatus prdSetLocalTransform(PrdDelegate* d, const char* primPath, const doubl
     });
 }
 PrdStatus prdSetSettingInt(PrdDelegate* d, const char* key, int64_t value) {
-    return forward(d, "prdSetSettingInt",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->setSettingInt(s, key, value); });
+    return forward(d, "prdSetSettingInt", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->setSettingInt(s, key, value);
+    });
 }
 PrdStatus prdSetSettingFloat(PrdDelegate* d, const char* key, double value) {
     return forward(d, "prdSetSettingFloat", [&](const PrdRendererApi* a, PrdSession* s) {
@@ -233,8 +252,9 @@ PrdStatus prdSetSettingString(PrdDelegate* d, const char* key, const char* value
     });
 }
 PrdStatus prdSettingCount(PrdDelegate* d, int* count) {
-    return forward(d, "prdSettingCount",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->settingCount(s, count); });
+    return forward(d, "prdSettingCount", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->settingCount(s, count);
+    });
 }
 PrdStatus prdSettingDescriptor(PrdDelegate* d, int index, PrdSettingDescriptor* out) {
     return forward(d, "prdSettingDescriptor", [&](const PrdRendererApi* a, PrdSession* s) {
@@ -247,12 +267,14 @@ PrdStatus prdGetSetting(PrdDelegate* d, const char* key, const char** valueText)
     });
 }
 PrdStatus prdSetCamera(PrdDelegate* d, const char* primPath) {
-    return forward(d, "prdSetCamera",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->setCamera(s, primPath); });
+    return forward(d, "prdSetCamera", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->setCamera(s, primPath);
+    });
 }
 PrdStatus prdGetCamera(PrdDelegate* d, const char** primPath) {
-    return forward(d, "prdGetCamera",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->getCamera(s, primPath); });
+    return forward(d, "prdGetCamera", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->getCamera(s, primPath);
+    });
 }
 PrdStatus prdSetResolution(PrdDelegate* d, int width, int height) {
     return forward(d, "prdSetResolution", [&](const PrdRendererApi* a, PrdSession* s) {
@@ -264,12 +286,14 @@ PrdStatus prdAovCount(PrdDelegate* d, int* count) {
                    [&](const PrdRendererApi* a, PrdSession* s) { return a->aovCount(s, count); });
 }
 PrdStatus prdAovInfo(PrdDelegate* d, int index, PrdAovInfo* out) {
-    return forward(d, "prdAovInfo",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->aovInfo(s, index, out); });
+    return forward(d, "prdAovInfo", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->aovInfo(s, index, out);
+    });
 }
 PrdStatus prdAovDescribe(PrdDelegate* d, const char* name, PrdAovInfo* out) {
-    return forward(d, "prdAovDescribe",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->aovDescribe(s, name, out); });
+    return forward(d, "prdAovDescribe", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->aovDescribe(s, name, out);
+    });
 }
 PrdStatus prdBindAov(PrdDelegate* d, const char* name) {
     return forward(d, "prdBindAov",
@@ -280,8 +304,9 @@ PrdStatus prdUnbindAov(PrdDelegate* d, const char* name) {
                    [&](const PrdRendererApi* a, PrdSession* s) { return a->unbindAov(s, name); });
 }
 PrdStatus prdRenderPass(PrdDelegate* d, int* converged) {
-    return forward(d, "prdRenderPass",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->renderPass(s, converged); });
+    return forward(d, "prdRenderPass", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->renderPass(s, converged);
+    });
 }
 PrdStatus prdProgress(PrdDelegate* d, int* converged, int* completedSamples, int* targetSamples) {
     return forward(d, "prdProgress", [&](const PrdRendererApi* a, PrdSession* s) {
@@ -297,12 +322,14 @@ PrdStatus prdStatCount(PrdDelegate* d, int* count) {
                    [&](const PrdRendererApi* a, PrdSession* s) { return a->statCount(s, count); });
 }
 PrdStatus prdStat(PrdDelegate* d, int index, const char** key, double* value) {
-    return forward(d, "prdStat",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->stat(s, index, key, value); });
+    return forward(d, "prdStat", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->stat(s, index, key, value);
+    });
 }
 PrdStatus prdTakeWarnings(PrdDelegate* d, const char** text) {
-    return forward(d, "prdTakeWarnings",
-                   [&](const PrdRendererApi* a, PrdSession* s) { return a->takeWarnings(s, text); });
+    return forward(d, "prdTakeWarnings", [&](const PrdRendererApi* a, PrdSession* s) {
+        return a->takeWarnings(s, text);
+    });
 }
 
 }  // extern "C"

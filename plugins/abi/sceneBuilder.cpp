@@ -37,13 +37,15 @@ bool validName(const std::string& n) {
 std::string checkPath(const char* path) {
     if (!path) return "path is NULL";
     std::string p = path;
-    if (p.size() < 2 || p[0] != '/' || p.back() == '/') return "prim path '" + p + "' must be absolute, like /World/Mesh";
+    if (p.size() < 2 || p[0] != '/' || p.back() == '/')
+        return "prim path '" + p + "' must be absolute, like /World/Mesh";
     size_t start = 1;
     while (start <= p.size()) {
         size_t end = p.find('/', start);
         if (end == std::string::npos) end = p.size();
         if (!validName(p.substr(start, end - start)))
-            return "prim path '" + p + "' has an invalid name '" + p.substr(start, end - start) + "'";
+            return "prim path '" + p + "' has an invalid name '" + p.substr(start, end - start) +
+                   "'";
         start = end + 1;
     }
     return "";
@@ -51,8 +53,10 @@ std::string checkPath(const char* path) {
 
 std::string number(double v, bool integer) {
     char buf[40];
-    if (integer) std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(std::llround(v)));
-    else std::snprintf(buf, sizeof buf, "%.9g", v);
+    if (integer)
+        std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(std::llround(v)));
+    else
+        std::snprintf(buf, sizeof buf, "%.9g", v);
     return buf;
 }
 
@@ -68,8 +72,8 @@ int tupleSize(const std::string& base) {
 }
 
 bool isIntegral(const std::string& base) {
-    return base == "int" || base == "int64" || base == "uint" || base == "uint64" || base == "uchar" ||
-           base == "bool" || base.rfind("int", 0) == 0;
+    return base == "int" || base == "int64" || base == "uint" || base == "uint64" ||
+           base == "uchar" || base == "bool" || base.rfind("int", 0) == 0;
 }
 
 std::string element(const double* v, int n, bool integer, bool matrix = false) {
@@ -79,7 +83,8 @@ std::string element(const double* v, int n, bool integer, bool matrix = false) {
         int rows = n == 16 ? 4 : n == 9 ? 3 : 2;
         for (int r = 0; r < rows; ++r) {
             out += r ? ", (" : "(";
-            for (int c = 0; c < rows; ++c) out += (c ? ", " : "") + number(v[r * rows + c], integer);
+            for (int c = 0; c < rows; ++c)
+                out += (c ? ", " : "") + number(v[r * rows + c], integer);
             out += ")";
         }
         return out + ")";
@@ -101,9 +106,11 @@ std::string quoted(const std::string& s) {
     return out + "\"";
 }
 
-PrdSceneBuilder::Prim& ensurePrim(PrdSceneBuilder* b, const std::string& path, const std::string& type) {
+PrdSceneBuilder::Prim& ensurePrim(PrdSceneBuilder* b, const std::string& path,
+                                  const std::string& type) {
     // Ancestors first, as Xforms.
-    for (size_t slash = path.find('/', 1); slash != std::string::npos; slash = path.find('/', slash + 1)) {
+    for (size_t slash = path.find('/', 1); slash != std::string::npos;
+         slash = path.find('/', slash + 1)) {
         std::string parent = path.substr(0, slash);
         if (!b->prims.count(parent)) {
             b->prims[parent].type = "Xform";
@@ -134,7 +141,8 @@ void emit(const PrdSceneBuilder* b, const std::string& path, int depth, std::str
     *out += indent + "def " + p.type + " \"" + name + "\"";
     if (!p.schemas.empty()) {
         *out += " (prepend apiSchemas = [";
-        for (size_t i = 0; i < p.schemas.size(); ++i) *out += (i ? ", \"" : "\"") + p.schemas[i] + "\"";
+        for (size_t i = 0; i < p.schemas.size(); ++i)
+            *out += (i ? ", \"" : "\"") + p.schemas[i] + "\"";
         *out += "])";
     }
     *out += "\n" + indent + "{\n";
@@ -151,10 +159,10 @@ void emit(const PrdSceneBuilder* b, const std::string& path, int depth, std::str
 // Defined in hostApi.cpp: makes prdLastError(NULL) return `message`.
 void prdSetThreadError(const std::string& message);
 
-#define PRD_BUILDER_CHECK(call)                                                          \
-    if (!b) {                                                                            \
-        prdSetThreadError(std::string(call) + ": builder is NULL");                      \
-        return PRD_ERROR_NULL_HANDLE;                                                    \
+#define PRD_BUILDER_CHECK(call)                                     \
+    if (!b) {                                                       \
+        prdSetThreadError(std::string(call) + ": builder is NULL"); \
+        return PRD_ERROR_NULL_HANDLE;                               \
     }
 
 #define PRD_FAIL(status, call, message)                          \
@@ -163,8 +171,9 @@ void prdSetThreadError(const std::string& message);
         return status;                                           \
     } while (0)
 
-#define PRD_PATH(call, path)                                              \
-    if (std::string why = checkPath(path); !why.empty()) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, why)
+#define PRD_PATH(call, path)                             \
+    if (std::string why = checkPath(path); !why.empty()) \
+    PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, why)
 
 extern "C" {
 
@@ -174,15 +183,19 @@ PrdStatus prdSceneBuilderCreate(PrdSceneBuilder** out) {
     return *out ? PRD_OK : PRD_ERROR_INTERNAL;
 }
 
-void prdSceneBuilderDestroy(PrdSceneBuilder* b) { delete b; }
+void prdSceneBuilderDestroy(PrdSceneBuilder* b) {
+    delete b;
+}
 
 PrdStatus prdSceneSetStageMetadata(PrdSceneBuilder* b, const char* upAxis, double metersPerUnit) {
     PRD_BUILDER_CHECK("prdSceneSetStageMetadata");
     std::string up = upAxis ? upAxis : "Y";
     if (up != "Y" && up != "Z")
-        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneSetStageMetadata", "upAxis must be \"Y\" or \"Z\", not '" + up + "'");
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneSetStageMetadata",
+                 "upAxis must be \"Y\" or \"Z\", not '" + up + "'");
     if (!(metersPerUnit > 0.0) || !std::isfinite(metersPerUnit))
-        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneSetStageMetadata", "metersPerUnit must be positive");
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneSetStageMetadata",
+                 "metersPerUnit must be positive");
     b->upAxis = up;
     b->metersPerUnit = metersPerUnit;
     return PRD_OK;
@@ -192,34 +205,45 @@ PrdStatus prdSceneAddPrim(PrdSceneBuilder* b, const char* path, const char* type
     PRD_BUILDER_CHECK("prdSceneAddPrim");
     PRD_PATH("prdSceneAddPrim", path);
     if (!typeName || !validName(typeName))
-        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneAddPrim", "typeName must be a USD type name like Xform or Camera");
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneAddPrim",
+                 "typeName must be a USD type name like Xform or Camera");
     auto it = b->prims.find(path);
     if (it != b->prims.end() && !(it->second.type == "Xform" && it->second.lines.empty()))
-        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneAddPrim", std::string("prim '") + path + "' already exists");
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneAddPrim",
+                 std::string("prim '") + path + "' already exists");
     ensurePrim(b, path, typeName);
     return PRD_OK;
 }
 
-PrdStatus prdSceneAddMesh(PrdSceneBuilder* b, const char* path, const float* points, size_t pointCount,
-                          const int* counts, size_t faceCount, const int* indices, size_t indexCount) {
+PrdStatus prdSceneAddMesh(PrdSceneBuilder* b, const char* path, const float* points,
+                          size_t pointCount, const int* counts, size_t faceCount,
+                          const int* indices, size_t indexCount) {
     const char* call = "prdSceneAddMesh";
     PRD_BUILDER_CHECK(call);
     PRD_PATH(call, path);
-    if (!points || !counts || !indices) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "points, counts and indices must not be NULL");
+    if (!points || !counts || !indices)
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "points, counts and indices must not be NULL");
     size_t sum = 0;
     for (size_t f = 0; f < faceCount; ++f) {
         if (counts[f] < 3)
-            PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "face " + std::to_string(f) + " has " + std::to_string(counts[f]) + " vertices (at least 3)");
+            PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call,
+                     "face " + std::to_string(f) + " has " + std::to_string(counts[f]) +
+                         " vertices (at least 3)");
         sum += size_t(counts[f]);
     }
     if (sum != indexCount)
-        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "face vertex counts add up to " + std::to_string(sum) + " but " + std::to_string(indexCount) + " indices were given");
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call,
+                 "face vertex counts add up to " + std::to_string(sum) + " but " +
+                     std::to_string(indexCount) + " indices were given");
     for (size_t i = 0; i < indexCount; ++i)
         if (indices[i] < 0 || size_t(indices[i]) >= pointCount)
-            PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "index " + std::to_string(indices[i]) + " at " + std::to_string(i) + " is out of range (" + std::to_string(pointCount) + " points)");
+            PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call,
+                     "index " + std::to_string(indices[i]) + " at " + std::to_string(i) +
+                         " is out of range (" + std::to_string(pointCount) + " points)");
     if (prdSceneAddPrim(b, path, "Mesh") != PRD_OK) return PRD_ERROR_INVALID_ARGUMENT;
     auto& p = b->prims[path];
-    std::string c = "int[] faceVertexCounts = [", ix = "int[] faceVertexIndices = [", pts = "point3f[] points = [";
+    std::string c = "int[] faceVertexCounts = [", ix = "int[] faceVertexIndices = [",
+                pts = "point3f[] points = [";
     for (size_t f = 0; f < faceCount; ++f) c += (f ? ", " : "") + std::to_string(counts[f]);
     for (size_t i = 0; i < indexCount; ++i) ix += (i ? ", " : "") + std::to_string(indices[i]);
     for (size_t i = 0; i < pointCount; ++i) {
@@ -233,13 +257,16 @@ PrdStatus prdSceneAddMesh(PrdSceneBuilder* b, const char* path, const float* poi
     return PRD_OK;
 }
 
-PrdStatus prdSceneSetAttribute(PrdSceneBuilder* b, const char* path, const char* typeName, const char* name,
-                               const double* values, size_t count, const char* interpolation) {
+PrdStatus prdSceneSetAttribute(PrdSceneBuilder* b, const char* path, const char* typeName,
+                               const char* name, const double* values, size_t count,
+                               const char* interpolation) {
     const char* call = "prdSceneSetAttribute";
     PRD_BUILDER_CHECK(call);
     PRD_PATH(call, path);
-    if (!b->prims.count(path)) PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no prim at '") + path + "': add it first");
-    if (!typeName || !name || !*name) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "typeName and name must not be NULL");
+    if (!b->prims.count(path))
+        PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no prim at '") + path + "': add it first");
+    if (!typeName || !name || !*name)
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "typeName and name must not be NULL");
     if (!values && count) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "values is NULL");
     std::string type = typeName;
     bool array = type.size() > 2 && type.compare(type.size() - 2, 2, "[]") == 0;
@@ -248,14 +275,19 @@ PrdStatus prdSceneSetAttribute(PrdSceneBuilder* b, const char* path, const char*
     bool integer = isIntegral(base);
     bool matrix = base.rfind("matrix", 0) == 0;
     if ((!array && count != size_t(n)) || (array && count % size_t(n) != 0))
-        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, std::string("'") + name + "' of type " + type + " needs " +
-                 (array ? "a multiple of " : "") + std::to_string(n) + " numbers, got " + std::to_string(count));
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call,
+                 std::string("'") + name + "' of type " + type + " needs " +
+                     (array ? "a multiple of " : "") + std::to_string(n) + " numbers, got " +
+                     std::to_string(count));
     for (size_t i = 0; i < count; ++i)
-        if (!std::isfinite(values[i])) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, std::string("'") + name + "' has a non-finite value");
+        if (!std::isfinite(values[i]))
+            PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call,
+                     std::string("'") + name + "' has a non-finite value");
     std::string value;
     if (array) {
         value = "[";
-        for (size_t i = 0; i < count; i += n) value += (i ? ", " : "") + element(values + i, n, integer, matrix);
+        for (size_t i = 0; i < count; i += n)
+            value += (i ? ", " : "") + element(values + i, n, integer, matrix);
         value += "]";
     } else {
         value = element(values, n, integer, matrix);
@@ -272,15 +304,21 @@ PrdStatus prdSceneSetAttributeString(PrdSceneBuilder* b, const char* path, const
     const char* call = "prdSceneSetAttributeString";
     PRD_BUILDER_CHECK(call);
     PRD_PATH(call, path);
-    if (!b->prims.count(path)) PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no prim at '") + path + "': add it first");
-    if (!typeName || !name || !value) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "typeName, name and value must not be NULL");
+    if (!b->prims.count(path))
+        PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no prim at '") + path + "': add it first");
+    if (!typeName || !name || !value)
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "typeName, name and value must not be NULL");
     std::string type = typeName;
     std::string v;
-    if (type == "token" || type == "string") v = quoted(value);
+    if (type == "token" || type == "string")
+        v = quoted(value);
     else if (type == "asset") {
-        if (std::string(value).find('@') != std::string::npos) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "asset paths cannot contain '@'");
+        if (std::string(value).find('@') != std::string::npos)
+            PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "asset paths cannot contain '@'");
         v = std::string("@") + value + "@";
-    } else PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "typeName must be token, string or asset, not '" + type + "'");
+    } else
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call,
+                 "typeName must be token, string or asset, not '" + type + "'");
     setLine(b->prims[path], name, type + " " + name + " = " + v);
     return PRD_OK;
 }
@@ -288,9 +326,11 @@ PrdStatus prdSceneSetAttributeString(PrdSceneBuilder* b, const char* path, const
 PrdStatus prdSceneSetTransform(PrdSceneBuilder* b, const char* path, const double matrix[16]) {
     PRD_BUILDER_CHECK("prdSceneSetTransform");
     if (!matrix) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneSetTransform", "matrix is NULL");
-    PrdStatus s = prdSceneSetAttribute(b, path, "matrix4d", "xformOp:transform", matrix, 16, nullptr);
+    PrdStatus s =
+        prdSceneSetAttribute(b, path, "matrix4d", "xformOp:transform", matrix, 16, nullptr);
     if (s != PRD_OK) return s;
-    setLine(b->prims[path], "xformOpOrder", "uniform token[] xformOpOrder = [\"xformOp:transform\"]");
+    setLine(b->prims[path], "xformOpOrder",
+            "uniform token[] xformOpOrder = [\"xformOp:transform\"]");
     return PRD_OK;
 }
 
@@ -299,7 +339,8 @@ PrdStatus prdSceneAddMaterial(PrdSceneBuilder* b, const char* path) {
     PRD_BUILDER_CHECK(call);
     if (PrdStatus s = prdSceneAddPrim(b, path, "Material"); s != PRD_OK) return s;
     std::string shader = std::string(path) + "/Surface";
-    b->prims[path].lines.push_back("token outputs:surface.connect = <" + shader + ".outputs:surface>");
+    b->prims[path].lines.push_back("token outputs:surface.connect = <" + shader +
+                                   ".outputs:surface>");
     ensurePrim(b, shader, "Shader");
     b->prims[shader].lines.push_back("uniform token info:id = \"UsdPreviewSurface\"");
     b->prims[shader].lines.push_back("token outputs:surface");
@@ -313,23 +354,32 @@ PrdStatus prdSceneSetMaterialInput(PrdSceneBuilder* b, const char* materialPath,
     PRD_PATH(call, materialPath);
     auto it = b->prims.find(materialPath);
     if (it == b->prims.end() || it->second.type != "Material")
-        PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no material at '") + materialPath + "': call prdSceneAddMaterial first");
-    if (!input || !validName(input)) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "input must be a name like diffuseColor");
+        PRD_FAIL(
+            PRD_ERROR_NOT_FOUND, call,
+            std::string("no material at '") + materialPath + "': call prdSceneAddMaterial first");
+    if (!input || !validName(input))
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "input must be a name like diffuseColor");
     std::string in = input;
-    const char* type = in == "useSpecularWorkflow" ? "int" : in == "normal" ? "normal3f" : count == 3 ? "color3f" : "float";
+    const char* type = in == "useSpecularWorkflow" ? "int"
+                       : in == "normal"            ? "normal3f"
+                       : count == 3                ? "color3f"
+                                                   : "float";
     return prdSceneSetAttribute(b, (std::string(materialPath) + "/Surface").c_str(), type,
                                 ("inputs:" + in).c_str(), values, count, nullptr);
 }
 
-PrdStatus prdSceneSetMaterialTexture(PrdSceneBuilder* b, const char* materialPath, const char* input,
-                                     const char* file, const char* channel) {
+PrdStatus prdSceneSetMaterialTexture(PrdSceneBuilder* b, const char* materialPath,
+                                     const char* input, const char* file, const char* channel) {
     const char* call = "prdSceneSetMaterialTexture";
     PRD_BUILDER_CHECK(call);
     PRD_PATH(call, materialPath);
     auto it = b->prims.find(materialPath);
     if (it == b->prims.end() || it->second.type != "Material")
-        PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no material at '") + materialPath + "': call prdSceneAddMaterial first");
-    if (!input || !validName(input) || !file) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "input and file must be given");
+        PRD_FAIL(
+            PRD_ERROR_NOT_FOUND, call,
+            std::string("no material at '") + materialPath + "': call prdSceneAddMaterial first");
+    if (!input || !validName(input) || !file)
+        PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "input and file must be given");
     std::string ch = channel ? channel : "rgb";
     if (ch != "rgb" && ch != "r" && ch != "g" && ch != "b" && ch != "a")
         PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, call, "channel must be rgb, r, g, b or a");
@@ -346,9 +396,11 @@ PrdStatus prdSceneSetMaterialTexture(PrdSceneBuilder* b, const char* materialPat
         b->prims[reader].lines = {"uniform token info:id = \"UsdPrimvarReader_float2\"",
                                   "string inputs:varname = \"st\"", "float2 outputs:result"};
     }
-    std::string type = ch == "rgb" ? (std::string(input) == "normal" ? "normal3f" : "color3f") : "float";
+    std::string type =
+        ch == "rgb" ? (std::string(input) == "normal" ? "normal3f" : "color3f") : "float";
     std::string name = std::string("inputs:") + input + ".connect";
-    setLine(b->prims[m + "/Surface"], name, type + " " + name + " = <" + tex + ".outputs:" + ch + ">");
+    setLine(b->prims[m + "/Surface"], name,
+            type + " " + name + " = <" + tex + ".outputs:" + ch + ">");
     return PRD_OK;
 }
 
@@ -357,7 +409,8 @@ PrdStatus prdSceneBindMaterial(PrdSceneBuilder* b, const char* primPath, const c
     PRD_BUILDER_CHECK(call);
     PRD_PATH(call, primPath);
     PRD_PATH(call, materialPath);
-    if (!b->prims.count(primPath)) PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no prim at '") + primPath + "'");
+    if (!b->prims.count(primPath))
+        PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no prim at '") + primPath + "'");
     auto it = b->prims.find(materialPath);
     if (it == b->prims.end() || it->second.type != "Material")
         PRD_FAIL(PRD_ERROR_NOT_FOUND, call, std::string("no material at '") + materialPath + "'");
@@ -372,8 +425,8 @@ PrdStatus prdSceneBindMaterial(PrdSceneBuilder* b, const char* primPath, const c
 PrdStatus prdSceneToUsda(PrdSceneBuilder* b, const char** text) {
     PRD_BUILDER_CHECK("prdSceneToUsda");
     if (!text) PRD_FAIL(PRD_ERROR_INVALID_ARGUMENT, "prdSceneToUsda", "text is NULL");
-    b->text = "#usda 1.0\n(\n    upAxis = " + quoted(b->upAxis) + "\n    metersPerUnit = " +
-              number(b->metersPerUnit, false) + "\n)\n\n";
+    b->text = "#usda 1.0\n(\n    upAxis = " + quoted(b->upAxis) +
+              "\n    metersPerUnit = " + number(b->metersPerUnit, false) + "\n)\n\n";
     for (const std::string& path : b->order)
         if (path.find('/', 1) == std::string::npos) emit(b, path, 0, &b->text);
     *text = b->text.c_str();

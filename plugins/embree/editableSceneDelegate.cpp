@@ -24,7 +24,7 @@ constexpr double kDefaultTimeNaN = std::numeric_limits<double>::quiet_NaN();
 /// Records what a scene delegate inserts, so the same prims can be inserted into the real
 /// index with another scene delegate. Supports exactly the types of the real delegate.
 class RecordingRenderDelegate : public RenderDelegate {
-public:
+  public:
     struct NullRprim : Rprim {
         using Rprim::Rprim;
         void sync(SceneDelegate*, RenderParam*, DirtyBits* bits) override { *bits = 0; }
@@ -38,9 +38,15 @@ public:
                             std::vector<Path>* ids)
         : _real(real), _log(log), _ids(ids) {}
 
-    const std::vector<Token>& supportedRprimTypes() const override { return _real->supportedRprimTypes(); }
-    const std::vector<Token>& supportedSprimTypes() const override { return _real->supportedSprimTypes(); }
-    const std::vector<Token>& supportedBprimTypes() const override { return _real->supportedBprimTypes(); }
+    const std::vector<Token>& supportedRprimTypes() const override {
+        return _real->supportedRprimTypes();
+    }
+    const std::vector<Token>& supportedSprimTypes() const override {
+        return _real->supportedSprimTypes();
+    }
+    const std::vector<Token>& supportedBprimTypes() const override {
+        return _real->supportedBprimTypes();
+    }
     std::unique_ptr<Rprim> createRprim(const Token& t, const Path& id) override {
         _log->push_back({true, t});
         _ids->push_back(id);
@@ -62,7 +68,7 @@ public:
     unsigned renderSettingsVersion() const override { return 0; }
     std::map<std::string, double> renderStats() const override { return {}; }
 
-private:
+  private:
     RenderDelegate* _real;
     std::vector<std::pair<bool, Token>>* _log;
     std::vector<Path>* _ids;
@@ -79,7 +85,8 @@ std::string stripPrefix(const std::string& s, const std::string& prefix) {
 
 bool isAtOrBelow(const std::string& path, const std::string& root) {
     if (root == "/") return true;
-    return path == root || (path.rfind(root, 0) == 0 && path.size() > root.size() && path[root.size()] == '/');
+    return path == root ||
+           (path.rfind(root, 0) == 0 && path.size() > root.size() && path[root.size()] == '/');
 }
 
 /// Shapes host numbers or text like `current` (the value the adapter reports today); an
@@ -88,8 +95,8 @@ std::optional<Value> shapeLike(const Value& current, const EditValue& v, std::st
     const auto& n = v.numbers;
     auto need = [&](size_t count, const char* what) -> bool {
         if (n.size() == count) return true;
-        *why = std::string("expected ") + std::to_string(count) + " number" + (count == 1 ? "" : "s") +
-               " for a " + what + ", got " + std::to_string(n.size());
+        *why = std::string("expected ") + std::to_string(count) + " number" +
+               (count == 1 ? "" : "s") + " for a " + what + ", got " + std::to_string(n.size());
         return false;
     };
     auto flat = [&](size_t k, const char* what) -> bool {
@@ -110,7 +117,8 @@ std::optional<Value> shapeLike(const Value& current, const EditValue& v, std::st
     }
     if (std::holds_alternative<float>(current) && need(1, "float")) return Value(float(n[0]));
     if (std::holds_alternative<double>(current) && need(1, "double")) return Value(n[0]);
-    if (std::holds_alternative<int>(current) && need(1, "int")) return Value(int(std::lround(n[0])));
+    if (std::holds_alternative<int>(current) && need(1, "int"))
+        return Value(int(std::lround(n[0])));
     if (std::holds_alternative<bool>(current) && need(1, "bool")) return Value(n[0] != 0.0);
     if (std::holds_alternative<glm::vec2>(current) && need(2, "2-vector"))
         return Value(glm::vec2(n[0], n[1]));
@@ -142,15 +150,20 @@ std::optional<Value> shapeLike(const Value& current, const EditValue& v, std::st
     }
     if (std::holds_alternative<std::vector<glm::vec4>>(current) && flat(4, "float4 array")) {
         std::vector<glm::vec4> out;
-        for (size_t i = 0; i < n.size(); i += 4) out.emplace_back(n[i], n[i + 1], n[i + 2], n[i + 3]);
+        for (size_t i = 0; i < n.size(); i += 4)
+            out.emplace_back(n[i], n[i + 1], n[i + 2], n[i + 3]);
         return Value(out);
     }
     if (isEmpty(current)) {
         switch (n.size()) {
-            case 1: return Value(float(n[0]));
-            case 2: return Value(glm::vec2(n[0], n[1]));
-            case 3: return Value(glm::vec3(n[0], n[1], n[2]));
-            case 4: return Value(glm::vec4(n[0], n[1], n[2], n[3]));
+            case 1:
+                return Value(float(n[0]));
+            case 2:
+                return Value(glm::vec2(n[0], n[1]));
+            case 3:
+                return Value(glm::vec3(n[0], n[1], n[2]));
+            case 4:
+                return Value(glm::vec4(n[0], n[1], n[2], n[3]));
             default:
                 *why = "the attribute has no authored value; give 1-4 numbers";
                 return std::nullopt;
@@ -225,7 +238,8 @@ EditResult EditableSceneDelegate::setAttribute(RenderIndex* index, const std::st
     // A shader input of a material network in the index.
     if (prim->typeName() == "Shader") {
         if (attribute.rfind("inputs:", 0) != 0)
-            return {Code::Unsupported, "'" + attribute + "': only shader inputs (inputs:*) are editable"};
+            return {Code::Unsupported,
+                    "'" + attribute + "': only shader inputs (inputs:*) are editable"};
         Token input(stripPrefix(attribute, "inputs:"));
         std::vector<Path> materials;
         Value current;
@@ -254,17 +268,24 @@ EditResult EditableSceneDelegate::setAttribute(RenderIndex* index, const std::st
                                        ") is not rendered, so it has nothing to edit"};
     if (isLightType(entry->type)) {
         Token param(stripPrefix(attribute, "inputs:"));
-        if (auto bad = store(_base.getLightParamValue(id, param), "inputs:" + param.str())) return *bad;
+        if (auto bad = store(_base.getLightParamValue(id, param), "inputs:" + param.str()))
+            return *bad;
         index->changeTracker().markSprimDirty(id, SprimDirty::Params);
         return {};
     }
     if (entry->type == tokens::camera()) {
-        static const char* kParams[] = {"focalLength", "horizontalAperture", "verticalAperture",
-                                        "horizontalApertureOffset", "verticalApertureOffset",
-                                        "clippingRange", "fStop", "focusDistance"};
+        static const char* kParams[] = {"focalLength",
+                                        "horizontalAperture",
+                                        "verticalAperture",
+                                        "horizontalApertureOffset",
+                                        "verticalApertureOffset",
+                                        "clippingRange",
+                                        "fStop",
+                                        "focusDistance"};
         bool known = false;
         for (const char* p : kParams) known |= attribute == p;
-        if (!known) return {Code::Unsupported, "camera attribute '" + attribute + "' is not editable"};
+        if (!known)
+            return {Code::Unsupported, "camera attribute '" + attribute + "' is not editable"};
         Value current = _base.getCameraParamValue(id, Token(attribute));
         if (isEmpty(current) && attribute == "clippingRange") current = Value(glm::vec2(0.0f));
         if (auto bad = store(current, attribute)) return *bad;
@@ -274,18 +295,22 @@ EditResult EditableSceneDelegate::setAttribute(RenderIndex* index, const std::st
     if (entry->isRprim) {
         DirtyBits bits = 0;
         std::string key;
-        if (attribute == "points") bits = RprimDirty::Points, key = "points";
-        else if (attribute == "radius") bits = RprimDirty::Points, key = "radius";
+        if (attribute == "points")
+            bits = RprimDirty::Points, key = "points";
+        else if (attribute == "radius")
+            bits = RprimDirty::Points, key = "radius";
         else if (attribute == "normals" || attribute == "primvars:normals")
             bits = RprimDirty::Normals, key = "normals";
         else if (attribute.rfind("primvars:", 0) == 0)
             bits = RprimDirty::Primvar, key = stripPrefix(attribute, "primvars:");
-        else if (attribute == "doubleSided") bits = RprimDirty::DoubleSided, key = "doubleSided";
+        else if (attribute == "doubleSided")
+            bits = RprimDirty::DoubleSided, key = "doubleSided";
         if (!bits)
             return {Code::Unsupported, "'" + attribute + "' of " + prim->typeName() +
                                            " is not editable yet (points, normals, primvars:*, "
                                            "radius and doubleSided are)"};
-        Value current = key == "doubleSided" ? Value(_base.getDoubleSided(id)) : _base.get(id, Token(key));
+        Value current =
+            key == "doubleSided" ? Value(_base.getDoubleSided(id)) : _base.get(id, Token(key));
         if (auto bad = store(current, key)) return *bad;
         index->changeTracker().markRprimDirty(id, bits);
         return {};
@@ -311,10 +336,12 @@ glm::dmat4 EditableSceneDelegate::worldTransform(const std::string& primPath) co
 EditResult EditableSceneDelegate::setLocalTransform(RenderIndex* index, const std::string& primPath,
                                                     const double matrix[16]) {
     using Code = EditResult::Code;
-    if (!_stage.prim(primPath) || primPath == "/") return {Code::NotFound, "no prim at '" + primPath + "'"};
+    if (!_stage.prim(primPath) || primPath == "/")
+        return {Code::NotFound, "no prim at '" + primPath + "'"};
     glm::dmat4 m;
     for (int i = 0; i < 16; ++i) {
-        if (!std::isfinite(matrix[i])) return {Code::BadValue, "the matrix has a non-finite element"};
+        if (!std::isfinite(matrix[i]))
+            return {Code::BadValue, "the matrix has a non-finite element"};
         (&m[0][0])[i] = matrix[i];
     }
     _localOverrides[primPath] = m;
@@ -326,7 +353,8 @@ EditResult EditableSceneDelegate::setLocalTransform(RenderIndex* index, const st
 void EditableSceneDelegate::markTransformDirty(RenderIndex* index, const std::string& primPath) {
     for (const Inserted& e : _inserted) {
         if (!isAtOrBelow(e.id.str(), primPath)) continue;
-        if (e.isRprim) index->changeTracker().markRprimDirty(e.id, RprimDirty::Transform);
+        if (e.isRprim)
+            index->changeTracker().markRprimDirty(e.id, RprimDirty::Transform);
         else if (e.type == tokens::camera() || isLightType(e.type))
             index->changeTracker().markSprimDirty(e.id, SprimDirty::Transform);
     }
@@ -384,7 +412,8 @@ EditResult EditableSceneDelegate::setXformOp(RenderIndex* index, const std::stri
         return false;
     };
     if (!inOrder(attribute))
-        return {Code::Unsupported, "'" + attribute + "' is not in the xformOpOrder of '" + primPath +
+        return {Code::Unsupported, "'" + attribute + "' is not in the xformOpOrder of '" +
+                                       primPath +
                                        "' (adding ops is not supported; use prdSetLocalTransform)"};
     const usd::Attribute* attr = prim->attribute(attribute);
     Value current = attr && attr->hasValue() ? adapter::toHdValue(attr->get(_time)) : Value();
@@ -408,7 +437,9 @@ EditResult EditableSceneDelegate::setXformOp(RenderIndex* index, const std::stri
         auto it = ops.find(name);
         Value opValue = it != ops.end() ? it->second : adapter::toHdValue(a->get(_time));
         auto valueText = usdaText(opValue);
-        if (!valueText) return {Code::Unsupported, "xform op '" + name + "' has a value type that cannot be edited"};
+        if (!valueText)
+            return {Code::Unsupported,
+                    "xform op '" + name + "' has a value type that cannot be edited"};
         text += "    " + a->typeName() + " " + name + " = " + *valueText + "\n";
     }
     text += "    uniform token[] xformOpOrder = [" + orderText + "]\n}\n";
@@ -419,7 +450,8 @@ EditResult EditableSceneDelegate::setXformOp(RenderIndex* index, const std::stri
         return {Code::BadValue, "'" + primPath + "." + attribute + "': " + e.what()};
     }
     std::string warning;
-    adapter::LocalTransform local = adapter::computeLocalTransform(*scratch->prim("/P"), kDefaultTimeNaN, &warning);
+    adapter::LocalTransform local =
+        adapter::computeLocalTransform(*scratch->prim("/P"), kDefaultTimeNaN, &warning);
     _opOverrides[primPath] = std::move(ops);
     _localOverrides[primPath] = local.matrix;
     markTransformDirty(index, primPath);
@@ -428,8 +460,12 @@ EditResult EditableSceneDelegate::setXformOp(RenderIndex* index, const std::stri
 
 // ---- Pulls: overrides first, then the adapter. -------------------------------------------
 
-MeshTopology EditableSceneDelegate::getMeshTopology(const Path& id) const { return _base.getMeshTopology(id); }
-SubdivTags EditableSceneDelegate::getSubdivTags(const Path& id) const { return _base.getSubdivTags(id); }
+MeshTopology EditableSceneDelegate::getMeshTopology(const Path& id) const {
+    return _base.getMeshTopology(id);
+}
+SubdivTags EditableSceneDelegate::getSubdivTags(const Path& id) const {
+    return _base.getSubdivTags(id);
+}
 
 glm::dmat4 EditableSceneDelegate::getTransform(const Path& id) const {
     for (const auto& [path, m] : _localOverrides)
@@ -437,7 +473,9 @@ glm::dmat4 EditableSceneDelegate::getTransform(const Path& id) const {
     return _base.getTransform(id);
 }
 
-bool EditableSceneDelegate::getVisible(const Path& id) const { return _base.getVisible(id); }
+bool EditableSceneDelegate::getVisible(const Path& id) const {
+    return _base.getVisible(id);
+}
 
 bool EditableSceneDelegate::getDoubleSided(const Path& id) const {
     if (const Value* v = override(id, "doubleSided"))
@@ -462,7 +500,9 @@ std::vector<PrimvarDescriptor> EditableSceneDelegate::getPrimvarDescriptors(
     return _base.getPrimvarDescriptors(id, interp);
 }
 
-Path EditableSceneDelegate::getMaterialId(const Path& id) const { return _base.getMaterialId(id); }
+Path EditableSceneDelegate::getMaterialId(const Path& id) const {
+    return _base.getMaterialId(id);
+}
 
 std::vector<std::pair<Path, std::vector<int>>> EditableSceneDelegate::getMaterialSubsets(
     const Path& id) const {
@@ -488,8 +528,9 @@ Value EditableSceneDelegate::getLightParamValue(const Path& id, const Token& par
 Value EditableSceneDelegate::getCameraParamValue(const Path& id, const Token& param) const {
     if (const Value* v = override(id, param.str())) {
         const std::string& k = param.str();
-        bool isLength = k == "focalLength" || k == "horizontalAperture" || k == "verticalAperture" ||
-                        k == "horizontalApertureOffset" || k == "verticalApertureOffset";
+        bool isLength = k == "focalLength" || k == "horizontalAperture" ||
+                        k == "verticalAperture" || k == "horizontalApertureOffset" ||
+                        k == "verticalApertureOffset";
         if (isLength)
             if (auto f = getFloat(*v)) return Value(static_cast<float>(*f * kCameraUnit));
         return *v;

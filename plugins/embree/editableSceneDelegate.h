@@ -29,7 +29,7 @@ struct EditValue {
 };
 
 class EditableSceneDelegate : public hd::SceneDelegate {
-public:
+  public:
     /// The stage must outlive the delegate.
     EditableSceneDelegate(const usd::Stage& stage, const adapter::AdapterOptions& options = {});
     ~EditableSceneDelegate() override;
@@ -72,7 +72,7 @@ public:
     hd::Value getLightParamValue(const hd::Path& id, const hd::Token& param) const override;
     hd::Value getCameraParamValue(const hd::Path& id, const hd::Token& param) const override;
 
-private:
+  private:
     struct Inserted {
         bool isRprim = false;
         hd::Token type;

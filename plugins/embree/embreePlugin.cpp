@@ -81,16 +81,19 @@ void destroy(PrdSession* s) {
     }
 }
 
-const char* lastError(const PrdSession* s) { return s ? s->error.c_str() : ""; }
+const char* lastError(const PrdSession* s) {
+    return s ? s->error.c_str() : "";
+}
 
 PrdStatus openStageFile(PrdSession* s, const char* path) {
     return guard(s, [&](EmbreeSession& e) { e.openFile(need(path, "path")); });
 }
 PrdStatus openStageString(PrdSession* s, const char* text, const char* name) {
-    return guard(s, [&](EmbreeSession& e) { e.openString(need(text, "usdaText"), name ? name : ""); });
+    return guard(s,
+                 [&](EmbreeSession& e) { e.openString(need(text, "usdaText"), name ? name : ""); });
 }
-PrdStatus setAttributeNumbers(PrdSession* s, const char* prim, const char* attr, const double* values,
-                              size_t count) {
+PrdStatus setAttributeNumbers(PrdSession* s, const char* prim, const char* attr,
+                              const double* values, size_t count) {
     return guard(s, [&](EmbreeSession& e) {
         EditValue v;
         if (count == 0) throw SessionError(PRD_ERROR_INVALID_ARGUMENT, "count is 0");
@@ -143,7 +146,8 @@ PrdStatus settingDescriptor(PrdSession* s, int index, PrdSettingDescriptor* out)
     return guard(s, [&](EmbreeSession& e) { *need(out, "out") = e.settingDescriptor(index); });
 }
 PrdStatus getSetting(PrdSession* s, const char* key, const char** text) {
-    return guard(s, [&](EmbreeSession& e) { *need(text, "valueText") = e.settingText(need(key, "key")); });
+    return guard(
+        s, [&](EmbreeSession& e) { *need(text, "valueText") = e.settingText(need(key, "key")); });
 }
 PrdStatus setCamera(PrdSession* s, const char* prim) {
     return guard(s, [&](EmbreeSession& e) { e.setCamera(prim ? prim : ""); });
@@ -161,7 +165,8 @@ PrdStatus aovInfo(PrdSession* s, int index, PrdAovInfo* out) {
     return guard(s, [&](EmbreeSession& e) { *need(out, "out") = e.aovInfo(index); });
 }
 PrdStatus aovDescribe(PrdSession* s, const char* name, PrdAovInfo* out) {
-    return guard(s, [&](EmbreeSession& e) { *need(out, "out") = e.describeAov(need(name, "name")); });
+    return guard(s,
+                 [&](EmbreeSession& e) { *need(out, "out") = e.describeAov(need(name, "name")); });
 }
 PrdStatus bindAov(PrdSession* s, const char* name) {
     return guard(s, [&](EmbreeSession& e) { e.bindAov(need(name, "name")); });
@@ -186,7 +191,8 @@ PrdStatus mapAov(PrdSession* s, const char* name, PrdBufferView* out) {
     });
 }
 PrdStatus statCount(PrdSession* s, int* count) {
-    return guard(s, [&](EmbreeSession& e) { *need(count, "count") = int(e.snapshotStats().size()); });
+    return guard(s,
+                 [&](EmbreeSession& e) { *need(count, "count") = int(e.snapshotStats().size()); });
 }
 PrdStatus stat(PrdSession* s, int index, const char** key, double* value) {
     return guard(s, [&](EmbreeSession& e) {
@@ -196,8 +202,8 @@ PrdStatus stat(PrdSession* s, int index, const char** key, double* value) {
         const auto& stats = e.stats().empty() ? e.snapshotStats() : e.stats();
         if (index < 0 || index >= int(stats.size()))
             throw SessionError(PRD_ERROR_NOT_FOUND, "stat index " + std::to_string(index) +
-                                                        " out of range (" + std::to_string(stats.size()) +
-                                                        " stats)");
+                                                        " out of range (" +
+                                                        std::to_string(stats.size()) + " stats)");
         *key = stats[index].first.c_str();
         *value = stats[index].second;
     });
@@ -241,4 +247,6 @@ const PrdRendererApi kApi = {
 
 }  // namespace
 
-extern "C" const PrdRendererApi* prdEmbreeRendererApi(void) { return &kApi; }
+extern "C" const PrdRendererApi* prdEmbreeRendererApi(void) {
+    return &kApi;
+}

@@ -24,24 +24,31 @@ namespace {
 /// AOV names probed for prdAovCount/prdAovInfo (issue 6's list); the delegate decides which
 /// it knows through defaultAovDescriptor(). Any other name may still be bound if it does.
 const char* const kKnownAovs[] = {
-    "color",   "alpha",  "depth",     "cameraDepth", "position",     "normal",     "Neye",
-    "albedo",  "diffuse", "specular", "sheen",       "clearcoat",    "transmission",
-    "emission", "primId", "instanceId", "elementId", "materialId",   "sampleCount", "variance"};
+    "color",  "alpha",      "depth",     "cameraDepth", "position",    "normal",       "Neye",
+    "albedo", "diffuse",    "specular",  "sheen",       "clearcoat",   "transmission", "emission",
+    "primId", "instanceId", "elementId", "materialId",  "sampleCount", "variance"};
 
 PrdFormat toPrd(Format f) {
     switch (f) {
-        case Format::Float32: return PRD_FORMAT_FLOAT32;
-        case Format::Float32Vec2: return PRD_FORMAT_FLOAT32_VEC2;
-        case Format::Float32Vec3: return PRD_FORMAT_FLOAT32_VEC3;
-        case Format::Float32Vec4: return PRD_FORMAT_FLOAT32_VEC4;
-        case Format::Int32: return PRD_FORMAT_INT32;
-        default: return PRD_FORMAT_INVALID;
+        case Format::Float32:
+            return PRD_FORMAT_FLOAT32;
+        case Format::Float32Vec2:
+            return PRD_FORMAT_FLOAT32_VEC2;
+        case Format::Float32Vec3:
+            return PRD_FORMAT_FLOAT32_VEC3;
+        case Format::Float32Vec4:
+            return PRD_FORMAT_FLOAT32_VEC4;
+        case Format::Int32:
+            return PRD_FORMAT_INT32;
+        default:
+            return PRD_FORMAT_INVALID;
     }
 }
 
 PrdValueType typeOf(const Value& v) {
     if (std::holds_alternative<int>(v) || std::holds_alternative<bool>(v)) return PRD_TYPE_INT;
-    if (std::holds_alternative<float>(v) || std::holds_alternative<double>(v)) return PRD_TYPE_FLOAT;
+    if (std::holds_alternative<float>(v) || std::holds_alternative<double>(v))
+        return PRD_TYPE_FLOAT;
     if (std::holds_alternative<Token>(v) || std::holds_alternative<std::string>(v))
         return PRD_TYPE_STRING;
     return PRD_TYPE_NONE;
@@ -61,18 +68,25 @@ std::string toText(const Value& v) {
 
 const char* typeName(PrdValueType t) {
     switch (t) {
-        case PRD_TYPE_INT: return "an int";
-        case PRD_TYPE_FLOAT: return "a float";
-        case PRD_TYPE_STRING: return "a string";
-        default: return "untyped";
+        case PRD_TYPE_INT:
+            return "an int";
+        case PRD_TYPE_FLOAT:
+            return "a float";
+        case PRD_TYPE_STRING:
+            return "a string";
+        default:
+            return "untyped";
     }
 }
 
 const char* setterFor(PrdValueType t) {
     switch (t) {
-        case PRD_TYPE_INT: return "prdSetSettingInt";
-        case PRD_TYPE_FLOAT: return "prdSetSettingFloat";
-        default: return "prdSetSettingString";
+        case PRD_TYPE_INT:
+            return "prdSetSettingInt";
+        case PRD_TYPE_FLOAT:
+            return "prdSetSettingFloat";
+        default:
+            return "prdSetSettingString";
     }
 }
 
@@ -93,7 +107,9 @@ const char* EmbreeSession::keep(const std::string& s) {
     return _strings.back()->c_str();
 }
 
-EmbreeSession::~EmbreeSession() { closeStage(); }
+EmbreeSession::~EmbreeSession() {
+    closeStage();
+}
 
 void EmbreeSession::closeStage() {
     _pass.reset();
@@ -138,7 +154,8 @@ void EmbreeSession::open(std::unique_ptr<usd::Stage> stage) {
     const auto& cams = _scene->cameras();
     if (!_cameraRequest.empty()) {
         if (std::find(cams.begin(), cams.end(), Path(_cameraRequest)) == cams.end()) {
-            std::string message = "camera '" + _cameraRequest + "' not found in the stage" + cameraList();
+            std::string message =
+                "camera '" + _cameraRequest + "' not found in the stage" + cameraList();
             closeStage();
             throw SessionError(PRD_ERROR_NOT_FOUND, message);
         }
@@ -172,10 +189,14 @@ void EmbreeSession::setAttribute(const std::string& primPath, const std::string&
     requireStage("editing an attribute");
     EditResult r = _scene->setAttribute(_index.get(), primPath, attribute, v);
     switch (r.code) {
-        case EditResult::Code::Applied: return;
-        case EditResult::Code::NotFound: throw SessionError(PRD_ERROR_NOT_FOUND, r.message);
-        case EditResult::Code::Unsupported: throw SessionError(PRD_ERROR_UNSUPPORTED, r.message);
-        case EditResult::Code::BadValue: throw SessionError(PRD_ERROR_INVALID_ARGUMENT, r.message);
+        case EditResult::Code::Applied:
+            return;
+        case EditResult::Code::NotFound:
+            throw SessionError(PRD_ERROR_NOT_FOUND, r.message);
+        case EditResult::Code::Unsupported:
+            throw SessionError(PRD_ERROR_UNSUPPORTED, r.message);
+        case EditResult::Code::BadValue:
+            throw SessionError(PRD_ERROR_INVALID_ARGUMENT, r.message);
     }
 }
 
@@ -183,7 +204,8 @@ void EmbreeSession::setLocalTransform(const std::string& primPath, const double 
     requireStage("setting a transform");
     EditResult r = _scene->setLocalTransform(_index.get(), primPath, matrix);
     if (r.code == EditResult::Code::NotFound) throw SessionError(PRD_ERROR_NOT_FOUND, r.message);
-    if (r.code != EditResult::Code::Applied) throw SessionError(PRD_ERROR_INVALID_ARGUMENT, r.message);
+    if (r.code != EditResult::Code::Applied)
+        throw SessionError(PRD_ERROR_INVALID_ARGUMENT, r.message);
 }
 
 // ---- Settings ---------------------------------------------------------------------------
@@ -195,7 +217,8 @@ void EmbreeSession::setSetting(const std::string& key, const SettingInput& in) {
     if (it == descriptors.end()) {
         std::string list;
         for (const auto& d : descriptors) list += (list.empty() ? "" : ", ") + d.key.str();
-        throw SessionError(PRD_ERROR_NOT_FOUND, "unknown render setting '" + key + "'; settings: " + list);
+        throw SessionError(PRD_ERROR_NOT_FOUND,
+                           "unknown render setting '" + key + "'; settings: " + list);
     }
     PrdValueType want = typeOf(it->defaultValue);
     bool ok = in.type == want || (want == PRD_TYPE_FLOAT && in.type == PRD_TYPE_INT);
@@ -205,12 +228,18 @@ void EmbreeSession::setSetting(const std::string& key, const SettingInput& in) {
                                                            setterFor(want));
     Value v;
     const Value& def = it->defaultValue;
-    if (std::holds_alternative<bool>(def)) v = Value(in.i != 0);
-    else if (std::holds_alternative<int>(def)) v = Value(int(std::clamp<long long>(in.i, INT32_MIN, INT32_MAX)));
-    else if (std::holds_alternative<float>(def)) v = Value(float(in.type == PRD_TYPE_INT ? double(in.i) : in.f));
-    else if (std::holds_alternative<double>(def)) v = Value(in.type == PRD_TYPE_INT ? double(in.i) : in.f);
-    else if (std::holds_alternative<Token>(def)) v = Value(Token(in.s));
-    else v = Value(in.s);
+    if (std::holds_alternative<bool>(def))
+        v = Value(in.i != 0);
+    else if (std::holds_alternative<int>(def))
+        v = Value(int(std::clamp<long long>(in.i, INT32_MIN, INT32_MAX)));
+    else if (std::holds_alternative<float>(def))
+        v = Value(float(in.type == PRD_TYPE_INT ? double(in.i) : in.f));
+    else if (std::holds_alternative<double>(def))
+        v = Value(in.type == PRD_TYPE_INT ? double(in.i) : in.f);
+    else if (std::holds_alternative<Token>(def))
+        v = Value(Token(in.s));
+    else
+        v = Value(in.s);
     // Range checks the delegate relies on (RenderSession makes the same ones).
     auto bad = [&](const std::string& why) {
         throw SessionError(PRD_ERROR_INVALID_ARGUMENT, "render setting '" + key + "': " + why);
@@ -223,14 +252,16 @@ void EmbreeSession::setSetting(const std::string& key, const SettingInput& in) {
     _delegate->setRenderSetting(it->key, v);
 }
 
-int EmbreeSession::settingCount() { return int(_delegate->renderSettingDescriptors().size()); }
+int EmbreeSession::settingCount() {
+    return int(_delegate->renderSettingDescriptors().size());
+}
 
 PrdSettingDescriptor EmbreeSession::settingDescriptor(int index) {
     auto descriptors = _delegate->renderSettingDescriptors();
     if (index < 0 || index >= int(descriptors.size()))
-        throw SessionError(PRD_ERROR_NOT_FOUND, "setting index " + std::to_string(index) +
-                                                    " out of range (" +
-                                                    std::to_string(descriptors.size()) + " settings)");
+        throw SessionError(PRD_ERROR_NOT_FOUND,
+                           "setting index " + std::to_string(index) + " out of range (" +
+                               std::to_string(descriptors.size()) + " settings)");
     const auto& d = descriptors[index];
     PrdSettingDescriptor out{};
     out.key = keep(d.key.str());
@@ -258,13 +289,16 @@ void EmbreeSession::setCamera(const std::string& primPath) {
     if (_stage) {
         if (primPath.empty()) {
             const auto& cams = _scene->cameras();
-            _cameraPath = !cams.empty() ? cams.front().str()
-                                        : _scene->addDefaultCamera(_index.get(), double(_width) / _height).str();
+            _cameraPath =
+                !cams.empty()
+                    ? cams.front().str()
+                    : _scene->addDefaultCamera(_index.get(), double(_width) / _height).str();
         } else {
             const auto& cams = _scene->cameras();
             if (std::find(cams.begin(), cams.end(), Path(primPath)) == cams.end())
-                throw SessionError(PRD_ERROR_NOT_FOUND,
-                                   "camera '" + primPath + "' not found in the stage" + cameraList());
+                throw SessionError(
+                    PRD_ERROR_NOT_FOUND,
+                    "camera '" + primPath + "' not found in the stage" + cameraList());
             _cameraPath = primPath;
         }
     }
@@ -278,9 +312,9 @@ const std::string& EmbreeSession::camera() const {
 
 void EmbreeSession::setResolution(int width, int height) {
     if (width < 1 || height < 1 || width > 32768 || height > 32768)
-        throw SessionError(PRD_ERROR_INVALID_ARGUMENT,
-                           "resolution " + std::to_string(width) + "x" + std::to_string(height) +
-                               " must be between 1x1 and 32768x32768");
+        throw SessionError(PRD_ERROR_INVALID_ARGUMENT, "resolution " + std::to_string(width) + "x" +
+                                                           std::to_string(height) +
+                                                           " must be between 1x1 and 32768x32768");
     _width = width;
     _height = height;
     if (_stage)
@@ -296,7 +330,8 @@ PrdAovInfo EmbreeSession::describeAov(const std::string& name) {
         for (const char* n : kKnownAovs)
             if (_delegate->defaultAovDescriptor(Token(n)).format != Format::Invalid)
                 list += (list.empty() ? "" : ", ") + std::string(n);
-        throw SessionError(PRD_ERROR_NOT_FOUND, "unknown AOV '" + name + "'; this renderer has: " + list);
+        throw SessionError(PRD_ERROR_NOT_FOUND,
+                           "unknown AOV '" + name + "'; this renderer has: " + list);
     }
     _aovs.push_back({keep(name), toPrd(d.format), componentCount(d.format), d.multiSampled});
     const Aov& a = _aovs.back();
@@ -305,7 +340,8 @@ PrdAovInfo EmbreeSession::describeAov(const std::string& name) {
 
 PrdAovInfo EmbreeSession::aovInfo(int index) const {
     if (index < 0 || index >= int(_aovs.size()))
-        throw SessionError(PRD_ERROR_NOT_FOUND, "AOV index " + std::to_string(index) + " out of range (" +
+        throw SessionError(PRD_ERROR_NOT_FOUND, "AOV index " + std::to_string(index) +
+                                                    " out of range (" +
                                                     std::to_string(_aovs.size()) + " AOVs)");
     const Aov& a = _aovs[index];
     return {a.name, a.format, a.channels, a.multiSampled};
@@ -313,12 +349,16 @@ PrdAovInfo EmbreeSession::aovInfo(int index) const {
 
 void EmbreeSession::allocateBuffer(const std::string& name) {
     Path id("/__principled/aov/" + name);
-    auto* buffer = static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), id));
+    auto* buffer =
+        static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), id));
     if (!buffer) {
         _index->insertBprim(tokens::renderBuffer(), _scene.get(), id);
-        buffer = static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), id));
+        buffer =
+            static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), id));
     }
-    if (!buffer) throw SessionError(PRD_ERROR_INTERNAL, "could not create a render buffer for AOV '" + name + "'");
+    if (!buffer)
+        throw SessionError(PRD_ERROR_INTERNAL,
+                           "could not create a render buffer for AOV '" + name + "'");
     AovDescriptor d = _delegate->defaultAovDescriptor(Token(name));
     buffer->allocate(_width, _height, d.format, d.multiSampled);
     _buffers[name] = buffer;
@@ -333,7 +373,8 @@ void EmbreeSession::bindAov(const std::string& name) {
 
 void EmbreeSession::unbindAov(const std::string& name) {
     auto it = std::find(_bound.begin(), _bound.end(), name);
-    if (it == _bound.end()) throw SessionError(PRD_ERROR_NOT_BOUND, "AOV '" + name + "' is not bound");
+    if (it == _bound.end())
+        throw SessionError(PRD_ERROR_NOT_BOUND, "AOV '" + name + "' is not bound");
     _bound.erase(it);
     if (_stage) {
         _index->removeBprim(Path("/__principled/aov/" + name));
@@ -350,7 +391,8 @@ bool EmbreeSession::renderPass() {
     state.cameraId = Path(_cameraPath);
     state.width = _width;
     state.height = _height;
-    for (const std::string& name : _bound) state.aovBindings.push_back({Token(name), _buffers.at(name)});
+    for (const std::string& name : _bound)
+        state.aovBindings.push_back({Token(name), _buffers.at(name)});
     _pass->execute(state);
     return _pass->isConverged();
 }
@@ -365,7 +407,8 @@ void EmbreeSession::progress(int* converged, int* completed, int* target) const 
 PrdBufferView EmbreeSession::mapAov(const std::string& name) {
     if (std::find(_bound.begin(), _bound.end(), name) == _bound.end()) {
         describeAov(name);  // an unknown name says so rather than "not bound"
-        throw SessionError(PRD_ERROR_NOT_BOUND, "AOV '" + name + "' is not bound: call prdBindAov first");
+        throw SessionError(PRD_ERROR_NOT_BOUND,
+                           "AOV '" + name + "' is not bound: call prdBindAov first");
     }
     requireStage("prdMapAov");
     embree::EmbreeRenderBuffer* b = _buffers.at(name);
@@ -390,7 +433,8 @@ const char* EmbreeSession::takeWarnings() {
     auto add = [&](const std::string& line) { _text += line + "\n"; };
     if (_scene) {
         const auto& w = _scene->warnings();
-        for (; _adapterWarningsTaken < w.size(); ++_adapterWarningsTaken) add(w[_adapterWarningsTaken]);
+        for (; _adapterWarningsTaken < w.size(); ++_adapterWarningsTaken)
+            add(w[_adapterWarningsTaken]);
     }
     for (const auto& w : _delegate->takeWarnings()) add(w);
     if (_stage) {

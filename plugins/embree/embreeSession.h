@@ -31,7 +31,7 @@ class EmbreeRenderDelegate;
 namespace principled::plugins {
 
 class SessionError : public std::runtime_error {
-public:
+  public:
     SessionError(PrdStatus status, const std::string& message)
         : std::runtime_error(message), status(status) {}
     PrdStatus status;
@@ -46,13 +46,14 @@ struct SettingInput {
 };
 
 class EmbreeSession {
-public:
+  public:
     EmbreeSession();
     ~EmbreeSession();
 
     void openFile(const std::string& path);
     void openString(const std::string& text, const std::string& displayName);
-    void setAttribute(const std::string& primPath, const std::string& attribute, const EditValue& v);
+    void setAttribute(const std::string& primPath, const std::string& attribute,
+                      const EditValue& v);
     void setLocalTransform(const std::string& primPath, const double matrix[16]);
 
     void setSetting(const std::string& key, const SettingInput& value);
@@ -79,7 +80,7 @@ public:
     const std::vector<std::pair<std::string, double>>& stats() const { return _stats; }
     const char* takeWarnings();
 
-private:
+  private:
     struct Aov {
         const char* name = nullptr;  ///< in _strings
         PrdFormat format = PRD_FORMAT_INVALID;
@@ -102,7 +103,7 @@ private:
     std::string _cameraRequest;  ///< empty: the default camera
     std::string _cameraPath;     ///< the camera in use while a stage is open
     int _width = 640, _height = 360;
-    std::vector<std::string> _bound;                               ///< in bind order
+    std::vector<std::string> _bound;                              ///< in bind order
     std::map<std::string, embree::EmbreeRenderBuffer*> _buffers;  ///< owned by the index
     // Storage behind strings returned through the C ABI (declared before _aovs, which points in).
     std::vector<std::unique_ptr<std::string>> _strings;

@@ -9,9 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace principled::plugins {
 
@@ -25,8 +24,7 @@ constexpr const char* kManifest = "plugInfo.json";
 constexpr const char* kBase = "RenderDelegate";
 
 bool equalsIgnoreCase(std::string_view a, std::string_view b) {
-    return a.size() == b.size() &&
-           std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
                return std::tolower(static_cast<unsigned char>(x)) ==
                       std::tolower(static_cast<unsigned char>(y));
            });
@@ -126,7 +124,8 @@ void PluginRegistry::scanLocked() {
                 _diagnostics.push_back(dir + ": plugin search path is not a directory");
             continue;
         }
-        if (isFile(fs::path(dir) / kManifest)) readManifestLocked((fs::path(dir) / kManifest).string());
+        if (isFile(fs::path(dir) / kManifest))
+            readManifestLocked((fs::path(dir) / kManifest).string());
         std::vector<fs::path> subdirs;
         std::error_code ec;
         for (const auto& e : fs::directory_iterator(dir, ec))
@@ -183,14 +182,16 @@ void PluginRegistry::readManifestLocked(const std::string& path) {
             const json& t = it.value();
             if (!t.is_object() || !t.contains("bases") || !t["bases"].is_array()) continue;
             bool isRenderer = false;
-            for (const json& b : t["bases"]) isRenderer |= b.is_string() && b.get<std::string>() == kBase;
+            for (const json& b : t["bases"])
+                isRenderer |= b.is_string() && b.get<std::string>() == kBase;
             if (!isRenderer) continue;
             RendererEntry e;
             e.typeName = it.key();
             e.displayName = e.typeName;
             if (auto d = t.find("displayName"); d != t.end()) {
                 if (!d->is_string()) {
-                    problem(where + ": type '" + e.typeName + "': \"displayName\" must be a string");
+                    problem(where + ": type '" + e.typeName +
+                            "': \"displayName\" must be a string");
                     continue;
                 }
                 e.displayName = d->get<std::string>();
@@ -218,8 +219,9 @@ void PluginRegistry::readManifestLocked(const std::string& path) {
         std::string libPath = (lib.is_absolute() ? lib : base / lib).lexically_normal().string();
         std::string name = plugin.value("Name", std::string());
         for (RendererEntry& e : found) {
-            auto dup = std::find_if(_renderers.begin(), _renderers.end(),
-                                    [&](const RendererEntry& r) { return r.typeName == e.typeName; });
+            auto dup =
+                std::find_if(_renderers.begin(), _renderers.end(),
+                             [&](const RendererEntry& r) { return r.typeName == e.typeName; });
             if (dup != _renderers.end()) {
                 problem(where + ": renderer '" + e.typeName + "' ignored: already declared by " +
                         dup->plugInfoPath);
@@ -333,7 +335,8 @@ std::string describePlugins(PluginRegistry& registry) {
     for (const RendererEntry& e : list) {
         out << (e.pluginName.empty() ? "(unnamed)" : e.pluginName) << ": " << e.typeName << " \""
             << e.displayName << "\" priority " << e.priority
-            << (registry.isLoaded(e.typeName) ? " (loaded)" : "") << "\n    " << e.libraryPath << "\n";
+            << (registry.isLoaded(e.typeName) ? " (loaded)" : "") << "\n    " << e.libraryPath
+            << "\n";
     }
     out << "search path:";
     for (const std::string& p : registry.searchPaths()) out << "\n    " << p;

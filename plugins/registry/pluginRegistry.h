@@ -19,12 +19,12 @@ namespace principled::plugins {
 
 /// One renderer type declared by a plugInfo.json.
 struct RendererEntry {
-    std::string typeName;     ///< key under "Info"/"Types", e.g. "PrincipledEmbreeRenderer"
-    std::string displayName;  ///< "displayName", else the type name
-    std::string pluginName;   ///< the plugin's "Name"
-    std::string libraryPath;  ///< absolute (relative paths resolve against the manifest's folder)
-    std::string plugInfoPath; ///< the manifest that declared it
-    int priority = 0;         ///< higher first
+    std::string typeName;      ///< key under "Info"/"Types", e.g. "PrincipledEmbreeRenderer"
+    std::string displayName;   ///< "displayName", else the type name
+    std::string pluginName;    ///< the plugin's "Name"
+    std::string libraryPath;   ///< absolute (relative paths resolve against the manifest's folder)
+    std::string plugInfoPath;  ///< the manifest that declared it
+    int priority = 0;          ///< higher first
 };
 
 /// Discovers plugins and loads them. Manifests are read from each search directory and from
@@ -35,7 +35,7 @@ struct RendererEntry {
 /// Libraries are opened with RTLD_NOW | RTLD_LOCAL and never closed: a plugin's threads and
 /// static objects may outlive any handle the host holds.
 class PluginRegistry {
-public:
+  public:
     /// The process-wide registry: defaultSearchPaths(), scanned on first use. This is the only
     /// global state of the project.
     static PluginRegistry& instance();
@@ -74,7 +74,7 @@ public:
     const PrdRendererApi* load(std::string_view name, std::string* error);
     bool isLoaded(std::string_view typeName);
 
-private:
+  private:
     struct Library {
         void* handle = nullptr;
         const PrdRendererApi* api = nullptr;
@@ -92,7 +92,7 @@ private:
     bool _scanned = false;
     std::vector<RendererEntry> _renderers;
     std::vector<std::string> _diagnostics;
-    std::set<std::string> _manifestsRead;  ///< canonical paths, this scan
+    std::set<std::string> _manifestsRead;       ///< canonical paths, this scan
     std::map<std::string, Library> _libraries;  ///< by library path
 };
 

@@ -72,10 +72,11 @@ void usePluginPath() {
 }
 
 class AbiTest : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() { usePluginPath(); }
     void SetUp() override {
-        ASSERT_EQ(prdCreateDelegate("PrincipledEmbreeRenderer", &d), PRD_OK) << prdLastError(nullptr);
+        ASSERT_EQ(prdCreateDelegate("PrincipledEmbreeRenderer", &d), PRD_OK)
+            << prdLastError(nullptr);
         ASSERT_EQ(prdSetResolution(d, 16, 16), PRD_OK);
         ASSERT_EQ(prdSetSettingInt(d, "convergedSamplesPerPixel", 4), PRD_OK);
         ASSERT_EQ(prdSetSettingInt(d, "defaultLighting", 0), PRD_OK);
@@ -159,12 +160,17 @@ TEST_F(AbiTest, SettingsAreDescribedTypedAndChecked) {
 
     EXPECT_EQ(prdSetSettingString(d, "shadingModel", "phong"), PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_STREQ(prdLastError(d),
-                 "prdSetSettingString: render setting 'shadingModel': must be 'disney' or 'ue4', not 'phong'");
+                 "prdSetSettingString: render setting 'shadingModel': must be 'disney' or 'ue4', "
+                 "not 'phong'");
     EXPECT_EQ(prdSetSettingInt(d, "convergedSamplesPerPixel", 0), PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(prdSetSettingFloat(d, "seed", 1.5), PRD_ERROR_INVALID_ARGUMENT);
-    EXPECT_STREQ(prdLastError(d), "prdSetSettingFloat: render setting 'seed' is an int; set it with prdSetSettingInt");
+    EXPECT_STREQ(
+        prdLastError(d),
+        "prdSetSettingFloat: render setting 'seed' is an int; set it with prdSetSettingInt");
     EXPECT_EQ(prdSetSettingInt(d, "sampels", 1), PRD_ERROR_NOT_FOUND);
-    EXPECT_THAT(prdLastError(d), HasSubstr("unknown render setting 'sampels'; settings: convergedSamplesPerPixel, seed"));
+    EXPECT_THAT(
+        prdLastError(d),
+        HasSubstr("unknown render setting 'sampels'; settings: convergedSamplesPerPixel, seed"));
     EXPECT_EQ(prdSetSettingInt(d, "seed", 7), PRD_OK);
     EXPECT_STREQ(prdLastError(d), "");  // cleared by a successful call
 }
@@ -174,14 +180,16 @@ TEST_F(AbiTest, CameraAndResolution) {
     ASSERT_EQ(prdGetCamera(d, &cam), PRD_OK);
     EXPECT_STREQ(cam, "/World/Cam");
     EXPECT_EQ(prdSetCamera(d, "/World/Nope"), PRD_ERROR_NOT_FOUND);
-    EXPECT_STREQ(prdLastError(d), "prdSetCamera: camera '/World/Nope' not found in the stage; cameras: "
-                                  "/World/Cam, /World/Other");
+    EXPECT_STREQ(prdLastError(d),
+                 "prdSetCamera: camera '/World/Nope' not found in the stage; cameras: "
+                 "/World/Cam, /World/Other");
     ASSERT_EQ(prdSetCamera(d, "/World/Other"), PRD_OK);
     ASSERT_EQ(prdGetCamera(d, &cam), PRD_OK);
     EXPECT_STREQ(cam, "/World/Other");
 
     EXPECT_EQ(prdSetResolution(d, 0, 10), PRD_ERROR_INVALID_ARGUMENT);
-    EXPECT_STREQ(prdLastError(d), "prdSetResolution: resolution 0x10 must be between 1x1 and 32768x32768");
+    EXPECT_STREQ(prdLastError(d),
+                 "prdSetResolution: resolution 0x10 must be between 1x1 and 32768x32768");
     ASSERT_EQ(prdSetResolution(d, 20, 10), PRD_OK);
     int converged = 0;
     ASSERT_EQ(prdRenderPass(d, &converged), PRD_OK);
@@ -264,7 +272,8 @@ TEST_F(AbiTest, XformOpEditMovesTheCamera) {
     double rebuilt = stats()["meshesRebuilt"];
     // The camera slides 5 units right: the quad's right edge (x = 0) moves to a quarter width.
     const double t[3] = {5, 0, 10};
-    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "xformOp:translate", t, 3), PRD_OK) << prdLastError(d);
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "xformOp:translate", t, 3), PRD_OK)
+        << prdLastError(d);
     renderToConvergence();
     EXPECT_NEAR(halves().first, 0.5 * left, 1e-3);
     EXPECT_EQ(stats()["meshesRebuilt"], rebuilt);
@@ -279,7 +288,8 @@ TEST_F(AbiTest, PointsEditRebuildsThatMesh) {
     renderToConvergence();
     double rebuilt = stats()["meshesRebuilt"];
     const double pts[12] = {0, -10, 0, 10, -10, 0, 10, 10, 0, 0, 10, 0};  // the right half
-    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "points", pts, 12), PRD_OK) << prdLastError(d);
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "points", pts, 12), PRD_OK)
+        << prdLastError(d);
     renderToConvergence();
     auto [left, right] = halves();
     EXPECT_EQ(left, 0.0);
@@ -291,19 +301,27 @@ TEST_F(AbiTest, EditErrorsAreStatusesWithMessages) {
     const double one = 1.0, two[2] = {1, 2};
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Nope", "inputs:x", &one, 1), PRD_ERROR_NOT_FOUND);
     EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: no prim at '/World/Nope'");
-    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "xformOp:translate", &one, 1), PRD_ERROR_UNSUPPORTED);
-    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: 'xformOp:translate' is not in the xformOpOrder of "
-                                  "'/World/Plane' (adding ops is not supported; use prdSetLocalTransform)");
-    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "xformOp:translate", &one, 1), PRD_ERROR_INVALID_ARGUMENT);
-    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: '/World/Cam.xformOp:translate': expected 3 numbers "
-                                  "for a 3-vector or color, got 1");
-    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "faceVertexCounts", &one, 1), PRD_ERROR_UNSUPPORTED);
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "xformOp:translate", &one, 1),
+              PRD_ERROR_UNSUPPORTED);
+    EXPECT_STREQ(prdLastError(d),
+                 "prdSetAttributeNumbers: 'xformOp:translate' is not in the xformOpOrder of "
+                 "'/World/Plane' (adding ops is not supported; use prdSetLocalTransform)");
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "xformOp:translate", &one, 1),
+              PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(d),
+                 "prdSetAttributeNumbers: '/World/Cam.xformOp:translate': expected 3 numbers "
+                 "for a 3-vector or color, got 1");
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "faceVertexCounts", &one, 1),
+              PRD_ERROR_UNSUPPORTED);
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Mat/S", "inputs:diffuseColor", two, 2),
               PRD_ERROR_INVALID_ARGUMENT);
-    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: '/World/Mat/S.inputs:diffuseColor': expected 3 "
-                                  "numbers for a 3-vector or color, got 2");
-    EXPECT_EQ(prdSetAttributeString(d, "/World/Mat/S", "inputs:roughness", "rough"), PRD_ERROR_INVALID_ARGUMENT);
-    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "points", nullptr, 3), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(prdLastError(d),
+                 "prdSetAttributeNumbers: '/World/Mat/S.inputs:diffuseColor': expected 3 "
+                 "numbers for a 3-vector or color, got 2");
+    EXPECT_EQ(prdSetAttributeString(d, "/World/Mat/S", "inputs:roughness", "rough"),
+              PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "points", nullptr, 3),
+              PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: values is NULL");
 }
 
@@ -327,8 +345,9 @@ def Camera "OnlyCam"
 }
 )";
     EXPECT_EQ(prdOpenStageString(d, other, "other.usda"), PRD_ERROR_NOT_FOUND);
-    EXPECT_STREQ(prdLastError(d), "prdOpenStageString: camera '/World/Other' not found in the stage; "
-                                  "cameras: /OnlyCam");
+    EXPECT_STREQ(prdLastError(d),
+                 "prdOpenStageString: camera '/World/Other' not found in the stage; "
+                 "cameras: /OnlyCam");
     EXPECT_EQ(prdRenderPass(d, nullptr), PRD_ERROR_NO_STAGE);
     ASSERT_EQ(prdSetCamera(d, nullptr), PRD_OK);
     ASSERT_EQ(prdOpenStageString(d, other, "other.usda"), PRD_OK);
@@ -384,9 +403,11 @@ TEST(AbiDirect, StaticallyLinkedTableRendersTheSameImageAsThePlugin) {
     prdDestroyDelegate(direct);
     prdDestroyDelegate(loaded);
 
-    EXPECT_EQ(prdCreateDelegateFromApi(prdEmbreeRendererApi(), "Cycles", &direct), PRD_ERROR_NOT_FOUND);
-    EXPECT_STREQ(prdLastError(nullptr),
-                 "prdCreateDelegate: this plugin provides 'PrincipledEmbreeRenderer', not 'Cycles'");
+    EXPECT_EQ(prdCreateDelegateFromApi(prdEmbreeRendererApi(), "Cycles", &direct),
+              PRD_ERROR_NOT_FOUND);
+    EXPECT_STREQ(
+        prdLastError(nullptr),
+        "prdCreateDelegate: this plugin provides 'PrincipledEmbreeRenderer', not 'Cycles'");
     EXPECT_EQ(direct, nullptr);
 }
 
@@ -398,7 +419,8 @@ PrdSceneBuilder* buildHostScene() {
     EXPECT_EQ(prdSceneBuilderCreate(&b), PRD_OK);
     const float points[] = {-10, -10, 0, 0, -10, 0, 0, 10, 0, -10, 10, 0};
     const int counts[] = {4}, indices[] = {0, 1, 2, 3};
-    EXPECT_EQ(prdSceneAddMesh(b, "/World/Plane", points, 4, counts, 1, indices, 4), PRD_OK) << prdLastError(nullptr);
+    EXPECT_EQ(prdSceneAddMesh(b, "/World/Plane", points, 4, counts, 1, indices, 4), PRD_OK)
+        << prdLastError(nullptr);
     EXPECT_EQ(prdSceneAddMaterial(b, "/World/Mat"), PRD_OK);
     const double grey[3] = {0.5, 0.5, 0.5}, one = 1.0, two = 2.0, zero = 0.0;
     EXPECT_EQ(prdSceneSetMaterialInput(b, "/World/Mat", "diffuseColor", grey, 3), PRD_OK);
@@ -406,13 +428,20 @@ PrdSceneBuilder* buildHostScene() {
     EXPECT_EQ(prdSceneSetMaterialInput(b, "/World/Mat", "roughness", &one, 1), PRD_OK);
     EXPECT_EQ(prdSceneBindMaterial(b, "/World/Plane", "/World/Mat"), PRD_OK);
     EXPECT_EQ(prdSceneAddPrim(b, "/World/Sun", "DistantLight"), PRD_OK);
-    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Sun", "float", "inputs:intensity", &two, 1, nullptr), PRD_OK);
-    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Sun", "float", "inputs:angle", &zero, 1, nullptr), PRD_OK);
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Sun", "float", "inputs:intensity", &two, 1, nullptr),
+              PRD_OK);
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Sun", "float", "inputs:angle", &zero, 1, nullptr),
+              PRD_OK);
     EXPECT_EQ(prdSceneAddPrim(b, "/World/Cam", "Camera"), PRD_OK);
-    EXPECT_EQ(prdSceneSetAttributeString(b, "/World/Cam", "token", "projection", "orthographic"), PRD_OK);
+    EXPECT_EQ(prdSceneSetAttributeString(b, "/World/Cam", "token", "projection", "orthographic"),
+              PRD_OK);
     const double aperture = 200;
-    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Cam", "float", "horizontalAperture", &aperture, 1, nullptr), PRD_OK);
-    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Cam", "float", "verticalAperture", &aperture, 1, nullptr), PRD_OK);
+    EXPECT_EQ(
+        prdSceneSetAttribute(b, "/World/Cam", "float", "horizontalAperture", &aperture, 1, nullptr),
+        PRD_OK);
+    EXPECT_EQ(
+        prdSceneSetAttribute(b, "/World/Cam", "float", "verticalAperture", &aperture, 1, nullptr),
+        PRD_OK);
     const double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 10, 1};
     EXPECT_EQ(prdSceneSetTransform(b, "/World/Cam", m), PRD_OK);
     return b;
@@ -431,11 +460,14 @@ TEST_F(AbiTest, HostBuiltSceneRendersLikeTheSameUsdaText) {
     EXPECT_EQ(right2, right);
     const char* text = nullptr;
     ASSERT_EQ(prdSceneToUsda(b, &text), PRD_OK);
-    EXPECT_THAT(text, HasSubstr("def Mesh \"Plane\" (prepend apiSchemas = [\"MaterialBindingAPI\"])"));
-    EXPECT_THAT(text, HasSubstr("matrix4d xformOp:transform = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 10, 1))"));
+    EXPECT_THAT(text,
+                HasSubstr("def Mesh \"Plane\" (prepend apiSchemas = [\"MaterialBindingAPI\"])"));
+    EXPECT_THAT(text, HasSubstr("matrix4d xformOp:transform = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, "
+                                "1, 0), (0, 0, 10, 1))"));
     // Edits work on host-built scenes too.
     const double red[3] = {1, 0, 0};
-    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Mat/Surface", "inputs:diffuseColor", red, 3), PRD_OK);
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Mat/Surface", "inputs:diffuseColor", red, 3),
+              PRD_OK);
     renderToConvergence();
     EXPECT_NEAR(halves().first, 2 * left, 1e-3);
     prdSceneBuilderDestroy(b);
@@ -447,25 +479,32 @@ TEST(SceneBuilder, ErrorsAreStatusesWithMessages) {
     const float pts[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const int three[] = {3}, bad[] = {0, 1, 5}, ok[] = {0, 1, 2};
     EXPECT_EQ(prdSceneAddMesh(b, "World/M", pts, 3, three, 1, ok, 3), PRD_ERROR_INVALID_ARGUMENT);
-    EXPECT_STREQ(prdLastError(nullptr), "prdSceneAddMesh: prim path 'World/M' must be absolute, like /World/Mesh");
+    EXPECT_STREQ(prdLastError(nullptr),
+                 "prdSceneAddMesh: prim path 'World/M' must be absolute, like /World/Mesh");
     EXPECT_EQ(prdSceneAddMesh(b, "/World/M", pts, 3, three, 1, bad, 3), PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_STREQ(prdLastError(nullptr), "prdSceneAddMesh: index 5 at 2 is out of range (3 points)");
     EXPECT_EQ(prdSceneAddMesh(b, "/World/M", pts, 3, three, 1, ok, 2), PRD_ERROR_INVALID_ARGUMENT);
-    EXPECT_STREQ(prdLastError(nullptr), "prdSceneAddMesh: face vertex counts add up to 3 but 2 indices were given");
+    EXPECT_STREQ(prdLastError(nullptr),
+                 "prdSceneAddMesh: face vertex counts add up to 3 but 2 indices were given");
     ASSERT_EQ(prdSceneAddMesh(b, "/World/M", pts, 3, three, 1, ok, 3), PRD_OK);
     EXPECT_EQ(prdSceneAddPrim(b, "/World/M", "Xform"), PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_STREQ(prdLastError(nullptr), "prdSceneAddPrim: prim '/World/M' already exists");
     const double n2[2] = {0, 1};
-    EXPECT_EQ(prdSceneSetAttribute(b, "/World/M", "normal3f[]", "primvars:normals", n2, 2, "vertex"),
-              PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(
+        prdSceneSetAttribute(b, "/World/M", "normal3f[]", "primvars:normals", n2, 2, "vertex"),
+        PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_STREQ(prdLastError(nullptr),
-                 "prdSceneSetAttribute: 'primvars:normals' of type normal3f[] needs a multiple of 3 numbers, got 2");
-    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Nope", "float", "x", n2, 1, nullptr), PRD_ERROR_NOT_FOUND);
+                 "prdSceneSetAttribute: 'primvars:normals' of type normal3f[] needs a multiple of "
+                 "3 numbers, got 2");
+    EXPECT_EQ(prdSceneSetAttribute(b, "/World/Nope", "float", "x", n2, 1, nullptr),
+              PRD_ERROR_NOT_FOUND);
     EXPECT_EQ(prdSceneSetMaterialInput(b, "/World/M", "diffuseColor", n2, 1), PRD_ERROR_NOT_FOUND);
     EXPECT_EQ(prdSceneBindMaterial(nullptr, "/a", "/b"), PRD_ERROR_NULL_HANDLE);
     EXPECT_STREQ(prdLastError(nullptr), "prdSceneBindMaterial: builder is NULL");
     const double normals[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
-    ASSERT_EQ(prdSceneSetAttribute(b, "/World/M", "normal3f[]", "primvars:normals", normals, 9, "vertex"), PRD_OK);
+    ASSERT_EQ(
+        prdSceneSetAttribute(b, "/World/M", "normal3f[]", "primvars:normals", normals, 9, "vertex"),
+        PRD_OK);
     const char* text = nullptr;
     ASSERT_EQ(prdSceneToUsda(b, &text), PRD_OK);
     EXPECT_THAT(text, HasSubstr("normal3f[] primvars:normals = [(0, 0, 1), (0, 0, 1), (0, 0, 1)] "

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // PluginRegistry: discovery from hand-written plugInfo.json files in a temp dir, sorting,
 // lookup, and the exact messages for malformed manifests and failed loads.
-#include "plugins/registry/pluginRegistry.h"
-
-#include <gtest/gtest.h>
 #include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+
+#include "plugins/registry/pluginRegistry.h"
 
 using namespace principled::plugins;
 namespace fs = std::filesystem;
@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 namespace {
 
 class RegistryTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         _root = fs::temp_directory_path() /
@@ -36,8 +36,9 @@ protected:
     static std::string manifest(const std::string& name, const std::string& lib,
                                 const std::string& type, const std::string& display, int priority) {
         return R"({"Plugins":[{"Name":")" + name + R"(","Type":"library","LibraryPath":")" + lib +
-               R"(","Info":{"Types":{")" + type + R"(":{"bases":["RenderDelegate"],"displayName":")" +
-               display + R"(","priority":)" + std::to_string(priority) + "}}}}]}";
+               R"(","Info":{"Types":{")" + type +
+               R"(":{"bases":["RenderDelegate"],"displayName":")" + display + R"(","priority":)" +
+               std::to_string(priority) + "}}}}]}";
     }
     std::string root() const { return _root.string(); }
 
@@ -50,7 +51,8 @@ TEST_F(RegistryTest, FindsManifestsInDirAndImmediateSubdirsSortedByPriority) {
     write("", manifest("top", PRD_TEST_OK_PLUGIN, "TopRenderer", "Top", 1));
     write("a", manifest("a", PRD_TEST_OK_PLUGIN, "LowRenderer", "Low", 5));
     write("b", manifest("b", PRD_TEST_OK_PLUGIN, "HighRenderer", "High", 50));
-    write("c/deeper", manifest("deep", PRD_TEST_OK_PLUGIN, "DeepRenderer", "Deep", 99));  // too deep
+    write("c/deeper",
+          manifest("deep", PRD_TEST_OK_PLUGIN, "DeepRenderer", "Deep", 99));  // too deep
     PluginRegistry r({root()});
     auto list = r.renderers();
     ASSERT_EQ(list.size(), 3u);
@@ -100,7 +102,8 @@ TEST_F(RegistryTest, NoPluginsSaysWhereItLooked) {
     PluginRegistry r({root()});
     std::string error;
     EXPECT_EQ(r.load("", &error), nullptr);
-    EXPECT_EQ(error, "no renderer plugins found (searched " + root() + "; set PRINCIPLED_PLUGIN_PATH)");
+    EXPECT_EQ(error,
+              "no renderer plugins found (searched " + root() + "; set PRINCIPLED_PLUGIN_PATH)");
 }
 
 TEST_F(RegistryTest, MalformedJsonIsReportedWithPathAndReasonAndSkipped) {
@@ -111,32 +114,38 @@ TEST_F(RegistryTest, MalformedJsonIsReportedWithPathAndReasonAndSkipped) {
     EXPECT_EQ(r.renderers()[0].typeName, "GoodRenderer");
     auto d = r.diagnostics();
     ASSERT_EQ(d.size(), 1u);
-    EXPECT_EQ(d[0], bad + ": malformed JSON: [json.exception.parse_error.101] parse error at line 1, "
-                    "column 29: syntax error while parsing object key - unexpected end of input; "
-                    "expected string literal");
+    EXPECT_EQ(d[0],
+              bad +
+                  ": malformed JSON: [json.exception.parse_error.101] parse error at line 1, "
+                  "column 29: syntax error while parsing object key - unexpected end of input; "
+                  "expected string literal");
 }
 
 TEST_F(RegistryTest, StructuralProblemsAreReportedExactly) {
     std::string notArray = write("a", R"({"Plugins": {}})");
     std::string noLib = write("b", R"({"Plugins":[{"Name":"NoLib","Type":"library",
         "Info":{"Types":{"T":{"bases":["RenderDelegate"]}}}}]})");
-    std::string notLib = write("c", R"({"Plugins":[{"Name":"Res","Type":"resource","LibraryPath":"x.so",
+    std::string notLib =
+        write("c", R"({"Plugins":[{"Name":"Res","Type":"resource","LibraryPath":"x.so",
         "Info":{"Types":{"T2":{"bases":["RenderDelegate"]}}}}]})");
-    std::string badPrio = write("d", R"({"Plugins":[{"Name":"P","Type":"library","LibraryPath":"x.so",
+    std::string badPrio =
+        write("d", R"({"Plugins":[{"Name":"P","Type":"library","LibraryPath":"x.so",
         "Info":{"Types":{"T3":{"bases":["RenderDelegate"],"priority":"high"}}}}]})");
     write("e", R"({"Plugins":[{"Name":"Other","Type":"library","LibraryPath":"x.so",
         "Info":{"Types":{"NotARenderer":{"bases":["SomethingElse"]}}}}]})");  // ignored quietly
     PluginRegistry r({root()});
     EXPECT_TRUE(r.renderers().empty());
     EXPECT_THAT(r.diagnostics(),
-                ::testing::ElementsAre(notArray + ": expected an object with a \"Plugins\" array",
-                                       noLib + ": plugin 'NoLib': missing \"LibraryPath\"",
-                                       notLib + ": plugin 'Res': \"Type\" must be \"library\" for a render delegate",
-                                       badPrio + ": plugin 'P': type 'T3': \"priority\" must be an integer"));
+                ::testing::ElementsAre(
+                    notArray + ": expected an object with a \"Plugins\" array",
+                    noLib + ": plugin 'NoLib': missing \"LibraryPath\"",
+                    notLib + ": plugin 'Res': \"Type\" must be \"library\" for a render delegate",
+                    badPrio + ": plugin 'P': type 'T3': \"priority\" must be an integer"));
 }
 
 TEST_F(RegistryTest, CommentsAreAllowedAsInUsdPlugInfoFiles) {
-    write("c", "// a comment\n/* block */\n" + manifest("c", PRD_TEST_OK_PLUGIN, "CRenderer", "C", 0));
+    write("c",
+          "// a comment\n/* block */\n" + manifest("c", PRD_TEST_OK_PLUGIN, "CRenderer", "C", 0));
     PluginRegistry r({root()});
     EXPECT_EQ(r.renderers().size(), 1u);
     EXPECT_TRUE(r.diagnostics().empty());
@@ -144,13 +153,16 @@ TEST_F(RegistryTest, CommentsAreAllowedAsInUsdPlugInfoFiles) {
 
 TEST_F(RegistryTest, FirstDeclarationWinsAcrossSearchPaths) {
     write("first", manifest("one", PRD_TEST_OK_PLUGIN, "SameRenderer", "One", 1));
-    std::string second = write("second", manifest("two", PRD_TEST_OK_PLUGIN, "SameRenderer", "Two", 9));
+    std::string second =
+        write("second", manifest("two", PRD_TEST_OK_PLUGIN, "SameRenderer", "Two", 9));
     PluginRegistry r({(_root / "first").string(), (_root / "second").string()});
     ASSERT_EQ(r.renderers().size(), 1u);
     EXPECT_EQ(r.renderers()[0].displayName, "One");
-    EXPECT_THAT(r.diagnostics(),
-                ::testing::ElementsAre(second + ": plugin 'two': renderer 'SameRenderer' ignored: already declared by " +
-                                       (_root / "first" / "plugInfo.json").string()));
+    EXPECT_THAT(
+        r.diagnostics(),
+        ::testing::ElementsAre(
+            second + ": plugin 'two': renderer 'SameRenderer' ignored: already declared by " +
+            (_root / "first" / "plugInfo.json").string()));
 }
 
 TEST_F(RegistryTest, TheSameManifestReachedTwiceIsReadOnce) {
@@ -179,13 +191,15 @@ TEST_F(RegistryTest, LoadsAValidPluginOnceAndLazily) {
 }
 
 TEST_F(RegistryTest, MissingLibraryIsAClearError) {
-    std::string m = write("missing", manifest("m", "doesNotExist.so", "MissingRenderer", "Missing", 0));
+    std::string m =
+        write("missing", manifest("m", "doesNotExist.so", "MissingRenderer", "Missing", 0));
     PluginRegistry r({root()});
     std::string lib = (_root / "missing" / "doesNotExist.so").string();
     std::string error;
     EXPECT_EQ(r.load("MissingRenderer", &error), nullptr);
     EXPECT_EQ(error, "renderer 'MissingRenderer' (" + m + "): cannot load plugin library '" + lib +
-                         "': " + lib + ": cannot open shared object file: No such file or directory");
+                         "': " + lib +
+                         ": cannot open shared object file: No such file or directory");
     std::string again;
     EXPECT_EQ(r.load("MissingRenderer", &again), nullptr);  // cached, same message
     EXPECT_EQ(again, error);
@@ -193,7 +207,8 @@ TEST_F(RegistryTest, MissingLibraryIsAClearError) {
 }
 
 TEST_F(RegistryTest, LibraryWithoutEntryPointIsAClearError) {
-    std::string m = write("noentry", manifest("n", PRD_TEST_NOENTRY_PLUGIN, "NoEntryRenderer", "NoEntry", 0));
+    std::string m =
+        write("noentry", manifest("n", PRD_TEST_NOENTRY_PLUGIN, "NoEntryRenderer", "NoEntry", 0));
     PluginRegistry r({root()});
     std::string error;
     EXPECT_EQ(r.load("NoEntryRenderer", &error), nullptr);
@@ -203,12 +218,14 @@ TEST_F(RegistryTest, LibraryWithoutEntryPointIsAClearError) {
 }
 
 TEST_F(RegistryTest, WrongAbiVersionIsRefused) {
-    std::string m = write("badabi", manifest("b", PRD_TEST_BADABI_PLUGIN, "BadAbiRenderer", "BadAbi", 0));
+    std::string m =
+        write("badabi", manifest("b", PRD_TEST_BADABI_PLUGIN, "BadAbiRenderer", "BadAbi", 0));
     PluginRegistry r({root()});
     std::string error;
     EXPECT_EQ(r.load("BadAbiRenderer", &error), nullptr);
     EXPECT_EQ(error, "renderer 'BadAbiRenderer' (" + m + "): plugin library '" +
-                         std::string(PRD_TEST_BADABI_PLUGIN) + "' has ABI version 999; this host needs 1");
+                         std::string(PRD_TEST_BADABI_PLUGIN) +
+                         "' has ABI version 999; this host needs 1");
 }
 
 TEST(RegistryDefaults, PluginPathEnvironmentComesFirstThenTheBuiltinFolder) {
@@ -219,8 +236,9 @@ TEST(RegistryDefaults, PluginPathEnvironmentComesFirstThenTheBuiltinFolder) {
     EXPECT_EQ(paths[0], "/tmp/a");
     EXPECT_EQ(paths[1], "/tmp/b");
     // The test binary lives in build/bin: the built-in folder is build/lib/principled/plugins.
-    EXPECT_EQ(paths[2], fs::weakly_canonical(fs::path(PRINCIPLED_BINARY_DIR) / "lib" / "principled" /
-                                             "plugins").string());
+    EXPECT_EQ(paths[2], fs::weakly_canonical(fs::path(PRINCIPLED_BINARY_DIR) / "lib" /
+                                             "principled" / "plugins")
+                            .string());
 }
 
 TEST(RegistryDefaults, BuiltinFolderHoldsTheEmbreePlugin) {
@@ -236,10 +254,15 @@ TEST_F(RegistryTest, DescribePluginsListsRenderersSearchPathAndWarnings) {
     write("b", manifest("hdPrincipled", "/x/lib.so", "PrincipledEmbreeRenderer", "Embree", 99));
     std::string bad = write("c", "{");
     PluginRegistry r({root()});
-    EXPECT_EQ(describePlugins(r),
-              "hdPrincipled: PrincipledEmbreeRenderer \"Embree\" priority 99\n    /x/lib.so\n"
-              "search path:\n    " + root() + "\n"
-              "warning: " + bad + ": malformed JSON: [json.exception.parse_error.101] parse error at "
-              "line 1, column 2: syntax error while parsing object key - unexpected end of input; "
-              "expected string literal\n");
+    EXPECT_EQ(
+        describePlugins(r),
+        "hdPrincipled: PrincipledEmbreeRenderer \"Embree\" priority 99\n    /x/lib.so\n"
+        "search path:\n    " +
+            root() +
+            "\n"
+            "warning: " +
+            bad +
+            ": malformed JSON: [json.exception.parse_error.101] parse error at "
+            "line 1, column 2: syntax error while parsing object key - unexpected end of input; "
+            "expected string literal\n");
 }

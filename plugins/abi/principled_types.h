@@ -26,8 +26,8 @@ typedef enum PrdStatus {
     PRD_ERROR_NO_STAGE = 5,         /**< the call needs an open stage */
     PRD_ERROR_NOT_BOUND = 6,        /**< the AOV is not bound */
     PRD_ERROR_UNSUPPORTED = 7,      /**< valid request the renderer cannot do (yet) */
-    PRD_ERROR_PLUGIN = 8,           /**< plugin library missing, entry point missing, ABI mismatch */
-    PRD_ERROR_INTERNAL = 9          /**< a bug: an unexpected exception inside the library */
+    PRD_ERROR_PLUGIN = 8,  /**< plugin library missing, entry point missing, ABI mismatch */
+    PRD_ERROR_INTERNAL = 9 /**< a bug: an unexpected exception inside the library */
 } PrdStatus;
 
 /** Pixel formats of AOV buffers (a subset of Hydra's HdFormat). */
@@ -43,43 +43,43 @@ typedef enum PrdFormat {
 /** Type of a render setting's value. */
 typedef enum PrdValueType {
     PRD_TYPE_NONE = 0,
-    PRD_TYPE_INT = 1,    /**< set with prdSetSettingInt (bool settings too: 0/1) */
-    PRD_TYPE_FLOAT = 2,  /**< set with prdSetSettingFloat (an int is accepted) */
-    PRD_TYPE_STRING = 3  /**< set with prdSetSettingString (tokens too) */
+    PRD_TYPE_INT = 1,   /**< set with prdSetSettingInt (bool settings too: 0/1) */
+    PRD_TYPE_FLOAT = 2, /**< set with prdSetSettingFloat (an int is accepted) */
+    PRD_TYPE_STRING = 3 /**< set with prdSetSettingString (tokens too) */
 } PrdValueType;
 
 /** A renderer the registry found. */
 typedef struct PrdRendererInfo {
-    const char* typeName;     /**< "PrincipledEmbreeRenderer" */
-    const char* displayName;  /**< "Embree" */
-    const char* pluginName;   /**< plugInfo.json "Name" */
-    const char* libraryPath;  /**< absolute path of the plugin library */
-    int priority;             /**< higher first */
-    int loaded;               /**< 1 once the library was loaded successfully */
+    const char* typeName;    /**< "PrincipledEmbreeRenderer" */
+    const char* displayName; /**< "Embree" */
+    const char* pluginName;  /**< plugInfo.json "Name" */
+    const char* libraryPath; /**< absolute path of the plugin library */
+    int priority;            /**< higher first */
+    int loaded;              /**< 1 once the library was loaded successfully */
 } PrdRendererInfo;
 
 typedef struct PrdSettingDescriptor {
-    const char* key;           /**< "convergedSamplesPerPixel" */
-    const char* displayName;   /**< "Samples per pixel" */
-    const char* help;          /**< one line */
+    const char* key;         /**< "convergedSamplesPerPixel" */
+    const char* displayName; /**< "Samples per pixel" */
+    const char* help;        /**< one line */
     PrdValueType type;
-    const char* defaultText;   /**< the default value as text ("64") */
+    const char* defaultText; /**< the default value as text ("64") */
 } PrdSettingDescriptor;
 
 typedef struct PrdAovInfo {
-    const char* name;      /**< "color" */
+    const char* name; /**< "color" */
     PrdFormat format;
-    int channels;          /**< values per pixel */
-    int multiSampled;      /**< 1: samples averaged; 0: first sample wins (IDs, depth) */
+    int channels;     /**< values per pixel */
+    int multiSampled; /**< 1: samples averaged; 0: first sample wins (IDs, depth) */
 } PrdAovInfo;
 
 typedef struct PrdBufferView {
-    const void* data;  /**< float or int32 values by format, top row first */
+    const void* data; /**< float or int32 values by format, top row first */
     int width;
     int height;
     int channels;
     PrdFormat format;
-    int converged;     /**< 1 when the pass that wrote it reached its target */
+    int converged; /**< 1 when the pass that wrote it reached its target */
 } PrdBufferView;
 
 #ifdef __cplusplus

@@ -11,32 +11,32 @@
 
 static int failures = 0;
 
-#define CHECK(cond)                                                              \
-    do {                                                                         \
-        if (!(cond)) {                                                           \
+#define CHECK(cond)                                                                  \
+    do {                                                                             \
+        if (!(cond)) {                                                               \
             fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
-            ++failures;                                                          \
-        }                                                                        \
+            ++failures;                                                              \
+        }                                                                            \
     } while (0)
 
-#define CHECK_STATUS(call, expected)                                                         \
-    do {                                                                                     \
-        PrdStatus s_ = (call);                                                               \
-        if (s_ != (expected)) {                                                              \
+#define CHECK_STATUS(call, expected)                                                           \
+    do {                                                                                       \
+        PrdStatus s_ = (call);                                                                 \
+        if (s_ != (expected)) {                                                                \
             fprintf(stderr, "%s:%d: %s returned %s, expected %s\n", __FILE__, __LINE__, #call, \
-                    prdStatusName(s_), prdStatusName(expected));                             \
-            ++failures;                                                                      \
-        }                                                                                    \
+                    prdStatusName(s_), prdStatusName(expected));                               \
+            ++failures;                                                                        \
+        }                                                                                      \
     } while (0)
 
-#define CHECK_CONTAINS(text, part)                                                            \
-    do {                                                                                      \
-        const char* t_ = (text);                                                              \
-        if (!t_ || !strstr(t_, (part))) {                                                     \
-            fprintf(stderr, "%s:%d: '%s' does not contain '%s'\n", __FILE__, __LINE__,        \
-                    t_ ? t_ : "(null)", (part));                                              \
-            ++failures;                                                                       \
-        }                                                                                     \
+#define CHECK_CONTAINS(text, part)                                                     \
+    do {                                                                               \
+        const char* t_ = (text);                                                       \
+        if (!t_ || !strstr(t_, (part))) {                                              \
+            fprintf(stderr, "%s:%d: '%s' does not contain '%s'\n", __FILE__, __LINE__, \
+                    t_ ? t_ : "(null)", (part));                                       \
+            ++failures;                                                                \
+        }                                                                              \
     } while (0)
 
 static const char* kScene =
@@ -89,7 +89,9 @@ int main(void) {
     /* Unknown renderer: a status and a message, no handle. */
     CHECK_STATUS(prdCreateDelegate("NoSuchRenderer", &d), PRD_ERROR_NOT_FOUND);
     CHECK(d == NULL);
-    CHECK_CONTAINS(prdLastError(NULL), "unknown renderer 'NoSuchRenderer'; available: PrincipledEmbreeRenderer (Embree)");
+    CHECK_CONTAINS(
+        prdLastError(NULL),
+        "unknown renderer 'NoSuchRenderer'; available: PrincipledEmbreeRenderer (Embree)");
 
     /* Null handles and null arguments. */
     CHECK_STATUS(prdOpenStageString(NULL, kScene, "scene"), PRD_ERROR_NULL_HANDLE);
@@ -111,8 +113,10 @@ int main(void) {
 
     /* Bad file, bad text. */
     CHECK_STATUS(prdOpenStageFile(d, "/no/such/scene.usda"), PRD_ERROR_IO);
-    CHECK_CONTAINS(prdLastError(d), "prdOpenStageFile: cannot open '/no/such/scene.usda': no such file");
-    CHECK_STATUS(prdOpenStageString(d, "#usda 1.0\ndef Xform \"A\" {\n", "broken.usda"), PRD_ERROR_IO);
+    CHECK_CONTAINS(prdLastError(d),
+                   "prdOpenStageFile: cannot open '/no/such/scene.usda': no such file");
+    CHECK_STATUS(prdOpenStageString(d, "#usda 1.0\ndef Xform \"A\" {\n", "broken.usda"),
+                 PRD_ERROR_IO);
     CHECK_CONTAINS(prdLastError(d), "broken.usda:");
     CHECK_STATUS(prdOpenStageFile(d, NULL), PRD_ERROR_INVALID_ARGUMENT);
     CHECK_CONTAINS(prdLastError(d), "prdOpenStageFile: path is NULL");
@@ -126,8 +130,11 @@ int main(void) {
     /* Render a tiny image. */
     CHECK_STATUS(prdSetResolution(d, 24, 16), PRD_OK);
     CHECK_STATUS(prdSetSettingInt(d, "convergedSamplesPerPixel", 4), PRD_OK);
-    CHECK_STATUS(prdSetSettingString(d, "convergedSamplesPerPixel", "4"), PRD_ERROR_INVALID_ARGUMENT);
-    CHECK_CONTAINS(prdLastError(d), "render setting 'convergedSamplesPerPixel' is an int; set it with prdSetSettingInt");
+    CHECK_STATUS(prdSetSettingString(d, "convergedSamplesPerPixel", "4"),
+                 PRD_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(
+        prdLastError(d),
+        "render setting 'convergedSamplesPerPixel' is an int; set it with prdSetSettingInt");
     CHECK_STATUS(prdBindAov(d, "color"), PRD_OK);
     CHECK_STATUS(prdOpenStageString(d, kScene, "tiny.usda"), PRD_OK);
     while (!converged && passes < 100) {
@@ -176,10 +183,13 @@ int main(void) {
         CHECK_STATUS(prdSceneSetMaterialInput(b, "/Host/Grey", "diffuseColor", grey, 3), PRD_OK);
         CHECK_STATUS(prdSceneBindMaterial(b, "/Host/Quad", "/Host/Grey"), PRD_OK);
         CHECK_STATUS(prdSceneAddPrim(b, "/Host/Sun", "DistantLight"), PRD_OK);
-        CHECK_STATUS(prdSceneSetAttribute(b, "/Host/Sun", "float", "inputs:intensity", &intensity, 1, NULL), PRD_OK);
+        CHECK_STATUS(
+            prdSceneSetAttribute(b, "/Host/Sun", "float", "inputs:intensity", &intensity, 1, NULL),
+            PRD_OK);
         CHECK_STATUS(prdSceneAddPrim(b, "/Host/Cam", "Camera"), PRD_OK);
         CHECK_STATUS(prdSceneSetTransform(b, "/Host/Cam", cam), PRD_OK);
-        CHECK_STATUS(prdSceneAddMesh(b, "relative/path", pts, 4, counts, 1, indices, 4), PRD_ERROR_INVALID_ARGUMENT);
+        CHECK_STATUS(prdSceneAddMesh(b, "relative/path", pts, 4, counts, 1, indices, 4),
+                     PRD_ERROR_INVALID_ARGUMENT);
         CHECK_CONTAINS(prdLastError(NULL), "must be absolute");
         CHECK_STATUS(prdOpenStageFromBuilder(d, b), PRD_OK);
         converged = 0;

@@ -1,0 +1,448 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "plugins/embree/embreeSession.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+
+#include "delegate/hd/renderIndex.h"
+#include "delegate/hd/tokens.h"
+#include "delegate/renderBuffer.h"
+#include "delegate/renderDelegate.h"
+#include "delegate/renderPass.h"
+#include "scene_adapter/usda/error.h"
+#include "scene_adapter/usda/stage.h"
+
+namespace principled::plugins {
+
+using namespace hd;
+
+namespace {
+
+/// AOV names probed for prdAovCount/prdAovInfo (issue 6's list); the delegate decides which
+/// it knows through defaultAovDescriptor(). Any other name may still be bound if it does.
+const char* const kKnownAovs[] = {
+    "color",  "alpha",      "depth",     "cameraDepth", "position",    "normal",       "Neye",
+    "albedo", "diffuse",    "specular",  "sheen",       "clearcoat",   "transmission", "emission",
+    "primId", "instanceId", "elementId", "materialId",  "sampleCount", "variance"};
+
+PrdFormat toPrd(Format f) {
+    switch (f) {
+        case Format::Float32:
+            return PRD_FORMAT_FLOAT32;
+        case Format::Float32Vec2:
+            return PRD_FORMAT_FLOAT32_VEC2;
+        case Format::Float32Vec3:
+            return PRD_FORMAT_FLOAT32_VEC3;
+        case Format::Float32Vec4:
+            return PRD_FORMAT_FLOAT32_VEC4;
+        case Format::Int32:
+            return PRD_FORMAT_INT32;
+        default:
+            return PRD_FORMAT_INVALID;
+    }
+}
+
+PrdValueType typeOf(const Value& v) {
+    if (std::holds_alternative<int>(v) || std::holds_alternative<bool>(v)) return PRD_TYPE_INT;
+    if (std::holds_alternative<float>(v) || std::holds_alternative<double>(v))
+        return PRD_TYPE_FLOAT;
+    if (std::holds_alternative<Token>(v) || std::holds_alternative<std::string>(v))
+        return PRD_TYPE_STRING;
+    return PRD_TYPE_NONE;
+}
+
+std::string toText(const Value& v) {
+    char buf[64];
+    if (auto* i = std::get_if<int>(&v)) return std::to_string(*i);
+    if (auto* b = std::get_if<bool>(&v)) return *b ? "1" : "0";
+    if (auto f = getFloat(v)) {
+        std::snprintf(buf, sizeof buf, "%.9g", double(*f));
+        return buf;
+    }
+    if (auto s = getString(v)) return *s;
+    return "";
+}
+
+const char* typeName(PrdValueType t) {
+    switch (t) {
+        case PRD_TYPE_INT:
+            return "an int";
+        case PRD_TYPE_FLOAT:
+            return "a float";
+        case PRD_TYPE_STRING:
+            return "a string";
+        default:
+            return "untyped";
+    }
+}
+
+const char* setterFor(PrdValueType t) {
+    switch (t) {
+        case PRD_TYPE_INT:
+            return "prdSetSettingInt";
+        case PRD_TYPE_FLOAT:
+            return "prdSetSettingFloat";
+        default:
+            return "prdSetSettingString";
+    }
+}
+
+}  // namespace
+
+EmbreeSession::EmbreeSession() : _delegate(std::make_unique<embree::EmbreeRenderDelegate>()) {
+    for (const char* n : kKnownAovs) {
+        AovDescriptor d = _delegate->defaultAovDescriptor(Token(n));
+        if (d.format != Format::Invalid)
+            _aovs.push_back({keep(n), toPrd(d.format), componentCount(d.format), d.multiSampled});
+    }
+}
+
+const char* EmbreeSession::keep(const std::string& s) {
+    for (const auto& k : _strings)
+        if (*k == s) return k->c_str();
+    _strings.push_back(std::make_unique<std::string>(s));
+    return _strings.back()->c_str();
+}
+
+EmbreeSession::~EmbreeSession() {
+    closeStage();
+}
+
+void EmbreeSession::closeStage() {
+    _pass.reset();
+    if (_index) _index->clear();
+    _index.reset();
+    _buffers.clear();
+    _scene.reset();
+    _stage.reset();
+    _cameraPath.clear();
+    _adapterWarningsTaken = _stageWarningsTaken = 0;
+}
+
+void EmbreeSession::openFile(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw SessionError(PRD_ERROR_IO, "cannot open '" + path + "': no such file");
+    std::unique_ptr<usd::Stage> stage;
+    try {
+        stage = usd::Stage::open(path);
+    } catch (const usd::Error& e) {
+        throw SessionError(PRD_ERROR_IO, e.what());
+    }
+    open(std::move(stage));
+}
+
+void EmbreeSession::openString(const std::string& text, const std::string& displayName) {
+    std::unique_ptr<usd::Stage> stage;
+    try {
+        stage = usd::Stage::openString(text, displayName.empty() ? "<string>" : displayName);
+    } catch (const usd::Error& e) {
+        throw SessionError(PRD_ERROR_IO, e.what());
+    }
+    open(std::move(stage));
+}
+
+void EmbreeSession::open(std::unique_ptr<usd::Stage> stage) {
+    closeStage();
+    _stage = std::move(stage);
+    _index = std::make_unique<RenderIndex>(_delegate.get());
+    _scene = std::make_unique<EditableSceneDelegate>(*_stage);
+    _scene->populate(_index.get());
+    const auto& cams = _scene->cameras();
+    if (!_cameraRequest.empty()) {
+        if (std::find(cams.begin(), cams.end(), Path(_cameraRequest)) == cams.end()) {
+            std::string message =
+                "camera '" + _cameraRequest + "' not found in the stage" + cameraList();
+            closeStage();
+            throw SessionError(PRD_ERROR_NOT_FOUND, message);
+        }
+        _cameraPath = _cameraRequest;
+    } else if (!cams.empty()) {
+        _cameraPath = cams.front().str();
+    } else {
+        _cameraPath = _scene->addDefaultCamera(_index.get(), double(_width) / _height).str();
+    }
+    for (const std::string& name : _bound) allocateBuffer(name);
+    _index->sync();
+    _pass = _delegate->createRenderPass(_index.get());
+}
+
+std::string EmbreeSession::cameraList() const {
+    if (!_scene || _scene->cameras().empty()) return " (it has no cameras)";
+    std::string list;
+    for (const auto& c : _scene->cameras()) list += (list.empty() ? "" : ", ") + c.str();
+    return "; cameras: " + list;
+}
+
+void EmbreeSession::requireStage(const char* what) const {
+    if (!_stage)
+        throw SessionError(PRD_ERROR_NO_STAGE, std::string(what) +
+                                                   " needs an open stage: call prdOpenStageFile "
+                                                   "or prdOpenStageString first");
+}
+
+void EmbreeSession::setAttribute(const std::string& primPath, const std::string& attribute,
+                                 const EditValue& v) {
+    requireStage("editing an attribute");
+    EditResult r = _scene->setAttribute(_index.get(), primPath, attribute, v);
+    switch (r.code) {
+        case EditResult::Code::Applied:
+            return;
+        case EditResult::Code::NotFound:
+            throw SessionError(PRD_ERROR_NOT_FOUND, r.message);
+        case EditResult::Code::Unsupported:
+            throw SessionError(PRD_ERROR_UNSUPPORTED, r.message);
+        case EditResult::Code::BadValue:
+            throw SessionError(PRD_ERROR_INVALID_ARGUMENT, r.message);
+    }
+}
+
+void EmbreeSession::setLocalTransform(const std::string& primPath, const double matrix[16]) {
+    requireStage("setting a transform");
+    EditResult r = _scene->setLocalTransform(_index.get(), primPath, matrix);
+    if (r.code == EditResult::Code::NotFound) throw SessionError(PRD_ERROR_NOT_FOUND, r.message);
+    if (r.code != EditResult::Code::Applied)
+        throw SessionError(PRD_ERROR_INVALID_ARGUMENT, r.message);
+}
+
+// ---- Settings ---------------------------------------------------------------------------
+
+void EmbreeSession::setSetting(const std::string& key, const SettingInput& in) {
+    auto descriptors = _delegate->renderSettingDescriptors();
+    auto it = std::find_if(descriptors.begin(), descriptors.end(),
+                           [&](const RenderSettingDescriptor& d) { return d.key.str() == key; });
+    if (it == descriptors.end()) {
+        std::string list;
+        for (const auto& d : descriptors) list += (list.empty() ? "" : ", ") + d.key.str();
+        throw SessionError(PRD_ERROR_NOT_FOUND,
+                           "unknown render setting '" + key + "'; settings: " + list);
+    }
+    PrdValueType want = typeOf(it->defaultValue);
+    bool ok = in.type == want || (want == PRD_TYPE_FLOAT && in.type == PRD_TYPE_INT);
+    if (!ok)
+        throw SessionError(PRD_ERROR_INVALID_ARGUMENT, "render setting '" + key + "' is " +
+                                                           typeName(want) + "; set it with " +
+                                                           setterFor(want));
+    Value v;
+    const Value& def = it->defaultValue;
+    if (std::holds_alternative<bool>(def))
+        v = Value(in.i != 0);
+    else if (std::holds_alternative<int>(def))
+        v = Value(int(std::clamp<long long>(in.i, INT32_MIN, INT32_MAX)));
+    else if (std::holds_alternative<float>(def))
+        v = Value(float(in.type == PRD_TYPE_INT ? double(in.i) : in.f));
+    else if (std::holds_alternative<double>(def))
+        v = Value(in.type == PRD_TYPE_INT ? double(in.i) : in.f);
+    else if (std::holds_alternative<Token>(def))
+        v = Value(Token(in.s));
+    else
+        v = Value(in.s);
+    // Range checks the delegate relies on (RenderSession makes the same ones).
+    auto bad = [&](const std::string& why) {
+        throw SessionError(PRD_ERROR_INVALID_ARGUMENT, "render setting '" + key + "': " + why);
+    };
+    if (key == "convergedSamplesPerPixel" && in.i < 1) bad("must be at least 1");
+    if (key == "maxDepth" && in.i < 0) bad("must be at least 0");
+    if (key == "shadingModel" && in.s != "disney" && in.s != "ue4")
+        bad("must be 'disney' or 'ue4', not '" + in.s + "'");
+    if (in.type == PRD_TYPE_FLOAT && !std::isfinite(in.f)) bad("must be finite");
+    _delegate->setRenderSetting(it->key, v);
+}
+
+int EmbreeSession::settingCount() {
+    return int(_delegate->renderSettingDescriptors().size());
+}
+
+PrdSettingDescriptor EmbreeSession::settingDescriptor(int index) {
+    auto descriptors = _delegate->renderSettingDescriptors();
+    if (index < 0 || index >= int(descriptors.size()))
+        throw SessionError(PRD_ERROR_NOT_FOUND,
+                           "setting index " + std::to_string(index) + " out of range (" +
+                               std::to_string(descriptors.size()) + " settings)");
+    const auto& d = descriptors[index];
+    PrdSettingDescriptor out{};
+    out.key = keep(d.key.str());
+    out.displayName = keep(d.name);
+    out.help = keep(d.help);
+    out.type = typeOf(d.defaultValue);
+    out.defaultText = keep(toText(d.defaultValue));
+    return out;
+}
+
+const char* EmbreeSession::settingText(const std::string& key) {
+    bool known = false;
+    Value def;
+    for (const auto& d : _delegate->renderSettingDescriptors())
+        if (d.key.str() == key) known = true, def = d.defaultValue;
+    if (!known) throw SessionError(PRD_ERROR_NOT_FOUND, "unknown render setting '" + key + "'");
+    Value v = _delegate->renderSetting(Token(key));
+    _text = toText(isEmpty(v) ? def : v);
+    return _text.c_str();
+}
+
+// ---- Camera, resolution, AOVs ------------------------------------------------------------
+
+void EmbreeSession::setCamera(const std::string& primPath) {
+    if (_stage) {
+        if (primPath.empty()) {
+            const auto& cams = _scene->cameras();
+            _cameraPath =
+                !cams.empty()
+                    ? cams.front().str()
+                    : _scene->addDefaultCamera(_index.get(), double(_width) / _height).str();
+        } else {
+            const auto& cams = _scene->cameras();
+            if (std::find(cams.begin(), cams.end(), Path(primPath)) == cams.end())
+                throw SessionError(
+                    PRD_ERROR_NOT_FOUND,
+                    "camera '" + primPath + "' not found in the stage" + cameraList());
+            _cameraPath = primPath;
+        }
+    }
+    _cameraRequest = primPath;
+}
+
+const std::string& EmbreeSession::camera() const {
+    requireStage("prdGetCamera");
+    return _cameraPath;
+}
+
+void EmbreeSession::setResolution(int width, int height) {
+    if (width < 1 || height < 1 || width > 32768 || height > 32768)
+        throw SessionError(PRD_ERROR_INVALID_ARGUMENT, "resolution " + std::to_string(width) + "x" +
+                                                           std::to_string(height) +
+                                                           " must be between 1x1 and 32768x32768");
+    _width = width;
+    _height = height;
+    if (_stage)
+        for (const std::string& name : _bound) allocateBuffer(name);
+}
+
+PrdAovInfo EmbreeSession::describeAov(const std::string& name) {
+    for (const Aov& a : _aovs)
+        if (a.name == name) return {a.name, a.format, a.channels, a.multiSampled};
+    AovDescriptor d = _delegate->defaultAovDescriptor(Token(name));
+    if (d.format == Format::Invalid) {
+        std::string list;
+        for (const char* n : kKnownAovs)
+            if (_delegate->defaultAovDescriptor(Token(n)).format != Format::Invalid)
+                list += (list.empty() ? "" : ", ") + std::string(n);
+        throw SessionError(PRD_ERROR_NOT_FOUND,
+                           "unknown AOV '" + name + "'; this renderer has: " + list);
+    }
+    _aovs.push_back({keep(name), toPrd(d.format), componentCount(d.format), d.multiSampled});
+    const Aov& a = _aovs.back();
+    return {a.name, a.format, a.channels, a.multiSampled};
+}
+
+PrdAovInfo EmbreeSession::aovInfo(int index) const {
+    if (index < 0 || index >= int(_aovs.size()))
+        throw SessionError(PRD_ERROR_NOT_FOUND, "AOV index " + std::to_string(index) +
+                                                    " out of range (" +
+                                                    std::to_string(_aovs.size()) + " AOVs)");
+    const Aov& a = _aovs[index];
+    return {a.name, a.format, a.channels, a.multiSampled};
+}
+
+void EmbreeSession::allocateBuffer(const std::string& name) {
+    Path id("/__principled/aov/" + name);
+    auto* buffer =
+        static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), id));
+    if (!buffer) {
+        _index->insertBprim(tokens::renderBuffer(), _scene.get(), id);
+        buffer =
+            static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), id));
+    }
+    if (!buffer)
+        throw SessionError(PRD_ERROR_INTERNAL,
+                           "could not create a render buffer for AOV '" + name + "'");
+    AovDescriptor d = _delegate->defaultAovDescriptor(Token(name));
+    buffer->allocate(_width, _height, d.format, d.multiSampled);
+    _buffers[name] = buffer;
+}
+
+void EmbreeSession::bindAov(const std::string& name) {
+    describeAov(name);  // throws for unknown names
+    if (std::find(_bound.begin(), _bound.end(), name) != _bound.end()) return;
+    _bound.push_back(name);
+    if (_stage) allocateBuffer(name);
+}
+
+void EmbreeSession::unbindAov(const std::string& name) {
+    auto it = std::find(_bound.begin(), _bound.end(), name);
+    if (it == _bound.end())
+        throw SessionError(PRD_ERROR_NOT_BOUND, "AOV '" + name + "' is not bound");
+    _bound.erase(it);
+    if (_stage) {
+        _index->removeBprim(Path("/__principled/aov/" + name));
+        _buffers.erase(name);
+    }
+}
+
+// ---- Rendering ---------------------------------------------------------------------------
+
+bool EmbreeSession::renderPass() {
+    requireStage("prdRenderPass");
+    _index->sync();  // no-op unless something was edited
+    RenderPassState state;
+    state.cameraId = Path(_cameraPath);
+    state.width = _width;
+    state.height = _height;
+    for (const std::string& name : _bound)
+        state.aovBindings.push_back({Token(name), _buffers.at(name)});
+    _pass->execute(state);
+    return _pass->isConverged();
+}
+
+void EmbreeSession::progress(int* converged, int* completed, int* target) const {
+    auto* pass = static_cast<const embree::EmbreeRenderPass*>(_pass.get());
+    if (converged) *converged = pass && pass->isConverged() ? 1 : 0;
+    if (completed) *completed = pass ? pass->completedSamples() : 0;
+    if (target) *target = std::max(1, _delegate->samplesPerPixel());
+}
+
+PrdBufferView EmbreeSession::mapAov(const std::string& name) {
+    if (std::find(_bound.begin(), _bound.end(), name) == _bound.end()) {
+        describeAov(name);  // an unknown name says so rather than "not bound"
+        throw SessionError(PRD_ERROR_NOT_BOUND,
+                           "AOV '" + name + "' is not bound: call prdBindAov first");
+    }
+    requireStage("prdMapAov");
+    embree::EmbreeRenderBuffer* b = _buffers.at(name);
+    PrdBufferView view{};
+    view.data = b->map();
+    view.width = b->width();
+    view.height = b->height();
+    view.channels = componentCount(b->format());
+    view.format = toPrd(b->format());
+    view.converged = _pass && _pass->isConverged() ? 1 : 0;
+    return view;
+}
+
+const std::vector<std::pair<std::string, double>>& EmbreeSession::snapshotStats() {
+    _stats.clear();
+    for (const auto& [k, v] : _delegate->renderStats()) _stats.emplace_back(k, v);
+    return _stats;
+}
+
+const char* EmbreeSession::takeWarnings() {
+    _text.clear();
+    auto add = [&](const std::string& line) { _text += line + "\n"; };
+    if (_scene) {
+        const auto& w = _scene->warnings();
+        for (; _adapterWarningsTaken < w.size(); ++_adapterWarningsTaken)
+            add(w[_adapterWarningsTaken]);
+    }
+    for (const auto& w : _delegate->takeWarnings()) add(w);
+    if (_stage) {
+        const auto& w = _stage->warnings();
+        for (; _stageWarningsTaken < w.size(); ++_stageWarningsTaken)
+            add(w[_stageWarningsTaken].where.str() + ": " + w[_stageWarningsTaken].message);
+    }
+    return _text.c_str();
+}
+
+}  // namespace principled::plugins

@@ -20,6 +20,7 @@ bool EmbreeRenderBuffer::allocate(int width, int height, hd::Format format, bool
     _count.assign(n, 0);
     _resolved.assign(format == hd::Format::Int32 ? 0 : n * c, 0.0f);
     _converged = false;
+    _clearValue = format == hd::Format::Int32 ? -1.0f : 0.0f;  // IDs: -1 means "nothing"
     return true;
 }
 

@@ -4,11 +4,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "delegate/hd/token.h"
+
 namespace principled::embree {
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInf = 1e30f;
+constexpr int kMaxPassThrough = 64;  // transparent layers a path may cross
 
 // Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1), listing 3.
 void orthonormalBasis(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
@@ -59,6 +62,8 @@ struct Hit {
     glm::vec3 ns;  ///< shading normal, same hemisphere as ng
     const GeometryRecord* record;
     int element = 0;  ///< authored face (meshes), 0 for implicit surfaces
+    unsigned triangle = 0;
+    float u = 0.0f, v = 0.0f;  ///< barycentrics of corners 1 and 2
 };
 
 bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
@@ -89,6 +94,9 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     } else {
         const glm::uvec3& t = rec.triangles[rh.hit.primID];
         hit->element = rec.triangleFace[rh.hit.primID];
+        hit->triangle = rh.hit.primID;
+        hit->u = rh.hit.u;
+        hit->v = rh.hit.v;
         const glm::vec3 &p0 = rec.points[t.x], &p1 = rec.points[t.y], &p2 = rec.points[t.z];
         ngObj = glm::cross(p1 - p0, p2 - p0);
         nsObj = ngObj;
@@ -136,6 +144,59 @@ glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3&
     return p + (glm::dot(dir, ng) >= 0.0f ? scale : -scale) * ng;
 }
 
+// The shading point as materials see it: primvars interpolated with the hit's barycentrics.
+class HitContext final : public shading::ShadingContext {
+public:
+    explicit HitContext(const Hit& hit) : _hit(hit) {}
+    bool primvar(const hd::Token& name, int components, float* out) const override {
+        const PrimvarChannel* ch = _hit.record->primvar(name);
+        if (!ch) return false;
+        int n = std::min(components, ch->components);
+        for (int c = 0; c < components; ++c) out[c] = 0.0f;
+        if (ch->constant) {
+            for (int c = 0; c < n; ++c) out[c] = ch->data[c];
+            return true;
+        }
+        const float* d = &ch->data[size_t(_hit.triangle) * 3 * ch->components];
+        float w0 = 1.0f - _hit.u - _hit.v;
+        for (int c = 0; c < n; ++c)
+            out[c] = w0 * d[c] + _hit.u * d[ch->components + c] + _hit.v * d[2 * ch->components + c];
+        return true;
+    }
+
+private:
+    const Hit& _hit;
+};
+
+// A tangent frame around n whose tangent follows the st parameterisation of the triangle
+// (the usual dP/du from the triangle's edges and uv deltas); any frame if st is missing or
+// degenerate.
+Frame tangentFrame(const Hit& hit, const glm::vec3& n) {
+    const GeometryRecord& rec = *hit.record;
+    const PrimvarChannel* st = rec.primvar(hd::Token("st"));
+    if (rec.kind == GeometryRecord::Kind::Triangles && st && !st->constant && st->components >= 2) {
+        const glm::uvec3& t = rec.triangles[hit.triangle];
+        glm::vec3 e1 = rec.points[t.y] - rec.points[t.x], e2 = rec.points[t.z] - rec.points[t.x];
+        const float* uv = &st->data[size_t(hit.triangle) * 3 * st->components];
+        glm::vec2 d1(uv[st->components] - uv[0], uv[st->components + 1] - uv[1]);
+        glm::vec2 d2(uv[2 * st->components] - uv[0], uv[2 * st->components + 1] - uv[1]);
+        float det = d1.x * d2.y - d1.y * d2.x;
+        if (std::abs(det) > 1e-12f) {
+            glm::vec3 dpdu = (e1 * d2.y - e2 * d1.y) / det;
+            glm::vec3 tw = glm::mat3(rec.objectToWorld) * dpdu;
+            tw -= n * glm::dot(n, tw);
+            float l = glm::length(tw);
+            if (l > 1e-12f && std::isfinite(l)) {
+                Frame f(n);
+                f.t = tw / l;
+                f.b = glm::cross(n, f.t);
+                return f;
+            }
+        }
+    }
+    return Frame(n);
+}
+
 }  // namespace
 
 PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
@@ -156,6 +217,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     bool prevDelta = true;     // the camera "lobe" is a delta: no MIS on direct hits
     float prevBsdfPdf = 0.0f;
     glm::vec3 prevNg(0.0f);
+    int passThrough = 0;
 
     for (int depth = 0;; ++depth) {
         Hit hit;
@@ -184,17 +246,33 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             break;
         }
 
-        // Material: the bound one, or UsdPreviewSurface defaults with displayColor.
+        // Material: the bound one (evaluated here if textured), or UsdPreviewSurface
+        // defaults with displayColor.
         const GeometryRecord& rec = *hit.record;
-        MaterialRecord fallback;
-        const MaterialRecord* mat = &fallback;
-        if (rec.materialIndex >= 0 && rec.materialIndex < int(_scene.materials.size()))
-            mat = &_scene.materials[rec.materialIndex];
-        else {
-            fallback.params.baseColor = rec.displayColor;
-            fallback.params.roughness = 0.5f;
-            fallback.params.specular = 0.5f;
+        HitContext context(hit);
+        shading::ShadedMaterial shaded;
+        if (rec.materialIndex >= 0 && rec.materialIndex < int(_scene.materials.size())) {
+            const MaterialRecord& m = _scene.materials[rec.materialIndex];
+            shaded = m.program ? m.program->evaluate(context) : m.constant;
+        } else {
+            shaded.params.baseColor = rec.displayColor;
+            float dc[3];
+            if (context.primvar(hd::Token("displayColor"), 3, dc))
+                shaded.params.baseColor = glm::clamp(glm::vec3(dc[0], dc[1], dc[2]), 0.0f, 1.0f);
+            shaded.params.roughness = 0.5f;
+            shaded.params.specular = 0.5f;
         }
+        // Partial presence (opacity, cutouts): a stochastic choice to pass through.
+        float presence = shaded.presence();
+        if (presence < 1.0f && passThrough < kMaxPassThrough) {
+            if (presence <= 0.0f || sampler.next1D() >= presence) {
+                ++passThrough;
+                ray.origin = offsetOrigin(hit.p, hit.ng, ray.direction);
+                --depth;  // not a bounce
+                continue;
+            }
+        }
+        const shading::ShadedMaterial* mat = &shaded;
         if (mat->emission != glm::vec3(0.0f)) credit(beta * mat->emission);
         if (depth == 0) {
             out.alpha = 1.0f;
@@ -214,6 +292,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // A shading normal that puts the viewer below the surface is replaced by the geometric
         // one (no black rims); the BSDF then sees a consistent upper hemisphere.
         glm::vec3 ns = glm::dot(hit.ns, wo) > 1e-4f ? hit.ns : hit.ng;
+        if (mat->hasNormalMap) {
+            Frame tf = tangentFrame(hit, ns);
+            glm::vec3 mapped = glm::normalize(tf.toWorld(mat->tangentNormal));
+            if (glm::dot(mapped, wo) > 1e-4f && std::isfinite(mapped.x)) ns = mapped;
+        }
         Frame frame(ns);
         glm::vec3 woLocal = frame.toLocal(wo);
         bsdf::Bsdf bsdf(mat->params, _settings.bsdf);

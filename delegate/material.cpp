@@ -2,7 +2,6 @@
 #include "delegate/material.h"
 
 #include "delegate/hd/sceneDelegate.h"
-#include "delegate/previewSurface.h"
 
 namespace principled::embree {
 
@@ -16,7 +15,10 @@ void Material::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits
     }
     if (*bits & (SprimDirty::MaterialParams | SprimDirty::Resource | SprimDirty::Params)) {
         std::vector<std::string> notes;
-        _record = mapPreviewSurface(delegate->getMaterialResource(id()), &notes);
+        auto program = std::make_shared<shading::MaterialProgram>(shading::MaterialProgram::compile(
+            delegate->getMaterialResource(id()), *param->textureCache(), &notes));
+        _record.constant = program->constantResult();
+        _record.program = program->isConstant() ? nullptr : program;
         for (const auto& n : notes) param->warn(id(), n);
         param->markTablesDirty();
     }

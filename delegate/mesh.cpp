@@ -7,52 +7,70 @@
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
 #include "delegate/primvarUtil.h"
+#include "delegate/subdiv/adaptiveLevel.h"
 #include "delegate/triangulate.h"
 
 namespace principled::embree {
 
 using namespace hd;
 
+namespace {
+
+constexpr Interpolation kInterpolations[] = {Interpolation::Constant, Interpolation::Uniform,
+                                             Interpolation::Varying, Interpolation::Vertex,
+                                             Interpolation::FaceVarying};
+
+bool isGeometryPrimvar(const Token& name) {
+    return name == tokens::normals() || name == tokens::points();
+}
+
+}  // namespace
+
 DirtyBits Mesh::geometryBits() const {
     return RprimDirty::Points | RprimDirty::Topology | RprimDirty::Normals | RprimDirty::Primvar |
            RprimDirty::DisplayStyle | RprimDirty::SubdivTags;
 }
 
+int Mesh::chooseLevel(const MeshTopology& topo, const std::vector<glm::vec3>& points,
+                      EmbreeRenderParam* param) const {
+    if (topo.scheme == Token("none")) return 0;
+    if (topo.refineLevel >= 0) return std::min(topo.refineLevel, 8);  // per-prim override
+    EmbreeRenderParam::Dicing d = param->dicing();
+    if (d.level >= 0) return std::min(d.level, 8);
+    if (!d.haveView) return d.fallbackLevel;
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const auto& p : points) {
+        glm::vec3 w = glm::vec3(_record.objectToWorld * glm::vec4(p, 1.0f));
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+    }
+    subdiv::ScreenMetric view;
+    view.cameraPosition = d.cameraPosition;
+    view.verticalFov = d.verticalFov;
+    view.imageHeight = d.imageHeight;
+    view.targetEdgePixels = d.targetEdgePixels;
+    view.maxLevel = d.maxLevel;
+    return subdiv::adaptiveLevel(lo, hi, topo.faceVertexCounts.size(), view);
+}
+
 RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* param) {
     Value pointsValue = delegate->get(id(), tokens::points());
     const auto* points = getIf<std::vector<glm::vec3>>(pointsValue);
-    MeshTopology topo = delegate->getMeshTopology(id());
-    Triangulation tri;
-    std::string error;
-    bool ok = points && triangulate(topo, points->size(), &tri, &error);
-    if (points && ok) {
-        for (const glm::vec3& p : *points)
-            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-                ok = false;
-                error = "points contain NaN or Inf";
-                break;
-            }
-    }
-    if (!points) error = "has no points";
-    if (ok && tri.skippedFaces > 0)
-        param->warn(id(), "skipped " + std::to_string(tri.skippedFaces) + " invalid face(s); " +
-                              tri.firstProblem);
-    if (!ok || tri.triangles.empty()) {
-        if (!ok) param->warn(id(), "mesh not rendered: " + error);
+    if (!points || points->empty()) {
+        param->warn(id(), "mesh not rendered: it has no points");
         return nullptr;
     }
-
-    _record.kind = GeometryRecord::Kind::Triangles;
-    _record.points = *points;
-    _record.triangles = std::move(tri.triangles);
-    _record.triangleFace = std::move(tri.triangleFace);
-    _record.cornerNormals = authoredCornerNormals(delegate, id(), _record.points.size(),
-                                                  topo.faceVertexCounts.size(), tri.corners,
-                                                  _record.triangles, _record.triangleFace);
-    // Subdivision surfaces without authored normals are shaded smooth (the cage is the
-    // approximation until refinement applies); polygonal meshes ("none") stay faceted.
-    if (_record.cornerNormals.empty() && topo.scheme != Token("none"))
-        _record.cornerNormals = smoothCornerNormals(_record.points, _record.triangles);
+    for (const glm::vec3& p : *points)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            param->warn(id(), "mesh not rendered: points contain NaN or Inf");
+            return nullptr;
+        }
+    MeshTopology topo = delegate->getMeshTopology(id());
+    // GeometryPrim syncs the transform before the geometry, so adaptive dicing sees it.
+    int level = chooseLevel(topo, *points, param);
+    bool ok = level > 0 ? buildSubdivided(delegate, param, topo, *points, level)
+                        : buildCage(delegate, param, topo, *points);
+    if (!ok || _record.triangles.empty()) return nullptr;
     if (auto c = constantDisplayColor(delegate, id())) _record.displayColor = *c;
 
     RTCGeometry geom = rtcNewGeometry(param->device(), RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -66,6 +84,180 @@ RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* pa
     std::memcpy(t, _record.triangles.data(), _record.triangles.size() * sizeof(glm::uvec3));
     param->meshesRebuilt++;
     return geom;
+}
+
+bool Mesh::buildCage(SceneDelegate* delegate, EmbreeRenderParam* param, const MeshTopology& topo,
+                     const std::vector<glm::vec3>& points) {
+    _level = 0;
+    _subdiv.reset();
+    Triangulation tri;
+    std::string error;
+    if (!triangulate(topo, points.size(), &tri, &error)) {
+        param->warn(id(), "mesh not rendered: " + error);
+        return false;
+    }
+    if (tri.skippedFaces > 0)
+        param->warn(id(), "skipped " + std::to_string(tri.skippedFaces) + " invalid face(s); " +
+                              tri.firstProblem);
+    _record.kind = GeometryRecord::Kind::Triangles;
+    _record.points = points;
+    _record.triangles = std::move(tri.triangles);
+    _record.triangleFace = std::move(tri.triangleFace);
+    CornerLayout layout{points.size(), topo.faceVertexCounts.size(), topo.faceVertexIndices.size(),
+                        &_record.triangles, &tri.corners, &_record.triangleFace};
+    _record.cornerNormals = authoredCornerNormals(delegate, id(), layout);
+    // A subdivision surface drawn as its cage is shaded smooth; polygons ("none") stay faceted.
+    if (_record.cornerNormals.empty() && topo.scheme != Token("none"))
+        _record.cornerNormals = smoothCornerNormals(_record.points, _record.triangles);
+    _record.primvars.clear();
+    for (Interpolation interp : kInterpolations)
+        for (const auto& d : delegate->getPrimvarDescriptors(id(), interp)) {
+            if (isGeometryPrimvar(d.name)) continue;
+            std::vector<int> indices;
+            std::vector<float> flat;
+            int components = 0;
+            Value v = delegate->getIndexedPrimvar(id(), d.name, &indices);
+            if (!flattenFloats(v, &flat, &components) || components > 4) continue;
+            PrimvarChannel ch;
+            ch.name = d.name;
+            ch.components = components;
+            ch.constant = interp == Interpolation::Constant;
+            if (ch.constant) {
+                if (flat.size() < size_t(components)) continue;
+                ch.data.assign(flat.begin(), flat.begin() + components);
+            } else if (!expandToCorners(flat, components, indices, interp, layout, &ch.data)) {
+                param->warn(id(), "primvar '" + d.name.str() + "' has the wrong number of values for its interpolation; ignored");
+                continue;
+            }
+            _record.primvars.push_back(std::move(ch));
+        }
+    return true;
+}
+
+bool Mesh::buildSubdivided(SceneDelegate* delegate, EmbreeRenderParam* param,
+                           const MeshTopology& topo, const std::vector<glm::vec3>& points,
+                           int level) {
+    SubdivTags tags = delegate->getSubdivTags(id());
+    // Face-varying primvars get their own OpenSubdiv channel (their own topology).
+    struct Pending {
+        Token name;
+        Interpolation interp;
+        std::vector<float> flat;
+        std::vector<int> indices;
+        int components;
+        int channel = -1;
+    };
+    std::vector<Pending> pending;
+    subdiv::BuildOptions opts;
+    opts.level = level;
+    for (Interpolation interp : kInterpolations)
+        for (const auto& d : delegate->getPrimvarDescriptors(id(), interp)) {
+            if (isGeometryPrimvar(d.name)) continue;
+            Pending p{d.name, interp, {}, {}, 0};
+            Value v = delegate->getIndexedPrimvar(id(), d.name, &p.indices);
+            if (!flattenFloats(v, &p.flat, &p.components) || p.components > 4) continue;
+            if (interp == Interpolation::FaceVarying) {
+                subdiv::FaceVaryingChannel ch;
+                size_t values = p.flat.size() / size_t(p.components);
+                if (p.indices.empty()) {
+                    ch.indices.resize(values);
+                    for (size_t i = 0; i < values; ++i) ch.indices[i] = int(i);
+                } else {
+                    ch.indices = p.indices;
+                }
+                ch.valueCount = values;
+                p.channel = int(opts.faceVarying.size());
+                opts.faceVarying.push_back(std::move(ch));
+            } else if (!p.indices.empty()) {
+                // Indexed non-face-varying primvars are de-indexed first.
+                std::vector<float> flat;
+                flat.reserve(p.indices.size() * p.components);
+                bool good = true;
+                for (int i : p.indices) {
+                    if (i < 0 || size_t(i) * p.components >= p.flat.size()) { good = false; break; }
+                    flat.insert(flat.end(), p.flat.begin() + size_t(i) * p.components,
+                                p.flat.begin() + size_t(i + 1) * p.components);
+                }
+                if (!good) continue;
+                p.flat = std::move(flat);
+                p.indices.clear();
+            }
+            pending.push_back(std::move(p));
+        }
+    if (!_subdiv || !_subdiv->matches(topo, tags, points.size(), opts)) {
+        std::string error;
+        _subdiv = subdiv::SubdivTopology::create(topo, tags, points.size(), opts, &error);
+        if (!_subdiv) {
+            param->warn(id(), "mesh not rendered: " + error);
+            return false;
+        }
+        for (const auto& w : _subdiv->warnings()) param->warn(id(), w);
+    }
+    std::string error;
+    if (!_subdiv->refine(points, &_refined, &error)) {
+        param->warn(id(), "mesh not rendered: " + error);
+        return false;
+    }
+    _level = _subdiv->level();
+    _record.kind = GeometryRecord::Kind::Triangles;
+    _record.points = _refined.points;
+    _record.triangles = _refined.triangles;
+    _record.triangleFace = _refined.triangleFace;
+    _record.cornerNormals.clear();
+    if (!_refined.normals.empty()) {
+        _record.cornerNormals.resize(_record.triangles.size() * 3);
+        for (size_t t = 0; t < _record.triangles.size(); ++t)
+            for (int k = 0; k < 3; ++k) _record.cornerNormals[3 * t + k] = _refined.normals[_record.triangles[t][k]];
+    }
+    // Primvars on the refined triangles.
+    _record.primvars.clear();
+    size_t triCount = _record.triangles.size();
+    for (auto& p : pending) {
+        PrimvarChannel ch;
+        ch.name = p.name;
+        ch.components = p.components;
+        size_t count = p.flat.size() / size_t(p.components);
+        std::vector<float> refined;
+        bool ok = true;
+        switch (p.interp) {
+            case Interpolation::Constant:
+                ch.constant = true;
+                ch.data.assign(p.flat.begin(), p.flat.begin() + std::min<size_t>(p.flat.size(), p.components));
+                ok = ch.data.size() == size_t(p.components);
+                break;
+            case Interpolation::FaceVarying:
+                ok = _subdiv->refineFaceVarying(p.channel, p.flat.data(), count, p.components, &ch.data);
+                break;
+            case Interpolation::Uniform:
+                ok = _subdiv->refineUniform(p.flat.data(), count, p.components, &refined);
+                if (ok) {
+                    ch.data.resize(triCount * 3 * p.components);
+                    for (size_t t = 0; t < triCount; ++t)
+                        for (int k = 0; k < 3; ++k)
+                            for (int c = 0; c < p.components; ++c)
+                                ch.data[(3 * t + k) * p.components + c] = refined[t * p.components + c];
+                }
+                break;
+            default:  // vertex, varying
+                ok = p.interp == Interpolation::Vertex
+                         ? _subdiv->refineVertex(p.flat.data(), count, p.components, &refined)
+                         : _subdiv->refineVarying(p.flat.data(), count, p.components, &refined);
+                if (ok) {
+                    ch.data.resize(triCount * 3 * p.components);
+                    for (size_t t = 0; t < triCount; ++t)
+                        for (int k = 0; k < 3; ++k)
+                            for (int c = 0; c < p.components; ++c)
+                                ch.data[(3 * t + k) * p.components + c] =
+                                    refined[size_t(_record.triangles[t][k]) * p.components + c];
+                }
+        }
+        if (!ok) {
+            param->warn(id(), "primvar '" + p.name.str() + "' could not be refined (wrong count for its interpolation); ignored");
+            continue;
+        }
+        _record.primvars.push_back(std::move(ch));
+    }
+    return true;
 }
 
 }  // namespace principled::embree

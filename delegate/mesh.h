@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// Mesh: the Embree rprim for UsdGeomMesh. Triangulates the authored polygons (fan) and keeps
-// normals per corner; its BVH is instanced into the top-level scene.
+// Mesh: the Embree rprim for UsdGeomMesh. Polygonal meshes are fan-triangulated; subdivision
+// meshes are refined with OpenSubdiv (uniform level, fixed or picked from the projected size),
+// their topology refined once and re-posed by stencils. Primvars are kept per triangle corner.
 #pragma once
 
+#include <memory>
+
 #include "delegate/geometryPrim.h"
+#include "delegate/subdiv/refinedMesh.h"
+#include "delegate/subdiv/subdivTopology.h"
 
 namespace principled::embree {
 
@@ -11,9 +16,25 @@ class Mesh : public GeometryPrim {
 public:
     using GeometryPrim::GeometryPrim;
 
+    /// The subdivision level used at the last rebuild (0: the polygons themselves).
+    int refineLevel() const { return _level; }
+
 protected:
     hd::DirtyBits geometryBits() const override;
     RTCGeometry rebuildGeometry(hd::SceneDelegate* delegate, EmbreeRenderParam* param) override;
+
+private:
+    int chooseLevel(const hd::MeshTopology& topo, const std::vector<glm::vec3>& points,
+                    EmbreeRenderParam* param) const;
+    bool buildCage(hd::SceneDelegate* delegate, EmbreeRenderParam* param,
+                   const hd::MeshTopology& topo, const std::vector<glm::vec3>& points);
+    bool buildSubdivided(hd::SceneDelegate* delegate, EmbreeRenderParam* param,
+                         const hd::MeshTopology& topo, const std::vector<glm::vec3>& points,
+                         int level);
+
+    std::unique_ptr<subdiv::SubdivTopology> _subdiv;
+    subdiv::RefinedMesh _refined;
+    int _level = 0;
 };
 
 }  // namespace principled::embree

@@ -17,61 +17,109 @@ glm::vec3 safeNormalize(const glm::vec3& n) {
     return (l > 0.0f && std::isfinite(l)) ? n / l : glm::vec3(0.0f);
 }
 
+template <typename V, int N>
+void flattenVec(const std::vector<V>& a, std::vector<float>* out) {
+    out->resize(a.size() * N);
+    for (size_t i = 0; i < a.size(); ++i)
+        for (int c = 0; c < N; ++c) (*out)[i * N + c] = a[i][c];
+}
+
 }  // namespace
 
-std::vector<glm::vec3> authoredCornerNormals(const SceneDelegate* delegate, const Path& id,
-                                             size_t pointCount, size_t faceCount,
-                                             const std::vector<glm::uvec3>& corners,
-                                             const std::vector<glm::uvec3>& triangles,
-                                             const std::vector<int>& triangleFace) {
-    std::optional<Interpolation> interp;
-    for (Interpolation i : {Interpolation::Constant, Interpolation::Uniform, Interpolation::Varying,
-                            Interpolation::Vertex, Interpolation::FaceVarying}) {
-        for (const auto& d : delegate->getPrimvarDescriptors(id, i))
-            if (d.name == tokens::normals()) interp = i;
+bool flattenFloats(const Value& v, std::vector<float>* out, int* components) {
+    if (auto* a = getIf<std::vector<float>>(v)) {
+        *out = *a;
+        *components = 1;
+    } else if (auto* a2 = getIf<std::vector<glm::vec2>>(v)) {
+        flattenVec<glm::vec2, 2>(*a2, out);
+        *components = 2;
+    } else if (auto* a3 = getIf<std::vector<glm::vec3>>(v)) {
+        flattenVec<glm::vec3, 3>(*a3, out);
+        *components = 3;
+    } else if (auto* a4 = getIf<std::vector<glm::vec4>>(v)) {
+        flattenVec<glm::vec4, 4>(*a4, out);
+        *components = 4;
+    } else if (auto* ai = getIf<std::vector<int>>(v)) {
+        out->assign(ai->begin(), ai->end());
+        *components = 1;
+    } else if (auto f = getFloat(v)) {
+        *out = {*f};
+        *components = 1;
+    } else if (auto* v2 = getIf<glm::vec2>(v)) {
+        *out = {v2->x, v2->y};
+        *components = 2;
+    } else if (auto* v3 = getIf<glm::vec3>(v)) {
+        *out = {v3->x, v3->y, v3->z};
+        *components = 3;
+    } else if (auto* v4 = getIf<glm::vec4>(v)) {
+        *out = {v4->x, v4->y, v4->z, v4->w};
+        *components = 4;
+    } else {
+        return false;
     }
+    return true;
+}
+
+bool expandToCorners(const std::vector<float>& values, int components, const std::vector<int>& indices,
+                     Interpolation interp, const CornerLayout& layout, std::vector<float>* out) {
+    if (components <= 0 || values.empty()) return false;
+    size_t valueCount = values.size() / size_t(components);
+    size_t expected = 1;
+    switch (interp) {
+        case Interpolation::Uniform: expected = layout.faceCount; break;
+        case Interpolation::Varying:
+        case Interpolation::Vertex: expected = layout.pointCount; break;
+        case Interpolation::FaceVarying: expected = layout.faceVertexCount; break;
+        default: expected = 1;
+    }
+    size_t available = indices.empty() ? valueCount : indices.size();
+    if (available < expected) return false;
+    const auto& tris = *layout.triangles;
+    out->resize(tris.size() * 3 * size_t(components));
+    for (size_t t = 0; t < tris.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            size_t element = 0;
+            switch (interp) {
+                case Interpolation::Uniform: element = size_t((*layout.triangleFace)[t]); break;
+                case Interpolation::Varying:
+                case Interpolation::Vertex: element = tris[t][k]; break;
+                case Interpolation::FaceVarying: element = (*layout.corners)[t][k]; break;
+                default: element = 0;
+            }
+            size_t i = element;
+            if (!indices.empty()) {
+                if (element >= indices.size() || indices[element] < 0) return false;
+                i = size_t(indices[element]);
+            }
+            if (i >= valueCount) return false;
+            for (int c = 0; c < components; ++c)
+                (*out)[(3 * t + k) * components + c] = values[i * components + c];
+        }
+    return true;
+}
+
+std::optional<Interpolation> primvarInterpolation(const SceneDelegate* delegate, const Path& id,
+                                                  const Token& name) {
+    for (Interpolation i : {Interpolation::Constant, Interpolation::Uniform, Interpolation::Varying,
+                            Interpolation::Vertex, Interpolation::FaceVarying})
+        for (const auto& d : delegate->getPrimvarDescriptors(id, i))
+            if (d.name == name) return i;
+    return std::nullopt;
+}
+
+std::vector<glm::vec3> authoredCornerNormals(const SceneDelegate* delegate, const Path& id,
+                                             const CornerLayout& layout) {
+    auto interp = primvarInterpolation(delegate, id, tokens::normals());
     if (!interp) return {};
     std::vector<int> indices;
     Value v = delegate->getIndexedPrimvar(id, tokens::normals(), &indices);
-    const auto* values = getIf<std::vector<glm::vec3>>(v);
-    if (!values || values->empty()) return {};
-    size_t cornerCount = 0;
-    for (const auto& c : corners) cornerCount = std::max<size_t>(cornerCount, c.z + 1);
-    // Element count the interpolation expects.
-    size_t expected = 1;
-    switch (*interp) {
-        case Interpolation::Uniform: expected = faceCount; break;
-        case Interpolation::Varying:
-        case Interpolation::Vertex: expected = pointCount; break;
-        case Interpolation::FaceVarying: expected = cornerCount; break;
-        default: expected = 1;
-    }
-    auto lookup = [&](size_t element, glm::vec3* out) {
-        size_t i = element;
-        if (!indices.empty()) {
-            if (element >= indices.size() || indices[element] < 0) return false;
-            i = static_cast<size_t>(indices[element]);
-        }
-        if (i >= values->size()) return false;
-        *out = safeNormalize((*values)[i]);
-        return true;
-    };
-    size_t available = indices.empty() ? values->size() : indices.size();
-    if (*interp != Interpolation::FaceVarying && available < expected) return {};
-    std::vector<glm::vec3> out(triangles.size() * 3);
-    for (size_t t = 0; t < triangles.size(); ++t) {
-        for (int k = 0; k < 3; ++k) {
-            size_t element = 0;
-            switch (*interp) {
-                case Interpolation::Uniform: element = triangleFace[t]; break;
-                case Interpolation::Varying:
-                case Interpolation::Vertex: element = triangles[t][k]; break;
-                case Interpolation::FaceVarying: element = corners[t][k]; break;
-                default: element = 0;
-            }
-            if (!lookup(element, &out[3 * t + k])) return {};
-        }
-    }
+    std::vector<float> flat, corners;
+    int components = 0;
+    if (!flattenFloats(v, &flat, &components) || components != 3) return {};
+    if (!expandToCorners(flat, 3, indices, *interp, layout, &corners)) return {};
+    std::vector<glm::vec3> out(corners.size() / 3);
+    for (size_t i = 0; i < out.size(); ++i)
+        out[i] = safeNormalize({corners[3 * i], corners[3 * i + 1], corners[3 * i + 2]});
     return out;
 }
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Primvar helpers shared by rprims: expanding any interpolation to per-triangle-corner values,
-// smooth normals, and constant display colour.
+// Primvar helpers shared by rprims: flattening values, expanding any interpolation to
+// per-triangle-corner values, smooth normals, and constant display colour.
 #pragma once
 
 #include <optional>
@@ -9,6 +9,8 @@
 #include <glm/glm.hpp>
 
 #include "delegate/hd/path.h"
+#include "delegate/hd/primvar.h"
+#include "delegate/hd/value.h"
 
 namespace principled::hd {
 class SceneDelegate;
@@ -16,14 +18,30 @@ class SceneDelegate;
 
 namespace principled::embree {
 
-/// Authored normals (the "normals" primvar in any interpolation, indexed or not) expanded to
-/// three per triangle, normalised. Empty when none are authored or the count does not match
-/// the interpolation (a mismatch is ignored rather than read out of bounds).
+/// A float, vec2, vec3 or vec4 array (or scalar) as flat floats; false for other types.
+bool flattenFloats(const hd::Value& value, std::vector<float>* out, int* components);
+
+/// The triangle mesh a primvar is expanded onto: triangles (point indices), their corners
+/// (face-vertex indices) and authored faces.
+struct CornerLayout {
+    size_t pointCount = 0;
+    size_t faceCount = 0;
+    size_t faceVertexCount = 0;
+    const std::vector<glm::uvec3>* triangles = nullptr;
+    const std::vector<glm::uvec3>* corners = nullptr;
+    const std::vector<int>* triangleFace = nullptr;
+};
+
+/// Expands flat values (components each, optionally indexed) of the given interpolation to
+/// three elements per triangle. Returns false when the element count does not match the
+/// interpolation (the primvar is then ignored rather than read out of bounds).
+bool expandToCorners(const std::vector<float>& values, int components, const std::vector<int>& indices,
+                     hd::Interpolation interp, const CornerLayout& layout, std::vector<float>* out);
+
+/// Authored normals (the "normals" primvar in any interpolation), three per triangle,
+/// normalised; empty when none are authored or they do not fit.
 std::vector<glm::vec3> authoredCornerNormals(const hd::SceneDelegate* delegate, const hd::Path& id,
-                                             size_t pointCount, size_t faceCount,
-                                             const std::vector<glm::uvec3>& corners,
-                                             const std::vector<glm::uvec3>& triangles,
-                                             const std::vector<int>& triangleFace);
+                                             const CornerLayout& layout);
 
 /// Area-weighted vertex normals, three per triangle.
 std::vector<glm::vec3> smoothCornerNormals(const std::vector<glm::vec3>& points,
@@ -32,5 +50,9 @@ std::vector<glm::vec3> smoothCornerNormals(const std::vector<glm::vec3>& points,
 /// primvars:displayColor when it is constant (or its first value otherwise).
 std::optional<glm::vec3> constantDisplayColor(const hd::SceneDelegate* delegate,
                                               const hd::Path& id);
+
+/// The interpolation a primvar is authored with, if the prim has it.
+std::optional<hd::Interpolation> primvarInterpolation(const hd::SceneDelegate* delegate,
+                                                      const hd::Path& id, const hd::Token& name);
 
 }  // namespace principled::embree

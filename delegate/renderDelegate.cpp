@@ -2,6 +2,7 @@
 #include "delegate/renderDelegate.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "delegate/aovs.h"
 #include "delegate/hd/camera.h"
@@ -23,7 +24,9 @@ EmbreeRenderDelegate::EmbreeRenderDelegate() {
     rtcSetSceneFlags(_scene, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(_scene, RTC_BUILD_QUALITY_LOW);
     _param = std::make_unique<EmbreeRenderParam>(_device.get(), _scene);
+    _param->setTextureCache(&_textures);
     for (const auto& d : renderSettingDescriptors()) _settings[d.key] = d.defaultValue;
+    updateDicing();
     _snapshot.scene = _scene;
 }
 
@@ -129,17 +132,43 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome"},
+        {"Refine level", Token("refineLevel"), Value(-1), "subdivision level for every mesh; -1 = adaptive from the projected size"},
+        {"Dicing rate", Token("dicingRate"), Value(1.5f), "adaptive subdivision: target refined edge length in pixels"},
+        {"Max refine level", Token("maxRefineLevel"), Value(6), "adaptive subdivision: highest level"},
         {"Dome visible to camera", Token("domeLightCameraVisibility"), Value(1), "camera rays see the dome light"},
     };
 }
 
 void EmbreeRenderDelegate::setRenderSetting(const Token& key, const Value& value) {
-    std::lock_guard<std::mutex> lock(_settingsMutex);
-    auto it = _settings.find(key);
-    if (it != _settings.end() && it->second == value) return;
-    _settings[key] = value;
-    ++_settingsVersion;
+    {
+        std::lock_guard<std::mutex> lock(_settingsMutex);
+        auto it = _settings.find(key);
+        if (it != _settings.end() && it->second == value) return;
+        _settings[key] = value;
+        ++_settingsVersion;
+    }
     if (key == Token("defaultLighting")) _param->markTablesDirty();
+    // Subdivision settings apply to meshes (re)built afterwards.
+    if (key == Token("refineLevel") || key == Token("dicingRate") || key == Token("maxRefineLevel"))
+        updateDicing();
+}
+
+void EmbreeRenderDelegate::updateDicing() {
+    EmbreeRenderParam::Dicing d = _param->dicing();
+    d.level = intSetting("refineLevel", -1);
+    d.targetEdgePixels = std::max(0.05f, floatSetting("dicingRate", 1.5f));
+    d.maxLevel = std::clamp(intSetting("maxRefineLevel", 6), 0, 8);
+    _param->setDicing(d);
+}
+
+void EmbreeRenderDelegate::setDicingView(const glm::vec3& cameraPosition, float verticalFov,
+                                         int imageHeight) {
+    EmbreeRenderParam::Dicing d = _param->dicing();
+    d.haveView = std::isfinite(verticalFov) && verticalFov > 0.0f && imageHeight > 0;
+    d.cameraPosition = cameraPosition;
+    d.verticalFov = verticalFov;
+    d.imageHeight = imageHeight;
+    _param->setDicing(d);
 }
 
 Value EmbreeRenderDelegate::renderSetting(const Token& key) const {

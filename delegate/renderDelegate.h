@@ -45,6 +45,11 @@ public:
     std::vector<std::string> takeWarnings() { return _param->takeWarnings(); }
     void warn(const hd::Path& id, const std::string& message) { _param->warn(id, message); }
 
+    /// The view adaptive subdivision measures projected size from (the render camera):
+    /// world position, vertical field of view (radians) and image height. Applies to meshes
+    /// synced afterwards.
+    void setDicingView(const glm::vec3& cameraPosition, float verticalFov, int imageHeight);
+
     // Used by the render pass.
     const SceneSnapshot& snapshot() const { return _snapshot; }
     IntegratorSettings integratorSettings() const;
@@ -56,7 +61,10 @@ private:
     int intSetting(const char* key, int fallback) const;
     float floatSetting(const char* key, float fallback) const;
 
+    void updateDicing();
+
     EmbreeDevice _device;
+    shading::TextureCache _textures;
     RTCScene _scene = nullptr;
     std::unique_ptr<EmbreeRenderParam> _param;
     SceneSnapshot _snapshot;

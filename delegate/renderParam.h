@@ -16,6 +16,7 @@
 #include "delegate/hd/path.h"
 #include "delegate/hd/prim.h"
 #include "delegate/sceneData.h"
+#include "delegate/shading/textureCache.h"
 
 namespace principled::embree {
 
@@ -74,6 +75,30 @@ public:
     const std::set<LightSource*>& lights() const { return _lights; }
     const std::set<MaterialSource*>& materials() const { return _materials; }
 
+    /// How meshes pick their subdivision level: a fixed level (>= 0) or adaptive (-1) from the
+    /// dicing view (set by the render pass's camera before sync).
+    struct Dicing {
+        int level = -1;
+        bool haveView = false;
+        glm::vec3 cameraPosition{0.0f};
+        float verticalFov = 0.8f;
+        int imageHeight = 720;
+        float targetEdgePixels = 1.5f;
+        int maxLevel = 6;
+        int fallbackLevel = 2;  ///< adaptive without a view
+    };
+    Dicing dicing() const {
+        std::lock_guard<std::mutex> l(_mutex);
+        return _dicing;
+    }
+    void setDicing(const Dicing& d) {
+        std::lock_guard<std::mutex> l(_mutex);
+        _dicing = d;
+    }
+    /// The texture cache materials compile against (owned by the delegate).
+    shading::TextureCache* textureCache() const { return _textures; }
+    void setTextureCache(shading::TextureCache* t) { _textures = t; }
+
     // Counters for render stats and for tests of incremental updates.
     std::atomic<long> blasBuilds{0};
     std::atomic<long> meshesRebuilt{0};
@@ -95,7 +120,9 @@ private:
     RTCScene _scene;
     std::atomic<bool> _sceneDirty{true};
     std::atomic<bool> _tablesDirty{true};
-    std::mutex _mutex;
+    mutable std::mutex _mutex;
+    Dicing _dicing;
+    shading::TextureCache* _textures = nullptr;
     std::set<GeometrySource*> _geometry;
     std::set<LightSource*> _lights;
     std::set<MaterialSource*> _materials;

@@ -4,20 +4,30 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
 #include "bsdf/bsdf.h"
+#include "delegate/hd/token.h"
+#include "delegate/shading/materialProgram.h"
 
 namespace principled::embree {
 
-/// A shading material: the BSDF parameters plus emission.
+/// A shading material: a compiled UsdPreviewSurface program, or its constant result.
 struct MaterialRecord {
-    bsdf::MaterialParams params;
-    glm::vec3 emission{0.0f};
-    float opacity = 1.0f;
+    shading::ShadedMaterial constant;                        ///< used when program is null
+    std::shared_ptr<const shading::MaterialProgram> program;  ///< non-null when textured
+};
+
+/// One primvar of a mesh, expanded to three values per triangle (or one value if constant).
+struct PrimvarChannel {
+    hd::Token name;
+    int components = 0;
+    bool constant = false;
+    std::vector<float> data;
 };
 
 /// One rprim's geometry as the integrator sees it. Owned by the rprim; the Embree instance of
@@ -38,6 +48,12 @@ struct GeometryRecord {
     std::vector<glm::uvec3> triangles;
     std::vector<glm::vec3> cornerNormals;
     std::vector<int> triangleFace;
+    std::vector<PrimvarChannel> primvars;  ///< the mesh's float primvars (st, displayColor...)
+    const PrimvarChannel* primvar(const hd::Token& name) const {
+        for (const auto& p : primvars)
+            if (p.name == name) return &p;
+        return nullptr;
+    }
     // Sphere: centre and radius in object space.
     glm::vec3 center{0.0f};
     float radius = 1.0f;

@@ -5,6 +5,9 @@
 
 #include "delegate/hd/renderIndex.h"
 #include "delegate/aovs.h"
+#include "delegate/hd/camera.h"
+
+#include <cmath>
 #include "delegate/hd/tokens.h"
 #include "delegate/renderBuffer.h"
 #include "delegate/renderDelegate.h"
@@ -80,6 +83,20 @@ void RenderSession::setup() {
                           ->addDefaultCamera(_index.get(),
                                              double(_options.width) / double(_options.height))
                           .str();
+    }
+    // Adaptive subdivision measures meshes from the render camera.
+    if (auto* camera = static_cast<hd::Camera*>(nullptr); camera == nullptr) {
+        Path cam(_cameraPath);
+        glm::dmat4 xf = _sceneDelegate->getTransform(cam);
+        auto param = [&](const char* n, float fallback) {
+            return getFloat(_sceneDelegate->getCameraParamValue(cam, Token(n))).value_or(fallback);
+        };
+        hd::Camera probe(cam);
+        probe.set(xf, param("focalLength", 5.0f), param("horizontalAperture", 2.0955f),
+                  param("verticalAperture", 1.52908f));
+        glm::vec4 w = probe.screenWindow(double(_options.width) / double(_options.height));
+        float vfov = 2.0f * std::atan(0.5f * (w.w - w.z));
+        _delegate->setDicingView(glm::vec3(xf[3]), vfov, _options.height);
     }
     std::vector<std::string> names{"color"};
     for (const auto& a : _options.aovs) {

@@ -51,6 +51,13 @@ TEST(PreviewSurfaceParams, SpecularWorkflow) {
     EXPECT_FLOAT_EQ(m.params.metallic, 0.0f);
     EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);  // max channel 0.04 / 0.08
     EXPECT_FLOAT_EQ(m.params.specularTint, 1.0f);
+    // bsdf/ takes F0 explicitly (MaterialParams::specularWorkflow/specularColor) when it has them.
+    [](const auto& p, const glm::vec3& f0) {
+        if constexpr (requires { p.specularWorkflow; }) {
+            EXPECT_TRUE(p.specularWorkflow);
+            EXPECT_EQ(p.specularColor, f0);
+        }
+    }(m.params, in.specularColor);
     // A grey F0 has no tint; an explicit Disney input still overrides.
     in.specularColor = glm::vec3(0.08f);
     in.specular = 0.25f;

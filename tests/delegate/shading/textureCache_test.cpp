@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <fstream>
+#include <thread>
 
 #include "testImages.h"
 
@@ -296,4 +298,22 @@ TEST(TextureCacheMemory, TileMemoryStaysNearTheLimit) {
     }
     EXPECT_GT(cache.memoryUsed(), 0u);
     EXPECT_LT(cache.memoryUsed(), size_t(20) << 20);  // 16 MB + a few tiles of slack
+}
+
+TEST_F(TextureCacheTest, ConcurrentOpensShareOneHandle) {
+    std::string png = dir.file("shared.png");
+    ASSERT_TRUE(writeImage(png, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT8));
+    std::string missing = dir.file("absent.png");
+    std::vector<const Texture*> got(8, nullptr);
+    std::atomic<int> reports{0};
+    std::vector<std::thread> threads;
+    for (int i = 0; i < 8; ++i)
+        threads.emplace_back([&, i] {
+            got[i] = cache.open(png).texture;
+            if (cache.open(missing).firstReport) ++reports;
+            (void)cache.sample(*got[i], Wrap::Repeat, Wrap::Repeat, centre(i % kSize, 1));
+        });
+    for (auto& t : threads) t.join();
+    for (const Texture* t : got) EXPECT_EQ(t, got[0]);
+    EXPECT_EQ(reports.load(), 1);  // the missing file is reported by exactly one caller
 }

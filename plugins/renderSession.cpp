@@ -61,6 +61,7 @@ void RenderSession::setup() {
     if (_options.sampler != "sobol" && _options.sampler != "independent")
         throw UserError("sampler must be 'sobol' or 'independent', not '" + _options.sampler + "'");
     _delegate->setRenderSetting(Token("sampler"), Value(Token(_options.sampler)));
+    _delegate->setRenderSetting(Token("refineLevel"), Value(std::clamp(_options.refineLevel, -1, 8)));
     _index = std::make_unique<RenderIndex>(_delegate.get());
     adapter::AdapterOptions ao;
     ao.time = _options.time;

@@ -45,6 +45,7 @@ struct SessionOptions {
     std::string camera;           ///< prim path; empty = first camera, else a framing camera
     std::string shadingModel = "disney";
     std::string sampler = "sobol";  ///< sobol | independent
+    int refineLevel = -1;           ///< subdivision level for every mesh; -1 = adaptive
     /// AOVs to render besides color ("normal", "primId", ... or "all").
     std::vector<std::string> aovs;
     double time = std::numeric_limits<double>::quiet_NaN();

@@ -176,6 +176,8 @@ MeshTopology UsdSceneDelegate::getMeshTopology(const Path& id) const {
     t.scheme = Token(tokenAttr(*p, "subdivisionScheme", _time, "catmullClark"));
     t.orientation = Token(tokenAttr(*p, "orientation", _time, "rightHanded"));
     t.refineLevel = _options.refineLevel;
+    Value level = attributeValue(*p, "principled:refineLevel");
+    if (auto* l = getIf<int>(level)) t.refineLevel = std::clamp(*l, -1, 8);
     return t;
 }
 

@@ -22,7 +22,9 @@ namespace principled::adapter {
 
 struct AdapterOptions {
     double time = std::numeric_limits<double>::quiet_NaN();  ///< NaN: the stage's default time
-    int refineLevel = 0;
+    /// Subdivision level for every mesh; -1 leaves it to the render delegate (adaptive). A mesh
+    /// overrides it with the attribute `int principled:refineLevel`.
+    int refineLevel = -1;
 };
 
 class UsdSceneDelegate : public hd::SceneDelegate {

@@ -34,6 +34,7 @@ struct RenderArgs {
     std::string statsPath;
     std::vector<std::string> aovs;
     std::string sampler = "sobol";
+    int refineLevel = -1;
     bool split = false;
     bool quiet = false;
 };
@@ -57,6 +58,7 @@ int runRender(const RenderArgs& a) {
     o.camera = a.camera;
     o.shadingModel = a.model;
     o.sampler = a.sampler;
+    o.refineLevel = a.refineLevel;
     o.aovs = a.aovs;
     for (const auto& out : a.outputs) {
         auto ext = std::filesystem::path(out).extension().string();
@@ -187,6 +189,9 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
         ->delimiter(',');
     cmd->add_flag("--split", args->split, "Write one EXR per AOV (NAME.AOV.exr) instead of one multi-layer EXR");
     cmd->add_option("--sampler", args->sampler, "sobol (Owen-scrambled, default) or independent");
+    cmd->add_option("--refine-level", args->refineLevel,
+                    "Subdivision level for every mesh (0-8); -1 = adaptive from the projected size")
+        ->check(CLI::Range(-1, 8));
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar, warnings or summary");
     cmd->callback([args, exitCode] { *exitCode = runRender(*args); });
 }

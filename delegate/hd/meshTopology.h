@@ -27,7 +27,7 @@ struct MeshTopology {
     std::vector<int> faceVertexCounts;
     std::vector<int> faceVertexIndices;
     std::vector<int> holeIndices;
-    int refineLevel = 0;  ///< uniform subdivision level requested for this prim
+    int refineLevel = -1;  ///< uniform subdivision level for this prim; -1 = the delegate decides
 };
 
 }  // namespace principled::hd

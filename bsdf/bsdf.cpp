@@ -1,99 +1,154 @@
 // SPDX-License-Identifier: Apache-2.0
-// Placeholder Lambert + isotropic GGX until the full Disney/UE4 lobe library replaces it.
+// The facade: builds the lobes of a model, picks one per sample with probabilities that depend
+// on wo only, and combines them into the one-sample mixture (eval, pdf, sample agree exactly).
 #include "bsdf/bsdf.h"
 
-#include <algorithm>
-#include <cmath>
+#include "bsdf/disney.h"
+#include "bsdf/ue4.h"
+
+#include <bit>
 
 namespace principled::bsdf {
+
+/// The per-call view of the material: the (bent or mirrored) wo in the lobes' frame, which
+/// lobes act from this side, and their selection probabilities.
+struct Bsdf::View {
+    glm::vec3 wo;
+    float flip = 1.0f;      ///< -1 when the lobes' frame is mirrored through the surface
+    bool inside = false;    ///< view inside a solid transmissive object
+    LobeMask active = 0;
+    std::array<float, kLobeCount> prob{};
+};
+
+Bsdf::Bsdf(const MaterialParams& params, const Options& options)
+    : _set(options.model == Model::UE4 ? buildUe4(params, options) : buildDisney(params, options)) {
+    _set.deltaMask &= _set.mask;
+    _lobes = _set.mask;
+    _deltaOnly = _lobes != 0 && (_set.deltaMask == _lobes);
+}
+
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
-constexpr float kInvPi = 1.0f / kPi;
-
-float cosTheta(const glm::vec3& w) { return w.z; }
-
-// Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces", eq. 33 (GGX D).
-float ggxD(float cosH, float alpha) {
-    float a2 = alpha * alpha;
-    float d = cosH * cosH * (a2 - 1.0f) + 1.0f;
-    return a2 / (kPi * d * d);
-}
-
-// Walter et al. 2007, eq. 34 (Smith G1 for GGX).
-float ggxG1(float cosW, float alpha) {
-    float c2 = cosW * cosW;
-    float t2 = std::max(0.0f, 1.0f - c2) / std::max(c2, 1e-12f);
-    return 2.0f / (1.0f + std::sqrt(1.0f + alpha * alpha * t2));
-}
-
-glm::vec3 schlick(const glm::vec3& f0, float c) {
-    float m = std::clamp(1.0f - c, 0.0f, 1.0f);
-    float m5 = m * m * m * m * m;
-    return f0 + (glm::vec3(1.0f) - f0) * m5;
+// The switch below is the whole dispatch: no virtual calls in the per-ray path.
+template <typename Fn>
+auto withLobe(const LobeSet& s, bool inside, Lobe l, Fn&& fn) {
+    switch (l) {
+        case Lobe::Diffuse:
+            return s.lambertDiffuse ? fn(s.lambert) : fn(s.diffuse);
+        case Lobe::Sheen:
+            return fn(s.sheen);
+        case Lobe::Specular:
+            return fn(s.specular);
+        case Lobe::Clearcoat:
+            return fn(s.clearcoat);
+        case Lobe::Transmission:
+        default:
+            return fn(inside ? s.transmissionInside : s.transmission);
+    }
 }
 
 }  // namespace
 
-Bsdf::Bsdf(const MaterialParams& params, const Options& options) : _p(params), _o(options) {
-    float r = std::clamp(_p.roughness, 0.0f, 1.0f);
-    _alpha = std::max(r * r, 1e-3f);
-    float m = std::clamp(_p.metallic, 0.0f, 1.0f);
-    _diffuse = _p.baseColor * (1.0f - m);
-    _f0 = glm::mix(glm::vec3(0.08f * _p.specular), _p.baseColor, m);
-    float dw = (_diffuse.x + _diffuse.y + _diffuse.z) / 3.0f;
-    float sw = (_f0.x + _f0.y + _f0.z) / 3.0f + 0.1f;
-    _specWeight = sw / (sw + dw);
-    _lobes = lobeBit(Lobe::Specular) | (dw > 0.0f ? lobeBit(Lobe::Diffuse) : 0u);
+Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
+    View v;
+    bool transmissive = _set.mask & lobeBit(Lobe::Transmission);
+    if (_set.thin) {
+        v.flip = woIn.z < 0.0f ? -1.0f : 1.0f;
+        v.active = _set.mask;
+    } else if (transmissive && woIn.z < 0.0f) {
+        // Inside a solid: the reflective lobes describe the outside only (pbrt-v3 issue #313).
+        v.flip = -1.0f;
+        v.inside = true;
+        v.active = lobeBit(Lobe::Transmission);
+    } else {
+        v.active = _set.mask;
+    }
+    v.wo = bendToHemisphere(glm::vec3(woIn.x, woIn.y, woIn.z * v.flip), 1.0f);
+    float sum = 0.0f;
+    for (int k = 0; k < kLobeCount; ++k) {
+        if (!(v.active & (1u << k))) continue;
+        float w = withLobe(_set, v.inside, Lobe(k),
+                           [&](const auto& lobe) { return lobe.selectionWeight(v.wo); });
+        v.prob[k] = std::max(w, 0.0f);
+        sum += v.prob[k];
+    }
+    if (sum > 0.0f) {
+        for (int k = 0; k < kLobeCount; ++k) v.prob[k] /= sum;
+    } else {
+        int n = std::popcount(v.active);
+        for (int k = 0; k < kLobeCount; ++k) v.prob[k] = (v.active & (1u << k)) ? 1.0f / n : 0.0f;
+    }
+    return v;
 }
 
-glm::vec3 Bsdf::eval(const glm::vec3& wo, const glm::vec3& wi, float* pdfOut,
+std::array<float, kLobeCount> Bsdf::lobeProbabilities(const glm::vec3& wo) const {
+    return prepare(wo).prob;
+}
+
+glm::vec3 Bsdf::eval(const glm::vec3& woIn, const glm::vec3& wiIn, float* pdfOut,
                      LobeValues* perLobe) const {
     if (perLobe) perLobe->fill(glm::vec3(0.0f));
-    if (pdfOut) *pdfOut = 0.0f;
-    float co = cosTheta(wo), ci = cosTheta(wi);
-    if (co <= 0.0f || ci <= 0.0f) return glm::vec3(0.0f);
-    glm::vec3 h = glm::normalize(wo + wi);
-    float d = ggxD(h.z, _alpha);
-    glm::vec3 spec = schlick(_f0, glm::dot(wi, h)) * d * ggxG1(co, _alpha) * ggxG1(ci, _alpha) /
-                     (4.0f * co);  // times cos_i already folded
-    glm::vec3 diff = _diffuse * kInvPi * ci;
-    if (perLobe) {
-        (*perLobe)[int(Lobe::Diffuse)] = diff;
-        (*perLobe)[int(Lobe::Specular)] = spec;
+    View v = prepare(woIn);
+    glm::vec3 wi(wiIn.x, wiIn.y, wiIn.z * v.flip);
+    glm::vec3 f(0.0f);
+    float pdf = 0.0f;
+    LobeMask live = v.active & ~_set.deltaMask;
+    for (int k = 0; k < kLobeCount; ++k) {
+        if (!(live & (1u << k))) continue;
+        withLobe(_set, v.inside, Lobe(k), [&](const auto& lobe) {
+            glm::vec3 fk = lobe.eval(v.wo, wi);
+            f += fk;
+            if (perLobe) (*perLobe)[k] = fk;
+            if (pdfOut) pdf += v.prob[k] * lobe.pdf(v.wo, wi);
+            return 0;
+        });
     }
-    if (pdfOut) *pdfOut = pdf(wo, wi);
-    return diff + spec;
+    if (pdfOut) *pdfOut = pdf;
+    return f;
 }
 
-float Bsdf::pdf(const glm::vec3& wo, const glm::vec3& wi) const {
-    if (cosTheta(wo) <= 0.0f || cosTheta(wi) <= 0.0f) return 0.0f;
-    glm::vec3 h = glm::normalize(wo + wi);
-    float pSpec = ggxD(h.z, _alpha) * h.z / (4.0f * std::max(glm::dot(wo, h), 1e-8f));
-    float pDiff = cosTheta(wi) * kInvPi;
-    return _specWeight * pSpec + (1.0f - _specWeight) * pDiff;
+float Bsdf::pdf(const glm::vec3& woIn, const glm::vec3& wiIn) const {
+    View v = prepare(woIn);
+    glm::vec3 wi(wiIn.x, wiIn.y, wiIn.z * v.flip);
+    float pdf = 0.0f;
+    LobeMask live = v.active & ~_set.deltaMask;
+    for (int k = 0; k < kLobeCount; ++k) {
+        if (!(live & (1u << k))) continue;
+        pdf += v.prob[k] * withLobe(_set, v.inside, Lobe(k),
+                                    [&](const auto& lobe) { return lobe.pdf(v.wo, wi); });
+    }
+    return pdf;
 }
 
-std::optional<BsdfSample> Bsdf::sample(const glm::vec3& wo, float uLobe, const glm::vec2& u) const {
-    if (cosTheta(wo) <= 0.0f) return std::nullopt;
-    glm::vec3 wi;
-    if (uLobe < _specWeight) {
-        // Walter et al. 2007, eq. 35-36: GGX half-vector sampling.
-        float phi = 2.0f * kPi * u.x;
-        float cos2 = (1.0f - u.y) / (1.0f + (_alpha * _alpha - 1.0f) * u.y);
-        float c = std::sqrt(std::max(0.0f, cos2)), s = std::sqrt(std::max(0.0f, 1.0f - cos2));
-        glm::vec3 h(s * std::cos(phi), s * std::sin(phi), c);
-        wi = 2.0f * glm::dot(wo, h) * h - wo;
-    } else {
-        // Malley's method: cosine-weighted hemisphere.
-        float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
-        wi = glm::vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x)));
+std::optional<BsdfSample> Bsdf::sample(const glm::vec3& woIn, float uLobe,
+                                       const glm::vec2& u) const {
+    View v = prepare(woIn);
+    // Pick the lobe from the cumulative probabilities and reuse the remainder of uLobe.
+    int pick = -1;
+    float cdf = 0.0f;
+    for (int k = 0; k < kLobeCount; ++k) {
+        if (v.prob[k] <= 0.0f) continue;
+        pick = k;
+        if (uLobe < cdf + v.prob[k]) break;
+        cdf += v.prob[k];
     }
-    if (cosTheta(wi) <= 0.0f) return std::nullopt;
+    if (pick < 0) return std::nullopt;
+    float uSub = std::clamp((uLobe - cdf) / v.prob[pick], 0.0f, 0.99999994f);
+    std::optional<LobeSample> ls = withLobe(
+        _set, v.inside, Lobe(pick), [&](const auto& lobe) { return lobe.sample(v.wo, u, uSub); });
+    if (!ls) return std::nullopt;
     BsdfSample s;
-    s.wi = wi;
-    s.f = eval(wo, wi, &s.pdf);
-    s.lobe = uLobe < _specWeight ? Lobe::Specular : Lobe::Diffuse;
+    s.lobe = Lobe(pick);
+    s.wi = glm::vec3(ls->wi.x, ls->wi.y, ls->wi.z * v.flip);
+    if (ls->delta) {
+        s.delta = true;
+        s.f = ls->f;
+        s.pdf = v.prob[pick] * ls->pdf;
+        if (!(s.pdf > 0.0f)) return std::nullopt;
+        return s;
+    }
+    // The mixture value and density at wi (identical to eval() and pdf() there).
+    s.f = eval(woIn, s.wi, &s.pdf);
     if (!(s.pdf > 0.0f)) return std::nullopt;
     return s;
 }

@@ -10,59 +10,17 @@
 
 #include <glm/glm.hpp>
 
+#include "bsdf/lobeSet.h"
+#include "bsdf/types.h"
+
 namespace principled::bsdf {
 
-/// Which shading model turns the parameters into lobes.
-enum class Model : uint8_t { Disney, UE4 };
-
-/// The lobes a material can have. Per-lobe values are reported in this order so the integrator
-/// can split light paths into per-lobe AOVs (diffuse, specular, sheen, clearcoat, transmission).
-enum class Lobe : uint8_t { Diffuse = 0, Sheen, Specular, Clearcoat, Transmission, Count };
-inline constexpr int kLobeCount = static_cast<int>(Lobe::Count);
-using LobeMask = uint32_t;
-inline constexpr LobeMask lobeBit(Lobe l) { return 1u << static_cast<unsigned>(l); }
-
-/// Material parameters in Disney naming (Burley 2012, "Physically-Based Shading at Disney",
-/// section 5.1), plus the 2015 transmission extension. Colours are linear.
-struct MaterialParams {
-    glm::vec3 baseColor{0.82f, 0.67f, 0.16f};
-    float subsurface = 0.0f;
-    float metallic = 0.0f;
-    float specular = 0.5f;
-    float specularTint = 0.0f;
-    float roughness = 0.5f;
-    float anisotropic = 0.0f;
-    float sheen = 0.0f;
-    float sheenTint = 0.5f;
-    float clearcoat = 0.0f;
-    float clearcoatGloss = 1.0f;
-    float specTrans = 0.0f;  ///< Burley 2015 specular transmission weight.
-    float ior = 1.5f;        ///< Used by transmission.
-    bool thin = false;       ///< Thin-surface transmission (no refraction of the path).
-};
-
-/// Settings that trade speed against accuracy; every one is charted in bench/.
-struct Options {
-    Model model = Model::Disney;
-    bool legacySpecularG = false;  ///< Burley 2012 course-notes G remap (0.5 + 0.5 r)^2.
-    bool vndfSampling = true;      ///< Heitz 2018 visible normals; false = classic D sampling.
-    float deltaRoughness = 1e-3f;  ///< Below this roughness specular becomes a perfect mirror.
-    bool pruneLobes = true;        ///< Skip lobes whose weight is below pruneCutoff.
-    float pruneCutoff = 1e-4f;
-};
-
-/// Per-lobe contributions of one evaluation, f * |cos(theta_i)| each; they sum to eval().
-using LobeValues = std::array<glm::vec3, kLobeCount>;
-
-struct BsdfSample {
-    glm::vec3 wi{0.0f};
-    glm::vec3 f{0.0f};    ///< f(wo, wi) * |cos(theta_i)| (for a delta lobe: the weight times pdf).
-    float pdf = 0.0f;     ///< Solid-angle pdf of the whole mixture (for a delta lobe: the lobe's pick probability).
-    Lobe lobe = Lobe::Diffuse;
-    bool delta = false;   ///< True when wi came from a perfect-mirror or smooth-glass lobe.
-};
-
 /// A BSDF at one shading point. Construction is cheap; nothing is cached across points.
+/// Views below the shading hemisphere: for opaque materials wo is bent back to just above the
+/// horizon (no black rims from shading normals); for solid transmissive materials (specTrans > 0,
+/// thin = false) wo.z < 0 means "inside the object", where only the transmission lobe acts, with
+/// the inverse index (so the frame's normal must keep pointing outward); thin materials are
+/// two-sided (mirrored through the surface).
 class Bsdf {
 public:
     Bsdf(const MaterialParams& params, const Options& options);
@@ -83,15 +41,19 @@ public:
     /// True when every lobe is a delta lobe (next-event estimation is pointless).
     bool isDeltaOnly() const { return _deltaOnly; }
 
+    /// Probability that sample() picks each lobe for this wo (never depends on wi).
+    std::array<float, kLobeCount> lobeProbabilities(const glm::vec3& wo) const;
+
+    /// The concrete lobes (for tests and tools).
+    const LobeSet& lobeSet() const { return _set; }
+
 private:
-    MaterialParams _p;
-    Options _o;
+    struct View;
+    View prepare(const glm::vec3& wo) const;
+
+    LobeSet _set;
     LobeMask _lobes = 0;
     bool _deltaOnly = false;
-    float _alpha = 0.25f;
-    glm::vec3 _diffuse{0.0f};
-    glm::vec3 _f0{0.04f};
-    float _specWeight = 0.5f;  // probability of picking specular (independent of wi)
 };
 
 }  // namespace principled::bsdf

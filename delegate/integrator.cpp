@@ -58,6 +58,7 @@ struct Hit {
     glm::vec3 ng;  ///< geometric normal, facing the incoming ray
     glm::vec3 ns;  ///< shading normal, same hemisphere as ng
     const GeometryRecord* record;
+    int element = 0;  ///< authored face (meshes), 0 for implicit surfaces
 };
 
 bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
@@ -87,6 +88,7 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
         ngObj = nsObj = pObj - rec.center;
     } else {
         const glm::uvec3& t = rec.triangles[rh.hit.primID];
+        hit->element = rec.triangleFace[rh.hit.primID];
         const glm::vec3 &p0 = rec.points[t.x], &p1 = rec.points[t.y], &p2 = rec.points[t.z];
         ngObj = glm::cross(p1 - p0, p2 - p0);
         nsObj = ngObj;
@@ -138,6 +140,15 @@ glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3&
 
 PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     PathSample out;
+    out.lobes.fill(glm::vec3(0.0f));
+    int pathLobe = -1;  // the lobe sampled at the first hit
+    // Credits a contribution found after the first bounce (or emission seen directly).
+    auto credit = [&](const glm::vec3& c) {
+        if (pathLobe < 0)
+            out.emission += c;
+        else
+            out.lobes[pathLobe] += c;
+    };
     const auto& lights = _scene.lights;
     const float lightPick = lights.empty() ? 0.0f : 1.0f / static_cast<float>(lights.size());
     glm::vec3 L(0.0f), beta(1.0f);
@@ -168,11 +179,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::vec3 c = beta * Le * w;
                 if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                     c *= _settings.clampIndirect / maxComponent(c);
-                L += c;
+                credit(c);
             }
             break;
         }
-        if (depth == 0) out.alpha = 1.0f;
 
         // Material: the bound one, or UsdPreviewSurface defaults with displayColor.
         const GeometryRecord& rec = *hit.record;
@@ -185,7 +195,20 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             fallback.params.roughness = 0.5f;
             fallback.params.specular = 0.5f;
         }
-        if (mat->emission != glm::vec3(0.0f)) L += beta * mat->emission;
+        if (mat->emission != glm::vec3(0.0f)) credit(beta * mat->emission);
+        if (depth == 0) {
+            out.alpha = 1.0f;
+            FirstHit& f = out.first;
+            f.hit = true;
+            f.t = glm::dot(hit.p - ray.origin, ray.direction);
+            f.position = hit.p;
+            f.normal = hit.ns;
+            f.albedo = mat->params.baseColor;
+            f.primId = rec.primId;
+            f.instanceId = 0;
+            f.elementId = hit.element;
+            f.materialId = rec.materialIndex;
+        }
 
         glm::vec3 wo = -ray.direction;
         // A shading normal that puts the viewer below the surface is replaced by the geometric
@@ -225,16 +248,23 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             }
             if (lightPdf > 0.0f && glm::dot(wi, hit.ng) > 0.0f) {
                 float bsdfPdf = 0.0f;
-                glm::vec3 f = bsdf.eval(woLocal, frame.toLocal(wi), &bsdfPdf);
+                bsdf::LobeValues perLobe;
+                glm::vec3 f = bsdf.eval(woLocal, frame.toLocal(wi), &bsdfPdf,
+                                        depth == 0 ? &perLobe : nullptr);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
                     if (!occluded(_scene, offsetOrigin(hit.p, hit.ng, wi), wi, kInf)) {
                         float w = deltaLight ? 1.0f : powerHeuristic(lightPdf * lightPick, bsdfPdf);
-                        glm::vec3 c = beta * f * Li * w / (lightPdf * lightPick);
+                        glm::vec3 scale = beta * Li * (w / (lightPdf * lightPick));
+                        glm::vec3 c = scale * f;
                         if (depth > 0 && _settings.clampIndirect > 0.0f &&
                             maxComponent(c) > _settings.clampIndirect)
                             c *= _settings.clampIndirect / maxComponent(c);
-                        L += c;
+                        if (depth == 0) {
+                            for (int i = 0; i < bsdf::kLobeCount; ++i) out.lobes[i] += scale * perLobe[i];
+                        } else {
+                            credit(c);
+                        }
                     }
                 }
             }
@@ -251,9 +281,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if ((glm::dot(wi, hit.ng) > 0.0f) == transmit) break;
         beta *= s->f / s->pdf;
         if (!finite(beta)) {
+            out = PathSample();
             out.invalid = true;
             return out;
         }
+        if (depth == 0) pathLobe = static_cast<int>(s->lobe);
         prevDelta = s->delta;
         prevBsdfPdf = s->pdf;
         prevNg = hit.ng;
@@ -269,12 +301,14 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             beta /= q;
         }
     }
+    L = out.emission;
+    for (const auto& l : out.lobes) L += l;
     if (!finite(L)) {
+        out = PathSample();
         out.invalid = true;
-        out.radiance = glm::vec3(0.0f);
         return out;
     }
-    out.radiance = glm::max(L, glm::vec3(0.0f));
+    out.radiance = L;
     return out;
 }
 

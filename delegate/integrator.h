@@ -14,6 +14,7 @@
 namespace principled::embree {
 
 struct IntegratorSettings {
+    SamplerKind sampler = SamplerKind::Sobol;
     int maxDepth = 8;         ///< path vertices after the camera hit (0 = direct light only)
     int rouletteDepth = 3;    ///< Russian roulette starts at this depth
     float clampIndirect = 0;  ///< max channel of an indirect contribution; 0 = off
@@ -28,10 +29,25 @@ struct Ray {
     float tfar = 1e30f;
 };
 
-/// What a camera path returns for one sample.
+/// What the camera ray hit first (for the geometric and ID AOVs).
+struct FirstHit {
+    bool hit = false;
+    float t = 0.0f;              ///< distance along the unit camera ray
+    glm::vec3 position{0.0f};    ///< world space
+    glm::vec3 normal{0.0f};      ///< world-space shading normal, facing the camera
+    glm::vec3 albedo{0.0f};      ///< base colour of the material
+    int primId = -1, instanceId = -1, elementId = -1, materialId = -1;
+};
+
+/// What a camera path returns for one sample. radiance = sum(lobes) + emission: the light that
+/// left the first hit through each lobe (NEE there split by lobe, later bounces credited to the
+/// lobe sampled at the first hit), and emission seen directly (emitters and visible lights).
 struct PathSample {
     glm::vec3 radiance{0.0f};
     float alpha = 0.0f;     ///< 1 when the camera ray hit geometry
+    bsdf::LobeValues lobes{};
+    glm::vec3 emission{0.0f};
+    FirstHit first;
     uint32_t rays = 0;      ///< rays cast (for stats)
     bool invalid = false;   ///< a NaN/Inf was produced and the sample dropped
 };

@@ -20,12 +20,13 @@ bool EmbreeRenderBuffer::allocate(int width, int height, hd::Format format, bool
     _count.assign(n, 0);
     _resolved.assign(format == hd::Format::Int32 ? 0 : n * c, 0.0f);
     _converged = false;
+    _clearValue = format == hd::Format::Int32 ? -1.0f : 0.0f;  // IDs: -1 means "nothing"
     return true;
 }
 
 void EmbreeRenderBuffer::clear() {
     std::fill(_sum.begin(), _sum.end(), 0.0);
-    std::fill(_ints.begin(), _ints.end(), -1);
+    std::fill(_ints.begin(), _ints.end(), static_cast<int32_t>(_clearValue));
     std::fill(_count.begin(), _count.end(), 0);
     _converged = false;
 }
@@ -47,11 +48,25 @@ void EmbreeRenderBuffer::addSample(int x, int y, int32_t value) {
     ++_count[p];
 }
 
+void EmbreeRenderBuffer::setPixel(int x, int y, const float* values) {
+    size_t p = size_t(y) * _width + x;
+    if (_format == hd::Format::Int32) {
+        _ints[p] = static_cast<int32_t>(values[0]);
+    } else {
+        for (int i = 0; i < _components; ++i) _sum[p * _components + i] = values[i];
+    }
+    _count[p] = _multiSampled ? 1 : std::max(_count[p], 1);
+}
+
 void EmbreeRenderBuffer::resolve() {
     if (_format == hd::Format::Int32) return;
     size_t n = size_t(_width) * _height;
     for (size_t p = 0; p < n; ++p) {
-        double inv = (_multiSampled && _count[p] > 0) ? 1.0 / _count[p] : 1.0;
+        if (_count[p] == 0) {
+            for (int i = 0; i < _components; ++i) _resolved[p * _components + i] = _clearValue;
+            continue;
+        }
+        double inv = _multiSampled ? 1.0 / _count[p] : 1.0;
         for (int i = 0; i < _components; ++i) {
             float v = static_cast<float>(_sum[p * _components + i] * inv);
             _resolved[p * _components + i] = std::isfinite(v) ? v : 0.0f;  // never NaN/Inf

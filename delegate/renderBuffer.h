@@ -27,10 +27,15 @@ public:
 
     /// Clears accumulation (the resolved image keeps its last content until resolve()).
     void clear();
+    /// Value resolved for pixels that received no sample (default 0; IDs -1).
+    void setClearValue(float v) { _clearValue = v; }
     /// Adds one sample to pixel (x, y): componentCount(format) values. Thread-safe for
     /// distinct pixels.
     void addSample(int x, int y, const float* values);
     void addSample(int x, int y, int32_t value);
+    /// Overwrites pixel (x, y) with one value per component, counted as one sample (for
+    /// statistics the pass computes itself, e.g. sampleCount and variance).
+    void setPixel(int x, int y, const float* values);
     /// Samples accumulated at a pixel.
     int sampleCount(int x, int y) const { return _count[size_t(y) * _width + x]; }
 
@@ -39,6 +44,7 @@ private:
     hd::Format _format = hd::Format::Invalid;
     bool _multiSampled = true;
     bool _converged = false;
+    float _clearValue = 0.0f;
     std::vector<double> _sum;     // float formats: sum (multi) or first sample (single)
     std::vector<int32_t> _ints;   // Int32 format: first sample
     std::vector<int32_t> _count;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "delegate/aovs.h"
 #include "delegate/hd/camera.h"
 #include "delegate/hd/tokens.h"
 #include "delegate/light.h"
@@ -113,10 +114,10 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
 }
 
 AovDescriptor EmbreeRenderDelegate::defaultAovDescriptor(const Token& aovName) const {
-    if (aovName == tokens::color()) return {Format::Float32Vec4, true, Value(glm::vec4(0.0f))};
-    if (aovName == tokens::primId()) return {Format::Int32, false, Value(-1)};
-    if (aovName == tokens::depth()) return {Format::Float32, false, Value(1.0f)};
-    return {};
+    auto info = findAov(aovName.str());
+    if (!info) return {};
+    Value clear = info->format == Format::Int32 ? Value(int(info->clear)) : Value(info->clear);
+    return {info->format, info->multiSampled, clear};
 }
 
 std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescriptors() const {
@@ -126,6 +127,7 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Max depth", Token("maxDepth"), Value(8), "bounces after the camera hit (0 = direct light only)"},
         {"Clamp indirect", Token("clampIndirect"), Value(0.0f), "max channel value of an indirect contribution; 0 = off"},
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
+        {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome"},
         {"Dome visible to camera", Token("domeLightCameraVisibility"), Value(1), "camera rays see the dome light"},
     };
@@ -165,6 +167,8 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
+    auto sampler = getString(renderSetting(Token("sampler")));
+    s.sampler = (sampler && *sampler == "independent") ? SamplerKind::Independent : SamplerKind::Sobol;
     return s;
 }
 

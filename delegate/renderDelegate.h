@@ -43,6 +43,7 @@ public:
 
     /// Problems found in user data since the last call (one line each, prim path first).
     std::vector<std::string> takeWarnings() { return _param->takeWarnings(); }
+    void warn(const hd::Path& id, const std::string& message) { _param->warn(id, message); }
 
     // Used by the render pass.
     const SceneSnapshot& snapshot() const { return _snapshot; }

@@ -3,12 +3,13 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
+#include <cmath>
 #include <sstream>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include "delegate/aovs.h"
 #include "delegate/hd/camera.h"
 #include "delegate/hd/renderIndex.h"
 #include "delegate/hd/tokens.h"
@@ -53,6 +54,87 @@ Ray cameraRay(const Camera& cam, const glm::vec4& window, int width, int height,
     return r;
 }
 
+struct BoundAov {
+    AovInfo info;
+    EmbreeRenderBuffer* buffer;
+};
+
+// Camera quantities the geometric AOVs need.
+struct CameraFrame {
+    glm::vec3 origin;    // world-space camera position
+    glm::vec3 forward;   // world-space viewing direction (-Z of the camera), unit
+    glm::mat3 toEye;     // world -> camera rotation for normals
+    float nearZ, farZ;
+    bool ortho;
+    float clipDepth(float viewZ) const {
+        // OpenGL-style depth remapped to [0,1]: (z_ndc + 1) / 2 = f (1 - n/z) / (f - n);
+        // orthographic: (z - n) / (f - n).
+        float d = ortho ? (viewZ - nearZ) / (farZ - nearZ)
+                        : farZ * (1.0f - nearZ / viewZ) / (farZ - nearZ);
+        return std::isfinite(d) ? std::clamp(d, 0.0f, 1.0f) : 1.0f;
+    }
+};
+
+CameraFrame cameraFrame(const Camera& cam) {
+    CameraFrame cf;
+    const glm::dmat4& m = cam.transform();
+    cf.origin = glm::vec3(m[3]);
+    cf.forward = glm::normalize(glm::vec3(m * glm::dvec4(0, 0, -1, 0)));
+    // Normals go to eye space with the inverse transpose of the view matrix, i.e. the
+    // transpose of camera-to-world's rotation (renormalised after).
+    cf.toEye = glm::transpose(glm::mat3(m));
+    cf.nearZ = cam.clippingRange().x;
+    cf.farZ = cam.clippingRange().y;
+    cf.ortho = cam.projection() == Camera::Projection::Orthographic;
+    return cf;
+}
+
+void writeSample(const BoundAov& a, int x, int y, const PathSample& ps, const CameraFrame& cf) {
+    const FirstHit& f = ps.first;
+    auto put3 = [&](const glm::vec3& v) {
+        float c[3] = {v.x, v.y, v.z};
+        a.buffer->addSample(x, y, c);
+    };
+    switch (a.info.kind) {
+        case AovKind::Color: {
+            float c[4] = {ps.radiance.x, ps.radiance.y, ps.radiance.z, ps.alpha};
+            a.buffer->addSample(x, y, c);
+            return;
+        }
+        case AovKind::Alpha: a.buffer->addSample(x, y, &ps.alpha); return;
+        case AovKind::Albedo: put3(f.hit ? f.albedo : glm::vec3(0.0f)); return;
+        case AovKind::Diffuse: put3(ps.lobes[int(bsdf::Lobe::Diffuse)]); return;
+        case AovKind::Sheen: put3(ps.lobes[int(bsdf::Lobe::Sheen)]); return;
+        case AovKind::Specular: put3(ps.lobes[int(bsdf::Lobe::Specular)]); return;
+        case AovKind::Clearcoat: put3(ps.lobes[int(bsdf::Lobe::Clearcoat)]); return;
+        case AovKind::Transmission: put3(ps.lobes[int(bsdf::Lobe::Transmission)]); return;
+        case AovKind::Emission: put3(ps.emission); return;
+        case AovKind::SampleCount:
+        case AovKind::Variance: return;  // filled from the pixel statistics at resolve
+        default: break;
+    }
+    // First-hit AOVs: only hits write; pixels never hit resolve to the clear value.
+    if (!f.hit) return;
+    switch (a.info.kind) {
+        case AovKind::Depth: {
+            float d = cf.clipDepth(glm::dot(f.position - cf.origin, cf.forward));
+            a.buffer->addSample(x, y, &d);
+            return;
+        }
+        case AovKind::CameraDepth: a.buffer->addSample(x, y, &f.t); return;
+        case AovKind::Position: put3(f.position); return;
+        case AovKind::Normal: put3(f.normal); return;
+        case AovKind::Neye: put3(glm::normalize(cf.toEye * f.normal)); return;
+        case AovKind::PrimId: a.buffer->addSample(x, y, int32_t(f.primId)); return;
+        case AovKind::InstanceId: a.buffer->addSample(x, y, int32_t(f.instanceId)); return;
+        case AovKind::ElementId: a.buffer->addSample(x, y, int32_t(f.elementId)); return;
+        case AovKind::MaterialId: a.buffer->addSample(x, y, int32_t(f.materialId)); return;
+        default: return;
+    }
+}
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
 }  // namespace
 
 bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
@@ -75,26 +157,47 @@ bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
 }
 
 void EmbreeRenderPass::execute(const RenderPassState& state) {
-    if (needsRestart(state)) {
+    size_t pixels = size_t(std::max(0, state.width)) * size_t(std::max(0, state.height));
+    if (needsRestart(state) || _lumSum.size() != pixels) {
         _samples = 0;
         _passes = 0;
         _converged = false;
+        _lumSum.assign(pixels, 0.0);
+        _lumSqSum.assign(pixels, 0.0);
+        _pixelSamples.assign(pixels, 0);
         for (const auto& b : state.aovBindings)
-            if (auto* buf = dynamic_cast<EmbreeRenderBuffer*>(b.renderBuffer)) buf->clear();
+            if (auto* buf = dynamic_cast<EmbreeRenderBuffer*>(b.renderBuffer)) {
+                if (auto info = findAov(b.aovName.str())) buf->setClearValue(info->clear);
+                buf->clear();
+            }
     }
     _target = std::max(1, _delegate->samplesPerPixel());
     if (_converged) return;
     auto* cam = static_cast<Camera*>(renderIndex()->sprim(tokens::camera(), state.cameraId));
-    if (!cam || state.width <= 0 || state.height <= 0) {
+    if (!cam || pixels == 0) {
         _converged = true;  // nothing can be rendered: do not spin
         return;
     }
-    // Bound buffers this pass knows how to fill (others stay at their clear value).
-    EmbreeRenderBuffer* color = nullptr;
+    // The bound buffers this pass can fill; others are reported once and left alone.
+    std::vector<BoundAov> aovs;
     for (const auto& b : state.aovBindings) {
         auto* buf = dynamic_cast<EmbreeRenderBuffer*>(b.renderBuffer);
-        if (!buf || buf->width() != state.width || buf->height() != state.height) continue;
-        if (b.aovName == tokens::color() && componentCount(buf->format()) == 4) color = buf;
+        auto info = findAov(b.aovName.str());
+        std::string problem;
+        if (!buf)
+            problem = "is not bound to a buffer of this delegate";
+        else if (!info)
+            problem = "is not an AOV this delegate renders";
+        else if (buf->width() != state.width || buf->height() != state.height)
+            problem = "buffer size differs from the pass size";
+        else if (buf->format() != info->format)
+            problem = "buffer format does not match the AOV's format";
+        if (!problem.empty()) {
+            if (_reported.insert(b.aovName.str()).second)
+                _delegate->warn(hd::Path("/__principled/aov/" + b.aovName.str()), "AOV '" + b.aovName.str() + "' " + problem + "; skipped");
+            continue;
+        }
+        aovs.push_back({*info, buf});
     }
 
     const SceneSnapshot& scene = _delegate->snapshot();
@@ -102,6 +205,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     Integrator integrator(scene, settings);
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
     glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));
+    CameraFrame cf = cameraFrame(*cam);
     // The first pass is a single sample so a viewport shows an image at once; later passes
     // double up to kMaxSamplesPerPass.
     int batch = std::min({_target - _samples, 1 << std::min(_passes, 4), kMaxSamplesPerPass});
@@ -116,14 +220,17 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                     uint32_t pixel = uint32_t(y) * uint32_t(state.width) + uint32_t(x);
                     for (int s = first; s < first + batch; ++s) {
-                        Sampler sampler(seed, pixel, uint32_t(s));
+                        Sampler sampler(settings.sampler, seed, pixel, uint32_t(s));
                         glm::vec2 j = sampler.next2D();  // box filter: uniform in the pixel
                         Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y);
                         PathSample ps = integrator.trace(r, sampler);
                         tileRays += ps.rays;
                         tileInvalid += ps.invalid;
-                        float c[4] = {ps.radiance.x, ps.radiance.y, ps.radiance.z, ps.alpha};
-                        if (color) color->addSample(x, y, c);
+                        for (const auto& a : aovs) writeSample(a, x, y, ps, cf);
+                        double lum = luminance(ps.radiance);
+                        _lumSum[pixel] += lum;
+                        _lumSqSum[pixel] += lum * lum;
+                        ++_pixelSamples[pixel];
                     }
                 }
             rays += tileRays;
@@ -131,16 +238,32 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         });
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    _delegate->addPassStats(rays.load(), long(batch) * state.width * state.height, invalid.load(),
-                            seconds);
+    _delegate->addPassStats(rays.load(), long(batch) * long(pixels), invalid.load(), seconds);
     _samples += batch;
     ++_passes;
     _converged = _samples >= _target;
-    for (const auto& b : state.aovBindings)
-        if (auto* buf = dynamic_cast<EmbreeRenderBuffer*>(b.renderBuffer)) {
-            buf->resolve();
-            buf->setConverged(_converged);
+    for (const auto& a : aovs) {
+        if (a.info.kind == AovKind::SampleCount || a.info.kind == AovKind::Variance) {
+            for (int y = 0; y < state.height; ++y)
+                for (int x = 0; x < state.width; ++x) {
+                    size_t p = size_t(y) * state.width + x;
+                    float v = float(_pixelSamples[p]);
+                    if (a.info.kind == AovKind::Variance) v = float(meanVariance(p));
+                    a.buffer->setPixel(x, y, &v);
+                }
         }
+        a.buffer->resolve();
+        a.buffer->setConverged(_converged);
+    }
+}
+
+double EmbreeRenderPass::meanVariance(size_t p) const {
+    // Unbiased sample variance of the luminance divided by n: the variance of the pixel mean.
+    long n = _pixelSamples[p];
+    if (n < 2) return 0.0;
+    double mean = _lumSum[p] / n;
+    double var = std::max(0.0, (_lumSqSum[p] - n * mean * mean) / (n - 1));
+    return var / n;
 }
 
 }  // namespace principled::embree

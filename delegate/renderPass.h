@@ -5,7 +5,9 @@
 #pragma once
 
 #include <atomic>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -28,6 +30,9 @@ public:
     /// Samples per pixel the pass converges at.
     int targetSamples() const { return _target; }
 
+    /// Variance of pixel p's mean luminance (0 with fewer than 2 samples).
+    double meanVariance(size_t p) const;
+
 private:
     bool needsRestart(const hd::RenderPassState& state);
 
@@ -39,6 +44,10 @@ private:
     // What the accumulated samples were rendered with.
     unsigned _sceneVersion = 0, _settingsVersion = 0;
     std::string _stateKey;
+    // Per-pixel luminance statistics (variance AOV, convergence, adaptive sampling).
+    std::vector<double> _lumSum, _lumSqSum;
+    std::vector<int> _pixelSamples;
+    std::set<std::string> _reported;
 };
 
 }  // namespace principled::embree

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Sampler: deterministic random numbers addressed by (seed, pixel, sample index, dimension),
-// so an image does not depend on thread count or tile order. This is the independent-random
-// baseline; low-discrepancy sequences plug in behind the same interface.
+// Sampler: deterministic sample values addressed by (seed, pixel, sample index, dimension), so
+// an image does not depend on thread count, tile order or how sample ranges are split across
+// processes. Two kinds: Owen-scrambled Sobol (default) and independent random (baseline).
 #pragma once
 
 #include <cstdint>
@@ -10,32 +10,48 @@
 
 namespace principled::embree {
 
-/// A stateless hash per draw: the value of dimension d depends only on (seed, pixel, sample, d).
+enum class SamplerKind : uint8_t { Sobol, Independent };
+
+/// Stateless hash mixing (Wellons 2018, "Prospecting for Hash Functions", lowbias32).
+inline uint32_t hashMix(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+inline uint32_t hashCombine(uint32_t a, uint32_t b) { return hashMix(a ^ (b + 0x9e3779b9u + (a << 6) + (a >> 2))); }
+
+/// The first four Sobol dimensions at index i, as 32-bit fractions (Joe & Kuo 2008 direction
+/// numbers for dimensions 2-4; dimension 1 is the van der Corput sequence).
+uint32_t sobol4(uint32_t index, int dimension);
+
+/// Nested uniform (Owen) scrambling of a 32-bit fraction with a hash-based permutation:
+/// Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4), section 3 (Laine-Karras
+/// style hash applied to the bit-reversed value).
+uint32_t owenScramble(uint32_t x, uint32_t seed);
+
 class Sampler {
 public:
-    Sampler(uint32_t seed, uint32_t pixel, uint32_t sampleIndex)
-        : _key(mix(mix(mix(0x9e3779b9u ^ seed) ^ pixel) ^ sampleIndex)) {}
+    Sampler(SamplerKind kind, uint32_t seed, uint32_t pixel, uint32_t sampleIndex)
+        : _kind(kind), _pixelKey(hashCombine(hashMix(seed ^ 0x5bd1e995u), pixel)), _index(sampleIndex) {}
 
     /// Uniform in [0, 1).
-    float next1D() { return toUnit(mix(_key ^ mix(_dimension++ * 0x85ebca6bu + 0x68e31da4u))); }
+    float next1D() { return toUnit(value(_dimension++)); }
     glm::vec2 next2D() {
         float a = next1D();
         return {a, next1D()};
     }
+    uint32_t dimension() const { return _dimension; }
 
 private:
-    // Wellons 2018 "Prospecting for Hash Functions", lowbias32 (bias 0.17).
-    static uint32_t mix(uint32_t x) {
-        x ^= x >> 16;
-        x *= 0x7feb352du;
-        x ^= x >> 15;
-        x *= 0x846ca68bu;
-        x ^= x >> 16;
-        return x;
-    }
+    uint32_t value(uint32_t d) const;
     static float toUnit(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
 
-    uint32_t _key;
+    SamplerKind _kind;
+    uint32_t _pixelKey;
+    uint32_t _index;
     uint32_t _dimension = 0;
 };
 

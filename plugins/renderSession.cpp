@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "delegate/hd/renderIndex.h"
+#include "delegate/aovs.h"
 #include "delegate/hd/tokens.h"
 #include "delegate/renderBuffer.h"
 #include "delegate/renderDelegate.h"
@@ -54,6 +55,9 @@ void RenderSession::setup() {
     _delegate->setRenderSetting(Token("seed"), Value(_options.seed));
     _delegate->setRenderSetting(Token("maxDepth"), Value(std::max(0, _options.maxDepth)));
     _delegate->setRenderSetting(Token("shadingModel"), Value(Token(_options.shadingModel)));
+    if (_options.sampler != "sobol" && _options.sampler != "independent")
+        throw UserError("sampler must be 'sobol' or 'independent', not '" + _options.sampler + "'");
+    _delegate->setRenderSetting(Token("sampler"), Value(Token(_options.sampler)));
     _index = std::make_unique<RenderIndex>(_delegate.get());
     adapter::AdapterOptions ao;
     ao.time = _options.time;
@@ -77,11 +81,29 @@ void RenderSession::setup() {
                                              double(_options.width) / double(_options.height))
                           .str();
     }
-    Path bufferId("/__principled/aov/color");
-    _index->insertBprim(tokens::renderBuffer(), _sceneDelegate.get(), bufferId);
-    _color = static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), bufferId));
-    AovDescriptor d = _delegate->defaultAovDescriptor(tokens::color());
-    _color->allocate(_options.width, _options.height, d.format, d.multiSampled);
+    std::vector<std::string> names{"color"};
+    for (const auto& a : _options.aovs) {
+        if (a == "all") {
+            for (const auto& info : embree::allAovs()) names.push_back(info.name);
+        } else if (!embree::findAov(a)) {
+            std::string known;
+            for (const auto& info : embree::allAovs()) known += std::string(known.empty() ? "" : ", ") + info.name;
+            throw UserError("unknown AOV '" + a + "'; known AOVs: " + known + ", all");
+        } else {
+            names.push_back(a);
+        }
+    }
+    for (const auto& name : names) {
+        if (std::any_of(_buffers.begin(), _buffers.end(), [&](auto& b) { return b.first == name; }))
+            continue;
+        Path bufferId("/__principled/aov/" + name);
+        _index->insertBprim(tokens::renderBuffer(), _sceneDelegate.get(), bufferId);
+        auto* buf = static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), bufferId));
+        AovDescriptor d = _delegate->defaultAovDescriptor(Token(name));
+        buf->allocate(_options.width, _options.height, d.format, d.multiSampled);
+        _buffers.emplace_back(name, buf);
+    }
+    _color = _buffers.front().second;
     _index->sync();
     _pass = _delegate->createRenderPass(_index.get());
 }
@@ -92,7 +114,7 @@ bool RenderSession::step() {
     state.cameraId = Path(_cameraPath);
     state.width = _options.width;
     state.height = _options.height;
-    state.aovBindings.push_back({tokens::color(), _color});
+    for (const auto& [name, buf] : _buffers) state.aovBindings.push_back({Token(name), buf});
     _pass->execute(state);
     return _pass->isConverged();
 }
@@ -108,6 +130,13 @@ int RenderSession::targetSamples() const {
 }
 
 const float* RenderSession::color() const { return static_cast<const float*>(_color->map()); }
+
+std::vector<RenderSession::AovImage> RenderSession::aovs() const {
+    std::vector<AovImage> out;
+    for (const auto& [name, buf] : _buffers)
+        out.push_back({name, componentCount(buf->format()), buf->format() == Format::Int32, buf->map()});
+    return out;
+}
 
 std::vector<std::string> RenderSession::takeWarnings() {
     std::vector<std::string> out;

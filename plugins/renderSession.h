@@ -44,6 +44,9 @@ struct SessionOptions {
     int maxDepth = 8;
     std::string camera;           ///< prim path; empty = first camera, else a framing camera
     std::string shadingModel = "disney";
+    std::string sampler = "sobol";  ///< sobol | independent
+    /// AOVs to render besides color ("normal", "primId", ... or "all").
+    std::vector<std::string> aovs;
     double time = std::numeric_limits<double>::quiet_NaN();
 };
 
@@ -69,6 +72,15 @@ public:
     /// The color AOV: RGBA floats, top row first (alpha 1 where geometry was hit).
     const float* color() const;
 
+    struct AovImage {
+        std::string name;
+        int components = 0;
+        bool isInt = false;       ///< int32 pixels (IDs), else float
+        const void* pixels = nullptr;
+    };
+    /// Every bound AOV (color first), resolved after the last step().
+    std::vector<AovImage> aovs() const;
+
     /// Scene and delegate problems found so far (each once).
     std::vector<std::string> takeWarnings();
     std::map<std::string, double> stats() const;
@@ -85,6 +97,7 @@ private:
     std::unique_ptr<adapter::UsdSceneDelegate> _sceneDelegate;
     std::unique_ptr<hd::RenderPass> _pass;
     embree::EmbreeRenderBuffer* _color = nullptr;
+    std::vector<std::pair<std::string, embree::EmbreeRenderBuffer*>> _buffers;
     std::string _cameraPath;
     size_t _adapterWarningsTaken = 0;
     size_t _stageWarningsTaken = 0;

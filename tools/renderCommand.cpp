@@ -32,6 +32,9 @@ struct RenderArgs {
     std::string camera;
     std::string model = "disney";
     std::string statsPath;
+    std::vector<std::string> aovs;
+    std::string sampler = "sobol";
+    bool split = false;
     bool quiet = false;
 };
 
@@ -53,6 +56,8 @@ int runRender(const RenderArgs& a) {
     o.maxDepth = a.maxDepth;
     o.camera = a.camera;
     o.shadingModel = a.model;
+    o.sampler = a.sampler;
+    o.aovs = a.aovs;
     for (const auto& out : a.outputs) {
         auto ext = std::filesystem::path(out).extension().string();
         if (ext != ".exr" && ext != ".png")
@@ -95,14 +100,51 @@ int runRender(const RenderArgs& a) {
     double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     report();
 
+    // Layers: color as the main RGBA, every other AOV as "name.R"... (IDs as float channels,
+    // exact for ids below 2^24).
+    std::vector<std::vector<float>> storage;
+    std::vector<embree::ImageLayer> layers;
+    size_t n = size_t(session->width()) * session->height();
+    for (const auto& img : session->aovs()) {
+        embree::ImageLayer l;
+        l.name = img.name == "color" ? "" : img.name;
+        static const char* rgba[] = {"R", "G", "B", "A"};
+        if (img.components == 1)
+            l.channels = {img.isInt ? "id" : "Z"};
+        else
+            for (int c = 0; c < img.components; ++c) l.channels.push_back(rgba[c]);
+        if (img.name == "depth" || img.name == "cameraDepth") l.channels = {"Z"};
+        if (img.name == "alpha") l.channels = {"A"};
+        if (img.name == "sampleCount" || img.name == "variance") l.channels = {"V"};
+        if (img.isInt) {
+            storage.emplace_back(n);
+            const int32_t* ids = static_cast<const int32_t*>(img.pixels);
+            for (size_t i = 0; i < n; ++i) storage.back()[i] = float(ids[i]);
+            l.pixels = storage.back().data();
+        } else {
+            l.pixels = static_cast<const float*>(img.pixels);
+        }
+        layers.push_back(l);
+    }
     for (const auto& out : a.outputs) {
         std::error_code ec;
-        auto dir = std::filesystem::path(out).parent_path();
-        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+        auto path = std::filesystem::path(out);
+        if (!path.parent_path().empty()) std::filesystem::create_directories(path.parent_path(), ec);
         std::string error;
-        embree::ImageLayer color{"", {"R", "G", "B", "A"}, session->color()};
-        if (!embree::writeImage(out, session->width(), session->height(), {color}, &error))
+        bool exr = path.extension() == ".exr";
+        if (a.split && exr) {
+            for (const auto& l : layers) {
+                auto p = path;
+                p.replace_filename(path.stem().string() + "." + (l.name.empty() ? "color" : l.name) + ".exr");
+                embree::ImageLayer single = l;
+                single.name.clear();
+                if (!embree::writeImage(p.string(), session->width(), session->height(), {single}, &error))
+                    return fail(error);
+            }
+        } else if (!embree::writeImage(out, session->width(), session->height(),
+                                       exr ? layers : std::vector<embree::ImageLayer>{layers[0]}, &error)) {
             return fail(error);
+        }
     }
     if (!a.statsPath.empty()) {
         nlohmann::json j;
@@ -141,6 +183,10 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--camera", args->camera, "Camera prim path (default: the first camera)");
     cmd->add_option("--model", args->model, "Shading model: disney or ue4");
     cmd->add_option("--stats", args->statsPath, "Write render statistics as JSON");
+    cmd->add_option("--aov", args->aovs, "AOVs to write besides color, comma-separated, or 'all'")
+        ->delimiter(',');
+    cmd->add_flag("--split", args->split, "Write one EXR per AOV (NAME.AOV.exr) instead of one multi-layer EXR");
+    cmd->add_option("--sampler", args->sampler, "sobol (Owen-scrambled, default) or independent");
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar, warnings or summary");
     cmd->callback([args, exitCode] { *exitCode = runRender(*args); });
 }

@@ -50,6 +50,10 @@ void refuseBinary(std::string_view text, const std::string& file) {
 std::string readLayerText(const std::string& file) {
     std::error_code ec;
     if (fs::is_directory(file, ec)) throw Error({file, 0, 0}, "is a directory, not a layer file");
+    // 16 GiB: far above any real text layer; stops reads of huge pseudo-files (/proc/kcore).
+    constexpr std::uintmax_t kMaxLayerBytes = std::uintmax_t(16) << 30;
+    std::uintmax_t size = fs::file_size(file, ec);
+    if (!ec && size > kMaxLayerBytes) throw Error({file, 0, 0}, "layer file is larger than 16 GiB");
     std::ifstream in(file, std::ios::binary);
     if (!in) throw Error({file, 0, 0}, "cannot open layer file");
     std::ostringstream ss;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Follows the structure of Pcp (pxr/usd/pcp/primIndex.cpp) in a much reduced form: no
-// relocations, no instancing (instanceable prims are expanded like any other), no implied
-// class arcs across references, ancestral arcs weaker than direct arcs of the same kind.
+// relocations, no instancing (instanceable prims are expanded like any other), implied class
+// arcs only into the root layer stack, ancestral arcs before direct arcs of the same kind.
 #include "scene_adapter/usda/composer.h"
 
 #include <algorithm>
@@ -20,9 +20,26 @@ namespace {
 constexpr std::size_t kMaxNodesPerPrim = 4096;
 // Composed prims one stage may hold (16M).
 constexpr std::size_t kMaxPrims = std::size_t(1) << 24;
+// Arcs nested inside arcs (a reference of a reference of ...), and composed namespace depth:
+// both bound the composer's recursion so that chained layers cannot overflow the stack.
+constexpr int kMaxArcDepth = 256;
+constexpr int kMaxNamespaceDepth = 1024;
 
 std::string describeSite(const LayerStack* stack, std::string_view site) {
     return stack->identifier + "<" + std::string(site) + ">";
+}
+
+// Adds a weaker opinion of metadata field `key`: the stronger value stays, except that
+// dictionaries (customData, assetInfo, ...) merge key by key, as Sdf composes them.
+void composeField(Dictionary& out, const std::string& key, const Value& weaker) {
+    auto [it, inserted] = out.emplace(key, weaker);
+    if (inserted) return;
+    const Dictionary* strong = it->second.dictionary();
+    const Dictionary* weak = weaker.dictionary();
+    if (!strong || !weak) return;
+    Dictionary merged = *strong;
+    for (const auto& [k, v] : *weak) composeField(merged, k, v);
+    it->second = Value::dictionary(std::move(merged), it->second.location());
 }
 
 template <class T, class Get>
@@ -167,7 +184,7 @@ void Composer::compose(const Layer* rootLayer) {
             op.set(ListOpKind::Reorder, *(*it)->rootPrimOrder);
             op.applyTo(names);
         }
-    composeChildren(*rootPrim, nullptr, names);
+    composeChildren(*rootPrim, nullptr, names, 1);
 }
 
 std::unique_ptr<PrimIndexNode> Composer::derive(const Node& source, std::string_view name,
@@ -194,7 +211,15 @@ std::vector<const PrimSpec*> Composer::specsAt(const Node& node) {
     return out;
 }
 
-bool Composer::reserveNode(const SourceLocation& where) {
+bool Composer::reserveNode(const Node& parent, const SourceLocation& where) {
+    int depth = 0;
+    for (const Node* n = &parent; n; n = n->parent) ++depth;
+    if (depth >= kMaxArcDepth) {
+        warn(where, "composition arcs nested more than " + std::to_string(kMaxArcDepth) +
+                        " deep; further arcs are ignored",
+             Diagnostic::Severity::Error);
+        return false;
+    }
     if (++_nodeCount <= kMaxNodesPerPrim) return true;
     warn(where, "composition too complex: more than " + std::to_string(kMaxNodesPerPrim) +
                     " arcs contribute to one prim; further arcs are ignored",
@@ -211,9 +236,10 @@ void Composer::expandArcs(Node& node) {
     for (const Reference& r :
          composeListOp<Reference>(specs, [](const PrimSpec& s) -> auto& { return s.references; }))
         addReferenceArc(node, r, Arc::Reference);
-    for (const Reference& r :
-         composeListOp<Reference>(specs, [](const PrimSpec& s) -> auto& { return s.payloads; }))
-        addReferenceArc(node, r, Arc::Payload);
+    if (_options.loadPayloads)
+        for (const Reference& r : composeListOp<Reference>(
+                 specs, [](const PrimSpec& s) -> auto& { return s.payloads; }))
+            addReferenceArc(node, r, Arc::Payload);
     for (const PathItem& item : composeListOp<PathItem>(
              specs, [](const PrimSpec& s) -> auto& { return s.specializes; }))
         addClassArc(node, item, Arc::Specialize);
@@ -275,28 +301,65 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
         return;
     }
     if (reportCycle(node, stack, target, ref.location, what)) return;
-    if (!reserveNode(ref.location)) return;
+    if (!reserveNode(node, ref.location)) return;
     auto child = std::make_unique<Node>();
     child->stack = stack;
     child->site = target;
     child->arc = arc;
     child->map.push_back({target, path::stripVariants(node.site), false});
     child->map.insert(child->map.end(), node.map.begin(), node.map.end());
-    child->offset = node.offset.compose(ref.offset);
+    // Time mapping: the node's, then the offset of the sublayer that authored the arc, then
+    // the arc's own (offset; scale).
+    LayerOffset authoring;
+    for (std::size_t i = 0; i < node.stack->layers.size(); ++i)
+        if (node.stack->layers[i]->file == ref.location.file) authoring = node.stack->offsets[i];
+    child->offset = node.offset.compose(authoring).compose(ref.offset);
     child->arcLocation = ref.location;
     Node* raw = child.get();
     node.addChild(std::move(child));
     expandArcs(*raw);
 }
 
+void Composer::addImpliedClassArc(const Node& node, const std::string& target, Arc arc,
+                                  const SourceLocation& where) {
+    // Only arcs seen through a reference or payload have an implied counterpart.
+    bool viaReference = false;
+    for (const Node* n = &node; n; n = n->parent)
+        if (n->arc == Arc::Reference || n->arc == Arc::Payload) viaReference = true;
+    if (!viaReference || !_indexRoot) return;
+    // Map the class into stage namespace; paths outside the referenced prim are global classes
+    // and keep their path (Pcp adds the root identity to reference map functions).
+    std::string mapped = target;
+    for (const MapStep& step : node.map)
+        if (path::hasPrefix(mapped, step.source))
+            mapped = path::replacePrefix(mapped, step.source, step.target);
+    if (!_rootStack->hasPrim(mapped)) return;
+    for (const Node* n : strengthOrder(*_indexRoot))
+        if (n->stack == _rootStack && path::stripVariants(n->site) == mapped) return;
+    if (reportCycle(*_indexRoot, _rootStack, mapped, where,
+                    arc == Arc::Inherit ? "inherits" : "specializes"))
+        return;
+    if (!reserveNode(*_indexRoot, where)) return;
+    auto child = std::make_unique<Node>();
+    child->stack = _rootStack;
+    child->site = mapped;
+    child->arc = arc;
+    child->map.push_back({mapped, _indexRoot->site, true});
+    child->arcLocation = where;
+    Node* raw = child.get();
+    _indexRoot->addChild(std::move(child));
+    expandArcs(*raw);
+}
+
 void Composer::addClassArc(Node& node, const PathItem& item, Arc arc) {
     std::string site = path::stripVariants(node.site);
     std::string target = path::makeAbsolute(item.path, site);
+    addImpliedClassArc(node, target, arc, item.location);
     if (!node.stack->hasPrim(target)) return;  // a missing class is legal: no opinions
     if (reportCycle(node, node.stack, target, item.location,
                     arc == Arc::Inherit ? "inherits" : "specializes"))
         return;
-    if (!reserveNode(item.location)) return;
+    if (!reserveNode(node, item.location)) return;
     auto child = std::make_unique<Node>();
     child->stack = node.stack;
     child->site = target;
@@ -373,7 +436,7 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
                                                           selection + "\"");
                     continue;
                 }
-                if (!reserveNode(specs.front()->location)) return;
+                if (!reserveNode(*n, specs.front()->location)) return;
                 auto child = std::make_unique<Node>();
                 child->stack = n->stack;
                 child->site = site;
@@ -391,6 +454,22 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
         }
         if (!added) return;
     }
+}
+
+std::string Composer::instanceKey(const std::vector<Node*>& order,
+                                  const std::map<std::string, std::string>& used) {
+    // Pcp's instance key, simplified: every arc below the prim's own (local) site, with its
+    // time mapping, plus the variant selections. Local opinions on the instance prim itself
+    // (its transform, say) are not part of what instances share.
+    std::string key;
+    for (const Node* n : order) {
+        if (n->arc == Arc::Root) continue;
+        key += std::to_string(static_cast<int>(n->arc)) + "|" + n->stack->identifier + "|" +
+               n->site + "|" + std::to_string(n->offset.offset) + "|" +
+               std::to_string(n->offset.scale) + "\n";
+    }
+    for (const auto& [set, selection] : used) key += "{" + set + "=" + selection + "}";
+    return key.empty() ? std::string("(no arcs)") : key;
 }
 
 std::vector<Composer::SpecRef> Composer::gatherSpecs(const std::vector<Node*>& order) const {
@@ -477,7 +556,7 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
             break;
         }
     for (const SpecRef& s : specs)
-        for (const auto& [key, value] : s.spec->metadata) prim._metadata.emplace(key, value);
+        for (const auto& [key, value] : s.spec->metadata) composeField(prim._metadata, key, value);
     if (const Value* active = prim.metadata("active"))
         if (auto b = active->getBool()) prim._active = *b;
     if (prim._parent && !prim._parent->isActive()) prim._active = false;
@@ -486,6 +565,8 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
     prim._appliedSchemas = composeListOp<std::string>(
         strongFirst, [](const PrimSpec& s) -> auto& { return s.apiSchemas; });
     prim._variantSelections = used;
+    if (const Value* inst = prim.metadata("instanceable"))
+        if (inst->getBool().value_or(false)) prim._instanceKey = instanceKey(order, used);
 
     // Properties: every opinion of each name, strongest first.
     std::map<std::string, std::vector<std::pair<const AttributeSpec*, const SpecRef*>>> attrs;
@@ -510,7 +591,7 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
             if (defaultAt == opinions.size() && a.defaultValue) defaultAt = i;
             if (samplesAt == opinions.size() && a.hasTimeSamples) samplesAt = i;
             if (a.hasConnections) connections.push_back({&a.connections, opinions[i].second});
-            for (const auto& [key, value] : a.metadata) attr->_metadata.emplace(key, value);
+            for (const auto& [key, value] : a.metadata) composeField(attr->_metadata, key, value);
         }
         if (defaultAt < opinions.size()) attr->_default = *opinions[defaultAt].first->defaultValue;
         // Value resolution (UsdAttribute::Get): per opinion, time samples before the default;
@@ -531,7 +612,7 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
         std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>> targets;
         for (const auto& [r, s] : opinions) {
             if (r->hasTargets) targets.push_back({&r->targets, s});
-            for (const auto& [key, value] : r->metadata) rel->_metadata.emplace(key, value);
+            for (const auto& [key, value] : r->metadata) composeField(rel->_metadata, key, value);
         }
         rel->_targets = composeTargets(targets);
         prim._relationships.push_back(rel.get());
@@ -552,7 +633,13 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
 }
 
 void Composer::composeChildren(Prim& parent, Node* parentIndex,
-                               const std::vector<std::string>& names) {
+                               const std::vector<std::string>& names, int depth) {
+    if (!names.empty() && depth > kMaxNamespaceDepth) {
+        warn(parent._location, "namespace deeper than " + std::to_string(kMaxNamespaceDepth) +
+                                   " levels below " + parent._path + "; children are ignored",
+             Diagnostic::Severity::Error);
+        return;
+    }
     for (const std::string& name : names) {
         if (_stage._prims.size() >= kMaxPrims) {
             warn(parent._location, "too many prims (more than " + std::to_string(kMaxPrims) +
@@ -589,7 +676,7 @@ void Composer::composeChildren(Prim& parent, Node* parentIndex,
         parent._children.push_back(raw);
         _stage._index[primPath] = raw;
         _stage._prims.push_back(std::move(prim));
-        if (raw->_active) composeChildren(*raw, index.get(), childNames);
+        if (raw->_active) composeChildren(*raw, index.get(), childNames, depth + 1);
     }
 }
 

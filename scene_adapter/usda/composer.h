@@ -76,9 +76,13 @@ private:
     void expandArcs(Node& node);
     void addReferenceArc(Node& node, const Reference& ref, Arc arc);
     void addClassArc(Node& node, const PathItem& item, Arc arc);
+    /// Pcp's implied inherits/specializes: a class arc inside a referenced asset also picks up
+    /// the class at the mapped path in the root layer stack (stronger than the asset's class).
+    void addImpliedClassArc(const Node& node, const std::string& target, Arc arc,
+                            const SourceLocation& where);
     bool reportCycle(const Node& from, const LayerStack* stack, const std::string& site,
                      const SourceLocation& where, const char* arcName);
-    bool reserveNode(const SourceLocation& where);
+    bool reserveNode(const Node& parent, const SourceLocation& where);
     void expandVariants(Node& root, const std::string& primPath,
                         std::map<std::string, std::string>& used);
     std::string selectVariant(Node& root, const std::string& primPath, const std::string& set);
@@ -86,11 +90,14 @@ private:
     static std::vector<Node*> strengthOrder(Node& root);
     static std::vector<const PrimSpec*> specsAt(const Node& node);
     std::vector<SpecRef> gatherSpecs(const std::vector<Node*>& order) const;
+    static std::string instanceKey(const std::vector<Node*>& order,
+                                   const std::map<std::string, std::string>& used);
     std::optional<std::string> mapToStage(const Node& node, const std::string& path) const;
     std::vector<std::string> composeTargets(
         const std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>>& opsStrongFirst);
 
-    void composeChildren(Prim& parent, Node* parentIndex, const std::vector<std::string>& names);
+    void composeChildren(Prim& parent, Node* parentIndex, const std::vector<std::string>& names,
+                         int depth);
     void composePrim(Prim& prim, Node& index, const std::map<std::string, std::string>& used,
                      std::vector<std::string>& childNames);
 

@@ -18,10 +18,36 @@ const PrimSpec* VariantSetSpec::variant(std::string_view n) const {
     return nullptr;
 }
 
-const PrimSpec* PrimSpec::child(std::string_view n) const {
-    for (const auto& c : children)
-        if (c->name == n) return c.get();
+namespace {
+// Below this many children a linear scan is faster than hashing.
+constexpr std::size_t kIndexThreshold = 8;
+
+void buildIndex(const std::vector<std::unique_ptr<PrimSpec>>& prims,
+                std::unordered_map<std::string_view, const PrimSpec*>& index) {
+    index.clear();
+    if (prims.size() <= kIndexThreshold) return;
+    index.reserve(prims.size());
+    for (const auto& p : prims) index.emplace(p->name, p.get());  // first spec of a name wins
+}
+
+const PrimSpec* lookup(const std::vector<std::unique_ptr<PrimSpec>>& prims,
+                       const std::unordered_map<std::string_view, const PrimSpec*>& index,
+                       std::string_view name) {
+    if (!index.empty()) {
+        auto it = index.find(name);
+        return it == index.end() ? nullptr : it->second;
+    }
+    for (const auto& p : prims)
+        if (p->name == name) return p.get();
     return nullptr;
+}
+}  // namespace
+
+void PrimSpec::indexChildren() { buildIndex(children, childIndex); }
+void Layer::indexRootPrims() { buildIndex(rootPrims, rootIndex); }
+
+const PrimSpec* PrimSpec::child(std::string_view n) const {
+    return lookup(children, childIndex, n);
 }
 
 const VariantSetSpec* PrimSpec::variantSet(std::string_view n) const {
@@ -56,9 +82,7 @@ const PrimSpec* Layer::prim(std::string_view site) const {
         std::string_view name = site.substr(i, j - i);
         if (!name.empty()) {
             if (!current) {
-                current = nullptr;
-                for (const auto& r : rootPrims)
-                    if (r->name == name) current = r.get();
+                current = lookup(rootPrims, rootIndex, name);
             } else {
                 current = current->child(name);
             }

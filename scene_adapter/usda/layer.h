@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "scene_adapter/usda/listOp.h"
@@ -106,8 +107,12 @@ struct PrimSpec {
     std::vector<VariantSetSpec> variantSets;
     std::optional<std::vector<std::string>> nameChildrenOrder, propertyOrder;
     SourceLocation location;
+    /// name -> child, only for prims with many children (keys view the children's names).
+    std::unordered_map<std::string_view, const PrimSpec*> childIndex;
 
     const PrimSpec* child(std::string_view name) const;
+    /// Builds the name lookup for prims with many children (called by the parser).
+    void indexChildren();
     const VariantSetSpec* variantSet(std::string_view name) const;
     const AttributeSpec* attribute(std::string_view name) const;
     const RelationshipSpec* relationship(std::string_view name) const;
@@ -120,8 +125,11 @@ struct Layer {
     std::vector<SubLayer> subLayers;
     std::vector<std::unique_ptr<PrimSpec>> rootPrims;
     std::optional<std::vector<std::string>> rootPrimOrder;
+    std::unordered_map<std::string_view, const PrimSpec*> rootIndex;  ///< see indexChildren
 
     std::string defaultPrim() const;
+    /// Builds the root prim lookup (called by the parser).
+    void indexRootPrims();
     /// Layer metadata value or nullptr.
     const Value* field(std::string_view key) const;
     /// The spec at a site path such as "/A/B" or "/A{geo=quad}/B", or nullptr.

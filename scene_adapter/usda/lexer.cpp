@@ -63,15 +63,11 @@ void Lexer::skipSpaceAndComments() {
         } else if (c == '/' && _pos + 1 < n && _text[_pos + 1] == '*') {
             int line = _line, col = static_cast<int>(_pos - _lineStart) + 1;
             _pos += 2;
-            for (;;) {
-                if (_pos + 1 >= n) {
-                    _pos = n;
-                    failHere("'*/' closing the comment opened at " + std::to_string(line) + ":" +
-                                 std::to_string(col),
-                             "end of file");
-                }
-                if (_text[_pos] == '*' && _text[_pos + 1] == '/') {
+            bool closed = false;
+            while (_pos < n) {
+                if (_text[_pos] == '*' && _pos + 1 < n && _text[_pos + 1] == '/') {
                     _pos += 2;
+                    closed = true;
                     break;
                 }
                 if (_text[_pos] == '\n') {
@@ -80,6 +76,10 @@ void Lexer::skipSpaceAndComments() {
                 }
                 ++_pos;
             }
+            if (!closed)
+                failHere("'*/' closing the comment opened at " + std::to_string(line) + ":" +
+                             std::to_string(col),
+                         "end of file");
         } else {
             break;
         }

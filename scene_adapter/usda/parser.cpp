@@ -3,94 +3,15 @@
 // what assets use. Newlines are treated as whitespace; ';' separators are accepted.
 #include "scene_adapter/usda/parser.h"
 
-#include <charconv>
 #include <algorithm>
 #include <cmath>
 
 #include "scene_adapter/usda/assetResolver.h"
-#include "scene_adapter/usda/lexer.h"
-#include "scene_adapter/usda/valueType.h"
+#include "scene_adapter/usda/parserImpl.h"
 
 namespace principled::usd {
 
-namespace {
-
-class Parser {
-public:
-    Parser(std::string_view text, const std::string& file, const std::string& anchorDir)
-        : _text(text), _lex(checkHeader(text, file), file), _anchor(anchorDir) {}
-
-    std::unique_ptr<Layer> parse();
-
-private:
-    // The `#usda 1.0` header line; the lexer then skips it as a comment.
-    static std::string_view checkHeader(std::string_view text, const std::string& file);
-
-    struct DepthGuard {
-        Parser& p;
-        explicit DepthGuard(Parser& parser) : p(parser) {
-            if (++p._depth > kMaxNestingDepth)
-                p._lex.fail(p._lex.peek(),
-                            "at most " + std::to_string(kMaxNestingDepth) + " nested levels");
-        }
-        ~DepthGuard() { --p._depth; }
-    };
-
-    const Token& peek() const { return _lex.peek(); }
-    Token next() { return _lex.next(); }
-    SourceLocation here() const { return _lex.location(_lex.peek()); }
-    [[noreturn]] void fail(std::string_view expected) const { _lex.fail(_lex.peek(), expected); }
-    Token expect(char c) {
-        if (!peek().is(c)) fail(std::string("'") + c + "'");
-        return next();
-    }
-    bool accept(char c) {
-        if (!peek().is(c)) return false;
-        next();
-        return true;
-    }
-    Token expectIdent(std::string_view what) {
-        if (peek().kind != TokenKind::Identifier) fail(what);
-        return next();
-    }
-    std::string expectString(std::string_view what) {
-        if (peek().kind != TokenKind::String) fail(what);
-        return unescapeString(next().text);
-    }
-    static std::optional<ListOpKind> listOpKeyword(const Token& t);
-
-    void parseLayerMetadata(Layer& layer);
-    void parseSubLayers(Layer& layer);
-    std::unique_ptr<PrimSpec> parsePrim();
-    void parsePrimMetadata(PrimSpec& spec);
-    void parsePrimBody(PrimSpec& spec);
-    void parseVariantSet(PrimSpec& spec);
-    void parseReorder(std::optional<std::vector<std::string>>& names, bool root);
-    void parseProperty(PrimSpec& spec, std::optional<ListOpKind> op = std::nullopt);
-    void parseRelationship(PrimSpec& spec, std::optional<ListOpKind> op, bool custom);
-    void parsePropertyMetadata(Dictionary& metadata);
-    void parseTimeSamples(AttributeSpec& attr, const ValueType* type);
-
-    std::vector<Reference> parseReferenceList();
-    Reference parseReference();
-    LayerOffset parseLayerOffsetParens();
-    std::vector<PathItem> parsePathList();
-    std::vector<std::string> parseStringList();
-
-    Value parseTypedValue(const ValueType* type, const std::string& typeName, bool isArray);
-    void parseNumericElement(const ValueType& type, std::vector<double>& out);
-    double parseNumber(const ValueType& type);
-    double parseScalarNumber(const Token& t, bool integer, bool isUnsigned, bool isBool);
-    Value parseGenericValue();
-    Dictionary parseDictionary();
-    AssetPath assetFromToken(const Token& t) const;
-    static std::string pathFromToken(const Token& t);
-
-    std::string_view _text;
-    Lexer _lex;
-    std::string _anchor;
-    int _depth = 0;
-};
+namespace detail {
 
 std::string_view Parser::checkHeader(std::string_view text, const std::string& file) {
     refuseBinary(text, file);
@@ -115,6 +36,12 @@ std::string_view Parser::checkHeader(std::string_view text, const std::string& f
     return body;
 }
 
+void Parser::addPrim(std::vector<std::unique_ptr<PrimSpec>>& siblings, SiblingNames& seen,
+                     std::unique_ptr<PrimSpec> prim) {
+    seen.emplace(prim->name, prim.get());
+    siblings.push_back(std::move(prim));
+}
+
 std::optional<ListOpKind> Parser::listOpKeyword(const Token& t) {
     if (t.kind != TokenKind::Identifier) return std::nullopt;
     if (t.text == "prepend") return ListOpKind::Prepend;
@@ -130,13 +57,14 @@ std::unique_ptr<Layer> Parser::parse() {
     layer->file = _lex.file();
     layer->anchorDir = _anchor;
     if (peek().is('(')) parseLayerMetadata(*layer);
+    SiblingNames seen;
     for (;;) {
         const Token& t = peek();
         if (t.kind == TokenKind::End) break;
         if (t.is(';')) {
             next();
         } else if (t.isIdent("def") || t.isIdent("over") || t.isIdent("class")) {
-            layer->rootPrims.push_back(parsePrim());
+            addPrim(layer->rootPrims, seen, parsePrim(seen));
         } else if (t.isIdent("reorder")) {
             next();
             if (!peek().isIdent("rootPrims")) fail("'rootPrims'");
@@ -146,6 +74,7 @@ std::unique_ptr<Layer> Parser::parse() {
             fail("'def', 'over' or 'class'");
         }
     }
+    layer->indexRootPrims();
     return layer;
 }
 
@@ -214,7 +143,7 @@ LayerOffset Parser::parseLayerOffsetParens() {
     return off;
 }
 
-std::unique_ptr<PrimSpec> Parser::parsePrim() {
+std::unique_ptr<PrimSpec> Parser::parsePrim(const SiblingNames& seen) {
     DepthGuard guard(*this);
     auto spec = std::make_unique<PrimSpec>();
     spec->location = here();
@@ -230,6 +159,11 @@ std::unique_ptr<PrimSpec> Parser::parsePrim() {
         spec->name.find_first_of("/.{}<>[]:=@\"' \t\r\n") != std::string::npos ||
         (spec->name[0] >= '0' && spec->name[0] <= '9'))
         _lex.fail(nameTok, "a valid prim name (an identifier)");
+    // One layer holds one spec per path (Sdf): a second spec of the same name is an error.
+    if (auto it = seen.find(spec->name); it != seen.end())
+        _lex.fail(nameTok, "a unique prim name ('" + spec->name + "' is already defined at " +
+                               std::to_string(it->second->location.line) + ":" +
+                               std::to_string(it->second->location.column) + ")");
     if (peek().is('(')) parsePrimMetadata(*spec);
     expect('{');
     parsePrimBody(*spec);
@@ -295,17 +229,19 @@ void Parser::parseReorder(std::optional<std::vector<std::string>>& names, bool) 
 }
 
 void Parser::parsePrimBody(PrimSpec& spec) {
+    SiblingNames seen;
     for (;;) {
         const Token& t = peek();
         if (t.is('}')) {
             next();
+            spec.indexChildren();
             return;
         }
         if (t.kind == TokenKind::End) fail("'}'");
         if (t.is(';')) {
             next();
         } else if (t.isIdent("def") || t.isIdent("over") || t.isIdent("class")) {
-            spec.children.push_back(parsePrim());
+            addPrim(spec.children, seen, parsePrim(seen));
         } else if (t.isIdent("variantSet")) {
             parseVariantSet(spec);
         } else if (t.isIdent("reorder")) {
@@ -429,6 +365,12 @@ void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
         parseTimeSamples(*attr, type);
     } else if (accept('=')) {
         attr->defaultValue = parseTypedValue(type, attr->typeName, isArray);
+    } else {
+        // A declaration without a value ends its line (or opens its metadata).
+        const Token& t = peek();
+        if (t.line == nameTok.line && t.kind != TokenKind::End && !t.is('(') && !t.is(';') &&
+            !t.is('}'))
+            fail("'='");
     }
     if (peek().is('(')) parsePropertyMetadata(attr->metadata);
 }
@@ -578,268 +520,11 @@ std::vector<std::string> Parser::parseStringList() {
     return out;
 }
 
-AssetPath Parser::assetFromToken(const Token& t) const {
-    std::string_view s = t.text;
-    std::size_t q = s.size() >= 6 && s.substr(0, 3) == "@@@" ? 3 : 1;
-    AssetPath a;
-    a.authored = std::string(s.substr(q, s.size() - 2 * q));
-    a.resolved = resolveAsset(a.authored, _anchor);
-    return a;
-}
-
-std::string Parser::pathFromToken(const Token& t) {
-    return std::string(t.text.substr(1, t.text.size() - 2));
-}
-
-Value Parser::parseTypedValue(const ValueType* type, const std::string& typeName, bool isArray) {
-    SourceLocation where = here();
-    if (peek().isIdent("None")) {
-        next();
-        return Value::none(typeName, isArray, where);
-    }
-    const ValueType& t = *type;
-    if (t.scalar == ScalarType::Opaque) fail("no value for an opaque attribute");
-    if (!isArray) {
-        if (t.isNumeric()) {
-            if (t.components == 1) return Value::number(typeName, parseNumber(t), where);
-            std::vector<double> v;
-            v.reserve(static_cast<std::size_t>(t.components));
-            parseNumericElement(t, v);
-            return Value::tuple(typeName, std::move(v), where);
-        }
-        if (t.scalar == ScalarType::Asset) {
-            if (peek().kind != TokenKind::Asset) fail("an asset path '@...@'");
-            return Value::asset(assetFromToken(next()), where);
-        }
-        return Value::string(typeName, expectString("a quoted string"), where);
-    }
-    DepthGuard guard(*this);
-    expect('[');
-    if (t.isNumeric()) {
-        std::vector<double> v;
-        while (!peek().is(']')) {
-            parseNumericElement(t, v);
-            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
-        }
-        next();
-        return Value::numberArray(typeName, t.components, std::move(v), where);
-    }
-    if (t.scalar == ScalarType::Asset) {
-        std::vector<AssetPath> v;
-        while (!peek().is(']')) {
-            if (peek().kind != TokenKind::Asset) fail("an asset path '@...@' or ']'");
-            v.push_back(assetFromToken(next()));
-            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
-        }
-        next();
-        return Value::assetArray(std::move(v), where);
-    }
-    std::vector<std::string> v;
-    while (!peek().is(']')) {
-        v.push_back(expectString("a quoted string or ']'"));
-        if (!accept(',') && !peek().is(']')) fail("',' or ']'");
-    }
-    next();
-    return Value::stringArray(typeName, std::move(v), where);
-}
-
-void Parser::parseNumericElement(const ValueType& type, std::vector<double>& out) {
-    if (type.components == 1) {
-        out.push_back(parseNumber(type));
-        return;
-    }
-    DepthGuard guard(*this);
-    expect('(');
-    const int rows = type.rows > 0 ? type.rows : 1;
-    const int cols = type.rows > 0 ? type.rows : type.components;
-    for (int r = 0; r < rows; ++r) {
-        if (type.rows > 0) {
-            if (r > 0) expect(',');
-            expect('(');
-        }
-        for (int c = 0; c < cols; ++c) {
-            if (c > 0) expect(',');
-            out.push_back(parseNumber(type));
-        }
-        if (type.rows > 0) expect(')');
-    }
-    expect(')');
-}
-
-double Parser::parseNumber(const ValueType& type) {
-    Token t = peek();
-    bool isBool = type.scalar == ScalarType::Bool;
-    if (t.kind != TokenKind::Number && t.kind != TokenKind::Identifier)
-        fail(type.isInteger() ? "an integer" : isBool ? "a bool" : "a number");
-    double v = parseScalarNumber(t, type.isInteger(), type.isUnsigned(), isBool);
-    next();
-    return v;
-}
-
-double Parser::parseScalarNumber(const Token& t, bool integer, bool isUnsigned, bool isBool) {
-    const char* what = integer ? "an integer" : isBool ? "a bool" : "a number";
-    std::string_view s = t.text;
-    if (t.kind == TokenKind::Identifier) {
-        if (isBool && s == "true") return 1.0;
-        if (isBool && s == "false") return 0.0;
-        if (!integer && !isBool && (s == "inf" || s == "nan"))
-            return s == "inf" ? HUGE_VAL : std::nan("");
-        _lex.fail(t, what);
-    }
-    if (!s.empty() && s[0] == '+') s.remove_prefix(1);
-    const char* first = s.data();
-    const char* last = s.data() + s.size();
-    if (integer || isBool) {
-        std::int64_t i = 0;
-        auto [p, ec] = std::from_chars(first, last, i);
-        if (ec == std::errc() && p == last) {
-            if (isUnsigned && i < 0) _lex.fail(t, "an unsigned integer");
-            return static_cast<double>(i);
-        }
-        if (isUnsigned) {
-            std::uint64_t u = 0;
-            auto [pu, ecu] = std::from_chars(first, last, u);
-            if (ecu == std::errc() && pu == last) return static_cast<double>(u);
-        }
-    }
-    double d = 0.0;
-    auto [p, ec] = std::from_chars(first, last, d);
-    if (p != last || (ec != std::errc() && ec != std::errc::result_out_of_range))
-        _lex.fail(t, what);
-    if (ec == std::errc::result_out_of_range) {
-        // Overflow reads as +-inf, underflow as 0, as strtod does.
-        bool neg = s[0] == '-';
-        auto e = s.find_first_of("eE");
-        bool tiny = e != std::string_view::npos && e + 1 < s.size() && s[e + 1] == '-';
-        d = tiny ? 0.0 : (neg ? -HUGE_VAL : HUGE_VAL);
-    }
-    if ((integer || isBool) && (std::trunc(d) != d)) _lex.fail(t, what);
-    return d;
-}
-
-Value Parser::parseGenericValue() {
-    DepthGuard guard(*this);
-    SourceLocation where = here();
-    const Token& t = peek();
-    switch (t.kind) {
-        case TokenKind::String: return Value::string("string", unescapeString(next().text), where);
-        case TokenKind::Asset: return Value::asset(assetFromToken(next()), where);
-        case TokenKind::Path: return Value::path(pathFromToken(next()), where);
-        case TokenKind::Number: {
-            bool isInt = t.text.find_first_of(".eEin") == std::string_view::npos;
-            double v = parseScalarNumber(t, false, false, false);
-            next();
-            return Value::number(isInt ? "int" : "double", v, where);
-        }
-        case TokenKind::Identifier: {
-            Token id = next();
-            if (id.text == "None") return Value::none({}, false, where);
-            if (id.text == "true" || id.text == "false")
-                return Value::number("bool", id.text == "true" ? 1.0 : 0.0, where);
-            if (id.text == "inf") return Value::number("double", HUGE_VAL, where);
-            if (id.text == "nan") return Value::number("double", std::nan(""), where);
-            return Value::string("token", std::string(id.text), where);
-        }
-        default: break;
-    }
-    if (t.is('{')) return Value::dictionary(parseDictionary(), where);
-    if (t.is('(')) {
-        next();
-        std::vector<double> v;
-        while (!accept(')')) {
-            Value e = parseGenericValue();
-            if (auto d = e.getDouble()) {
-                v.push_back(*d);
-            } else if (auto tup = e.getTuple()) {
-                v.insert(v.end(), tup->begin(), tup->end());
-            } else {
-                throw ParseError(e.location(), "expected a number in a tuple, found " + e.toString());
-            }
-            if (!accept(',') && !peek().is(')')) fail("',' or ')'");
-        }
-        return Value::tuple("double", std::move(v), where);
-    }
-    if (t.is('[')) {
-        next();
-        std::vector<Value> items;
-        while (!accept(']')) {
-            items.push_back(parseGenericValue());
-            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
-        }
-        if (items.empty()) return Value::stringArray("string", {}, where);
-        const Value& first = items.front();
-        for (const Value& e : items)
-            if (e.kind() != first.kind() || e.components() != first.components())
-                throw ParseError(e.location(), "expected array elements of one type, found " +
-                                                   e.toString());
-        switch (first.kind()) {
-            case Value::Kind::Number:
-            case Value::Kind::Tuple: {
-                std::vector<double> v;
-                for (const Value& e : items) {
-                    if (auto d = e.getDouble()) v.push_back(*d);
-                    else if (auto tup = e.getTuple()) v.insert(v.end(), tup->begin(), tup->end());
-                }
-                return Value::numberArray(first.typeName(), first.components(), std::move(v),
-                                          where);
-            }
-            case Value::Kind::String:
-            case Value::Kind::Path: {
-                std::vector<std::string> v;
-                for (const Value& e : items) v.push_back(e.getString() ? *e.getString() : *e.getPath());
-                return Value::stringArray(first.typeName(), std::move(v), where);
-            }
-            case Value::Kind::Asset: {
-                std::vector<AssetPath> v;
-                for (const Value& e : items) v.push_back(*e.getAsset());
-                return Value::assetArray(std::move(v), where);
-            }
-            default:
-                throw ParseError(first.location(),
-                                 "expected numbers, strings, assets or paths in a list, found " +
-                                     first.toString());
-        }
-    }
-    fail("a value");
-}
-
-Dictionary Parser::parseDictionary() {
-    DepthGuard guard(*this);
-    expect('{');
-    Dictionary d;
-    for (;;) {
-        if (accept('}')) return d;
-        if (accept(';')) continue;
-        if (peek().kind == TokenKind::End) fail("'}'");
-        Token typeTok = expectIdent("a value type name or '}'");
-        bool isArray = false;
-        if (accept('[')) {
-            expect(']');
-            isArray = true;
-        }
-        std::string key;
-        if (peek().kind == TokenKind::String) {
-            key = unescapeString(next().text);
-        } else {
-            key = std::string(expectIdent("a dictionary key").text);
-        }
-        expect('=');
-        if (typeTok.text == "dictionary") {
-            SourceLocation where = here();
-            d[key] = Value::dictionary(parseDictionary(), where);
-        } else if (const ValueType* type = findValueType(typeTok.text)) {
-            d[key] = parseTypedValue(type, std::string(typeTok.text), isArray);
-        } else {
-            _lex.fail(typeTok, "a value type name");
-        }
-    }
-}
-
-}  // namespace
+}  // namespace detail
 
 std::unique_ptr<Layer> parseLayer(std::string_view text, const std::string& file,
                                   const std::string& anchorDir) {
-    Parser parser(text, file, anchorDir);
+    detail::Parser parser(text, file, anchorDir);
     return parser.parse();
 }
 

@@ -59,9 +59,12 @@ std::string replacePrefix(std::string_view p, std::string_view prefix, std::stri
 
 std::pair<std::string_view, std::string_view> splitProperty(std::string_view p) {
     auto slash = p.rfind('/');
-    auto dot = p.find('.', slash == std::string_view::npos ? 0 : slash);
+    std::size_t start = slash == std::string_view::npos ? 0 : slash + 1;
+    std::string_view last = p.substr(start);
+    if (last == "." || last == "..") return {p, {}};
+    auto dot = last.find('.');
     if (dot == std::string_view::npos) return {p, {}};
-    return {p.substr(0, dot), p.substr(dot + 1)};
+    return {p.substr(0, start + dot), p.substr(start + dot + 1)};
 }
 
 std::string makeAbsolute(std::string_view target, std::string_view anchor) {

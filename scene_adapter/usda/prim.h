@@ -29,8 +29,9 @@ public:
     bool isArray() const { return _isArray; }
     bool isUniform() const { return _uniform; }
     bool isCustom() const { return _custom; }
-    /// A default value or time samples are authored (a None default counts as authored).
-    bool hasValue() const { return _default.has_value() || !_samples.empty(); }
+    /// A default value (not a None block) or time samples are authored, as
+    /// UsdAttribute::HasAuthoredValue. A blocked attribute (`= None`) has no value.
+    bool hasValue() const { return (_default && !_default->isNone()) || !_samples.empty(); }
     /// The strongest default opinion, nullptr if none.
     const Value* defaultValue() const { return _default ? &*_default : nullptr; }
     /// The winning time samples (in stage time, layer offsets applied). Empty when none are
@@ -99,6 +100,11 @@ public:
     const std::vector<std::string>& appliedSchemas() const { return _appliedSchemas; }
     /// Variant set -> the selection used for composition.
     std::map<std::string, std::string> variantSelections() const { return _variantSelections; }
+    /// For `instanceable = true` prims: equal keys mean the same composition arcs and variant
+    /// selections, so the subtrees below them are identical and a renderer may build their
+    /// geometry once (instances are still expanded here, as instance proxies). Empty otherwise.
+    const std::string& instanceKey() const { return _instanceKey; }
+    bool isInstance() const { return !_instanceKey.empty(); }
     /// The strongest defining spec (or the strongest spec when none defines it).
     const SourceLocation& location() const { return _location; }
 
@@ -115,6 +121,7 @@ private:
     Dictionary _metadata;
     std::vector<std::string> _appliedSchemas;
     std::map<std::string, std::string> _variantSelections;
+    std::string _instanceKey;
     SourceLocation _location;
 };
 

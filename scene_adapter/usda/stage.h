@@ -21,6 +21,8 @@ struct StageOptions {
     std::map<std::string, std::map<std::string, std::string>> variantOverrides;
     /// Most distinct layer files one stage may load.
     std::size_t maxLayers = 4096;
+    /// Compose payload arcs (false: prims with payloads are composed without them).
+    bool loadPayloads = true;
 };
 
 struct Diagnostic {

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "scene_adapter/usda/error.h"
 
@@ -130,4 +132,60 @@ TEST(RenderSession, SceneWithoutCameraOrLightsStillRendersSomething) {
     int centre = (16 * 32 + 16) * 4;
     EXPECT_FLOAT_EQ(c[centre + 3], 1.0f);
     EXPECT_FLOAT_EQ(c[3], 0.0f);  // a corner sees the background
+}
+
+TEST(RenderSession, LobeAovsSumToColorAndIdsAreNeverAveraged) {
+    host::SessionOptions o;
+    o.width = 48;
+    o.height = 27;
+    o.samplesPerPixel = 4;
+    o.aovs = {"all"};
+    auto s = host::RenderSession::openString(
+        R"(#usda 1.0
+def Sphere "A" { double radius = 1 }
+def Sphere "B" {
+    double radius = 1
+    double3 xformOp:translate = (1.5, 0, -1)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { float inputs:intensity = 0.5 }
+def DistantLight "Sun" { float inputs:angle = 2 }
+)",
+        "two.usda", o);
+    while (!s->step()) {
+    }
+    std::map<std::string, host::RenderSession::AovImage> byName;
+    for (const auto& a : s->aovs()) byName[a.name] = a;
+    ASSERT_EQ(byName.size(), 20u);
+    size_t n = size_t(o.width) * o.height;
+    const float* color = static_cast<const float*>(byName["color"].pixels);
+    double maxErr = 0.0;
+    for (size_t p = 0; p < n; ++p)
+        for (int c = 0; c < 3; ++c) {
+            double sum = 0.0;
+            for (const char* l : {"diffuse", "sheen", "specular", "clearcoat", "transmission", "emission"})
+                sum += static_cast<const float*>(byName[l].pixels)[3 * p + c];
+            maxErr = std::max(maxErr, std::abs(sum - color[4 * p + c]) / std::max(1.0, double(color[4 * p + c])));
+        }
+    EXPECT_LT(maxErr, 1e-4);
+    // primIds are exactly 0, 1 or -1 (background) everywhere, including silhouette edges.
+    const int32_t* ids = static_cast<const int32_t*>(byName["primId"].pixels);
+    std::set<int32_t> seen(ids, ids + n);
+    EXPECT_EQ(seen, (std::set<int32_t>{-1, 0, 1}));
+    const float* depth = static_cast<const float*>(byName["depth"].pixels);
+    for (size_t p = 0; p < n; ++p) {
+        EXPECT_GE(depth[p], 0.0f);
+        EXPECT_LE(depth[p], 1.0f);
+        if (ids[p] < 0) {
+            EXPECT_EQ(depth[p], 1.0f);
+        }
+    }
+    const float* count = static_cast<const float*>(byName["sampleCount"].pixels);
+    EXPECT_EQ(count[0], 4.0f);
+}
+
+TEST(RenderSession, UnknownAovIsAUserError) {
+    host::SessionOptions o;
+    o.aovs = {"nope"};
+    EXPECT_THROW(host::RenderSession::openString("#usda 1.0\n", "x.usda", o), host::UserError);
 }

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: Apache-2.0
+// Microfacet (GGX) reflection: the Disney specular lobe and the UE4 specular lobe, with the
+// G and Fresnel variants of each model, and the perfect-mirror limit used below a roughness
+// threshold.
+#pragma once
+
+#include <cstdint>
+
+#include "bsdf/fresnel.h"
+#include "bsdf/ggx.h"
+#include "bsdf/lobe.h"
+
+namespace principled::bsdf {
+
+/// Which masking-shadowing term multiplies D F / (4 cos_o cos_i).
+enum class SpecularG : uint8_t {
+    Smith,          ///< separable Smith with the alphas of D (wdas/brdf after 2017, default)
+    SmithRemapped,  ///< isotropic Smith with alpha = (0.5 + 0.5 r)^2 (Burley 2012 course notes)
+    SchlickSmith,   ///< Schlick-Smith with k = (r + 1)^2 / 8 (Karis 2013, UE4)
+};
+/// Which Fresnel approximation.
+enum class SpecularFresnel : uint8_t {
+    Schlick,    ///< mix(F0, 1, (1 - cos)^5) (Burley 2012)
+    SchlickSG,  ///< spherical-Gaussian Schlick (Karis 2013)
+};
+
+struct Specular {
+    Ggx dist;
+    glm::vec3 f0{0.04f};
+    float weight = 1.0f;  ///< 1 - specTrans (1 - metallic)
+    float gParam = 0.25f;  ///< alpha for SmithRemapped, k for SchlickSmith
+    SpecularG gModel = SpecularG::Smith;
+    SpecularFresnel fModel = SpecularFresnel::Schlick;
+    bool visible = true;  ///< VNDF sampling (Heitz 2018) instead of D sampling
+    bool delta = false;   ///< perfect mirror (roughness below Options::deltaRoughness)
+
+    glm::vec3 fresnel(float cosD) const {
+        return fModel == SpecularFresnel::Schlick ? schlickFresnel(f0, cosD)
+                                                  : schlickFresnelSG(f0, cosD);
+    }
+
+    float G(const glm::vec3& wo, const glm::vec3& wi) const {
+        switch (gModel) {
+            case SpecularG::Smith:
+                return dist.G(wo, wi);
+            case SpecularG::SmithRemapped:
+                // Burley 2012, "Physically-Based Shading at Disney", §5.6: G with
+                // alpha_g = (0.5 + 0.5 roughness)^2 (obsoleted by wdas/brdf commit 9aee636).
+                return Ggx{gParam, gParam}.G(wo, wi);
+            case SpecularG::SchlickSmith: {
+                // Karis 2013, "Real Shading in Unreal Engine 4", eq. 4: G1(v) = n.v / (n.v (1-k) + k).
+                float k = gParam;
+                float go = wo.z / (wo.z * (1.0f - k) + k), gi = wi.z / (wi.z * (1.0f - k) + k);
+                return go * gi;
+            }
+        }
+        return 0.0f;
+    }
+
+    /// Cook & Torrance 1982 / Walter et al. 2007, eq. 20: f = D G F / (4 cos_o cos_i); returns f cos_i.
+    glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const {
+        if (delta || wo.z <= 0.0f || wi.z <= 0.0f) return glm::vec3(0.0f);
+        glm::vec3 h = wo + wi;
+        float l = glm::length(h);
+        if (!(l > 0.0f)) return glm::vec3(0.0f);
+        h /= l;
+        float d = dist.D(h);
+        if (d == 0.0f) return glm::vec3(0.0f);
+        return fresnel(glm::dot(wi, h)) * (weight * d * G(wo, wi) / (4.0f * wo.z));
+    }
+
+    /// Walter et al. 2007, eq. 14: pdf(wi) = pdf(m) / (4 |wo.m|).
+    float pdf(const glm::vec3& wo, const glm::vec3& wi) const {
+        if (delta || wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+        glm::vec3 h = wo + wi;
+        float l = glm::length(h);
+        if (!(l > 0.0f)) return 0.0f;
+        h /= l;
+        float c = glm::dot(wo, h);
+        if (c <= 0.0f) return 0.0f;
+        return dist.pdfNormal(wo, h, visible) / (4.0f * c);
+    }
+
+    std::optional<LobeSample> sample(const glm::vec3& wo, const glm::vec2& u, float) const {
+        if (wo.z <= 0.0f) return std::nullopt;
+        if (delta) {
+            // Perfect mirror: the alpha -> 0 limit of D G F / (4 cos_o cos_i) integrates to
+            // F(cos_o) G(wo, wi) (G -> 1 for Smith, not for Schlick-Smith or the remap).
+            glm::vec3 wi(-wo.x, -wo.y, wo.z);
+            return LobeSample{wi, fresnel(wo.z) * (weight * G(wo, wi)), 1.0f, true};
+        }
+        glm::vec3 m = dist.sampleNormal(wo, u, visible);
+        glm::vec3 wi = reflect(wo, m);
+        if (wi.z <= 0.0f) return std::nullopt;  // VNDF/D samples below the horizon are lost
+        return LobeSample{wi, eval(wo, wi), pdf(wo, wi), false};
+    }
+
+    float selectionWeight(const glm::vec3& wo) const {
+        return weight * luminance(fresnel(std::max(wo.z, 0.0f)));
+    }
+};
+
+}  // namespace principled::bsdf

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: Apache-2.0
+// Value types shared by the BSDF facade and the lobe library: model, lobes, parameters, options.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace principled::bsdf {
+
+/// Which shading model turns the parameters into lobes.
+enum class Model : uint8_t { Disney, UE4 };
+
+/// The lobes a material can have. Per-lobe values are reported in this order so the integrator
+/// can split light paths into per-lobe AOVs (diffuse, specular, sheen, clearcoat, transmission).
+enum class Lobe : uint8_t { Diffuse = 0, Sheen, Specular, Clearcoat, Transmission, Count };
+inline constexpr int kLobeCount = static_cast<int>(Lobe::Count);
+using LobeMask = uint32_t;
+inline constexpr LobeMask lobeBit(Lobe l) { return 1u << static_cast<unsigned>(l); }
+
+/// Material parameters in Disney naming (Burley 2012, "Physically-Based Shading at Disney",
+/// section 5.1), plus the 2015 transmission extension. Colours are linear.
+struct MaterialParams {
+    glm::vec3 baseColor{0.82f, 0.67f, 0.16f};
+    float subsurface = 0.0f;
+    float metallic = 0.0f;
+    float specular = 0.5f;
+    float specularTint = 0.0f;
+    float roughness = 0.5f;
+    float anisotropic = 0.0f;
+    float sheen = 0.0f;
+    float sheenTint = 0.5f;
+    float clearcoat = 0.0f;
+    float clearcoatGloss = 1.0f;
+    float specTrans = 0.0f;  ///< Burley 2015 specular transmission weight.
+    float ior = 1.5f;        ///< Used by transmission.
+    bool thin = false;       ///< Thin-surface transmission (no refraction of the path).
+    /// UsdPreviewSurface specular workflow (useSpecularWorkflow = 1): specularColor is F0 and
+    /// metallic, specular and specularTint are ignored.
+    bool specularWorkflow = false;
+    glm::vec3 specularColor{0.0f};
+};
+
+/// Settings that trade speed against accuracy; every one is charted in bench/.
+struct Options {
+    Model model = Model::Disney;
+    bool legacySpecularG = false;  ///< Burley 2012 course-notes G remap (0.5 + 0.5 r)^2.
+    bool vndfSampling = true;      ///< Heitz 2018 visible normals; false = classic D sampling.
+    float deltaRoughness = 1e-3f;  ///< Below this roughness specular becomes a perfect mirror.
+    bool pruneLobes = true;        ///< Skip lobes whose weight is below pruneCutoff.
+    float pruneCutoff = 1e-4f;
+    /// Lobes allowed at all (diagnostics: e.g. only Diffuse to measure Burley diffuse alone).
+    LobeMask lobeMask = (1u << kLobeCount) - 1u;
+};
+
+/// Per-lobe contributions of one evaluation, f * |cos(theta_i)| each; they sum to eval().
+using LobeValues = std::array<glm::vec3, kLobeCount>;
+
+struct BsdfSample {
+    glm::vec3 wi{0.0f};
+    glm::vec3 f{0.0f};    ///< f(wo, wi) * |cos(theta_i)| (for a delta lobe: the weight times pdf).
+    float pdf = 0.0f;     ///< Solid-angle pdf of the whole mixture (for a delta lobe: the lobe's pick probability).
+    Lobe lobe = Lobe::Diffuse;
+    bool delta = false;   ///< True when wi came from a perfect-mirror or smooth-glass lobe.
+};
+
+}  // namespace principled::bsdf

@@ -1,0 +1,277 @@
+// SPDX-License-Identifier: Apache-2.0
+// Value grammar: typed values (scalars, tuples, matrices, arrays, strings, assets), numbers via
+// std::from_chars, untyped metadata values and dictionaries.
+#include <charconv>
+#include <cmath>
+
+#include "scene_adapter/usda/assetResolver.h"
+#include "scene_adapter/usda/parserImpl.h"
+
+namespace principled::usd::detail {
+
+namespace {
+// A value's text for "found Y" in an error: single-quoted, cut at 40 characters like tokens.
+std::string quoted(const std::string& text) {
+    return "'" + (text.size() > 40 ? text.substr(0, 40) + "..." : text) + "'";
+}
+}  // namespace
+
+AssetPath Parser::assetFromToken(const Token& t) const {
+    std::string_view s = t.text;
+    std::size_t q = s.size() >= 6 && s.substr(0, 3) == "@@@" ? 3 : 1;
+    AssetPath a;
+    a.authored = std::string(s.substr(q, s.size() - 2 * q));
+    a.resolved = resolveAsset(a.authored, _anchor);
+    return a;
+}
+
+std::string Parser::pathFromToken(const Token& t) {
+    return std::string(t.text.substr(1, t.text.size() - 2));
+}
+
+Value Parser::parseTypedValue(const ValueType* type, const std::string& typeName, bool isArray) {
+    SourceLocation where = here();
+    if (peek().isIdent("None")) {
+        next();
+        return Value::none(typeName, isArray, where);
+    }
+    const ValueType& t = *type;
+    if (t.scalar == ScalarType::Opaque) fail("no value for an opaque attribute");
+    if (!isArray) {
+        if (t.isNumeric()) {
+            if (t.components == 1) return Value::number(typeName, parseNumber(t), where);
+            std::vector<double> v;
+            v.reserve(static_cast<std::size_t>(t.components));
+            parseNumericElement(t, v);
+            return Value::tuple(typeName, std::move(v), where);
+        }
+        if (t.scalar == ScalarType::Asset) {
+            if (peek().kind != TokenKind::Asset) fail("an asset path '@...@'");
+            return Value::asset(assetFromToken(next()), where);
+        }
+        return Value::string(typeName, expectString("a quoted string"), where);
+    }
+    DepthGuard guard(*this);
+    expect('[');
+    if (t.isNumeric()) {
+        std::vector<double> v;
+        while (!peek().is(']')) {
+            parseNumericElement(t, v);
+            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+        }
+        next();
+        return Value::numberArray(typeName, t.components, std::move(v), where);
+    }
+    if (t.scalar == ScalarType::Asset) {
+        std::vector<AssetPath> v;
+        while (!peek().is(']')) {
+            if (peek().kind != TokenKind::Asset) fail("an asset path '@...@' or ']'");
+            v.push_back(assetFromToken(next()));
+            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+        }
+        next();
+        return Value::assetArray(std::move(v), where);
+    }
+    std::vector<std::string> v;
+    while (!peek().is(']')) {
+        v.push_back(expectString("a quoted string or ']'"));
+        if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+    }
+    next();
+    return Value::stringArray(typeName, std::move(v), where);
+}
+
+void Parser::parseNumericElement(const ValueType& type, std::vector<double>& out) {
+    if (type.components == 1) {
+        out.push_back(parseNumber(type));
+        return;
+    }
+    DepthGuard guard(*this);
+    expect('(');
+    const int rows = type.rows > 0 ? type.rows : 1;
+    const int cols = type.rows > 0 ? type.rows : type.components;
+    for (int r = 0; r < rows; ++r) {
+        if (type.rows > 0) {
+            if (r > 0) expect(',');
+            expect('(');
+        }
+        for (int c = 0; c < cols; ++c) {
+            if (c > 0) expect(',');
+            out.push_back(parseNumber(type));
+        }
+        if (type.rows > 0) expect(')');
+    }
+    expect(')');
+}
+
+double Parser::parseNumber(const ValueType& type) {
+    Token t = peek();
+    bool isBool = type.scalar == ScalarType::Bool;
+    if (t.kind != TokenKind::Number && t.kind != TokenKind::Identifier)
+        fail(type.isInteger() ? "an integer" : isBool ? "a bool" : "a number");
+    double v = parseScalarNumber(t, type.isInteger(), type.isUnsigned(), isBool);
+    next();
+    return v;
+}
+
+double Parser::parseScalarNumber(const Token& t, bool integer, bool isUnsigned, bool isBool) {
+    const char* what = integer ? "an integer" : isBool ? "a bool" : "a number";
+    std::string_view s = t.text;
+    if (t.kind == TokenKind::Identifier) {
+        if (isBool && s == "true") return 1.0;
+        if (isBool && s == "false") return 0.0;
+        if (!integer && !isBool && (s == "inf" || s == "nan"))
+            return s == "inf" ? HUGE_VAL : std::nan("");
+        _lex.fail(t, what);
+    }
+    if (!s.empty() && s[0] == '+') s.remove_prefix(1);
+    const char* first = s.data();
+    const char* last = s.data() + s.size();
+    if (integer || isBool) {
+        std::int64_t i = 0;
+        auto [p, ec] = std::from_chars(first, last, i);
+        if (ec == std::errc() && p == last) {
+            if (isUnsigned && i < 0) _lex.fail(t, "an unsigned integer");
+            return static_cast<double>(i);
+        }
+        if (isUnsigned) {
+            std::uint64_t u = 0;
+            auto [pu, ecu] = std::from_chars(first, last, u);
+            if (ecu == std::errc() && pu == last) return static_cast<double>(u);
+        }
+    }
+    double d = 0.0;
+    auto [p, ec] = std::from_chars(first, last, d);
+    if (p != last || (ec != std::errc() && ec != std::errc::result_out_of_range))
+        _lex.fail(t, what);
+    if (ec == std::errc::result_out_of_range) {
+        // Overflow reads as +-inf, underflow as 0, as strtod does.
+        bool neg = s[0] == '-';
+        auto e = s.find_first_of("eE");
+        bool tiny = e != std::string_view::npos && e + 1 < s.size() && s[e + 1] == '-';
+        d = tiny ? 0.0 : (neg ? -HUGE_VAL : HUGE_VAL);
+    }
+    if ((integer || isBool) && (std::trunc(d) != d)) _lex.fail(t, what);
+    return d;
+}
+
+Value Parser::parseGenericValue() {
+    DepthGuard guard(*this);
+    SourceLocation where = here();
+    const Token& t = peek();
+    switch (t.kind) {
+        case TokenKind::String: return Value::string("string", unescapeString(next().text), where);
+        case TokenKind::Asset: return Value::asset(assetFromToken(next()), where);
+        case TokenKind::Path: return Value::path(pathFromToken(next()), where);
+        case TokenKind::Number: {
+            bool isInt = t.text.find_first_of(".eEin") == std::string_view::npos;
+            double v = parseScalarNumber(t, false, false, false);
+            next();
+            return Value::number(isInt ? "int" : "double", v, where);
+        }
+        case TokenKind::Identifier: {
+            Token id = next();
+            if (id.text == "None") return Value::none({}, false, where);
+            if (id.text == "true" || id.text == "false")
+                return Value::number("bool", id.text == "true" ? 1.0 : 0.0, where);
+            if (id.text == "inf") return Value::number("double", HUGE_VAL, where);
+            if (id.text == "nan") return Value::number("double", std::nan(""), where);
+            return Value::string("token", std::string(id.text), where);
+        }
+        default: break;
+    }
+    if (t.is('{')) return Value::dictionary(parseDictionary(), where);
+    if (t.is('(')) {
+        next();
+        std::vector<double> v;
+        while (!accept(')')) {
+            Value e = parseGenericValue();
+            if (auto d = e.getDouble()) {
+                v.push_back(*d);
+            } else if (auto tup = e.getTuple()) {
+                v.insert(v.end(), tup->begin(), tup->end());
+            } else {
+                throw ParseError(e.location(),
+                                 "expected a number in a tuple, found " + quoted(e.toString()));
+            }
+            if (!accept(',') && !peek().is(')')) fail("',' or ')'");
+        }
+        return Value::tuple("double", std::move(v), where);
+    }
+    if (t.is('[')) {
+        next();
+        std::vector<Value> items;
+        while (!accept(']')) {
+            items.push_back(parseGenericValue());
+            if (!accept(',') && !peek().is(']')) fail("',' or ']'");
+        }
+        if (items.empty()) return Value::stringArray("string", {}, where);
+        const Value& first = items.front();
+        for (const Value& e : items)
+            if (e.kind() != first.kind() || e.components() != first.components())
+                throw ParseError(e.location(), "expected array elements of one type, found " +
+                                                   quoted(e.toString()));
+        switch (first.kind()) {
+            case Value::Kind::Number:
+            case Value::Kind::Tuple: {
+                std::vector<double> v;
+                for (const Value& e : items) {
+                    if (auto d = e.getDouble()) v.push_back(*d);
+                    else if (auto tup = e.getTuple()) v.insert(v.end(), tup->begin(), tup->end());
+                }
+                return Value::numberArray(first.typeName(), first.components(), std::move(v),
+                                          where);
+            }
+            case Value::Kind::String:
+            case Value::Kind::Path: {
+                std::vector<std::string> v;
+                for (const Value& e : items) v.push_back(e.getString() ? *e.getString() : *e.getPath());
+                return Value::stringArray(first.typeName(), std::move(v), where);
+            }
+            case Value::Kind::Asset: {
+                std::vector<AssetPath> v;
+                for (const Value& e : items) v.push_back(*e.getAsset());
+                return Value::assetArray(std::move(v), where);
+            }
+            default:
+                throw ParseError(first.location(),
+                                 "expected numbers, strings, assets or paths in a list, found " +
+                                     quoted(first.toString()));
+        }
+    }
+    fail("a value");
+}
+
+Dictionary Parser::parseDictionary() {
+    DepthGuard guard(*this);
+    expect('{');
+    Dictionary d;
+    for (;;) {
+        if (accept('}')) return d;
+        if (accept(';')) continue;
+        if (peek().kind == TokenKind::End) fail("'}'");
+        Token typeTok = expectIdent("a value type name or '}'");
+        bool isArray = false;
+        if (accept('[')) {
+            expect(']');
+            isArray = true;
+        }
+        std::string key;
+        if (peek().kind == TokenKind::String) {
+            key = unescapeString(next().text);
+        } else {
+            key = std::string(expectIdent("a dictionary key").text);
+        }
+        expect('=');
+        if (typeTok.text == "dictionary") {
+            SourceLocation where = here();
+            d[key] = Value::dictionary(parseDictionary(), where);
+        } else if (const ValueType* type = findValueType(typeTok.text)) {
+            d[key] = parseTypedValue(type, std::string(typeTok.text), isArray);
+        } else {
+            _lex.fail(typeTok, "a value type name");
+        }
+    }
+}
+
+}  // namespace principled::usd::detail

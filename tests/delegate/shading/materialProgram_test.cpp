@@ -1,0 +1,534 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/shading/materialProgram.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <map>
+#include <new>
+#include <thread>
+
+#include "delegate/shading/colorSpace.h"
+#include "testImages.h"
+
+using namespace principled;
+using namespace principled::shading;
+using principled::shading::test::TempDir;
+using principled::shading::test::writeImage;
+
+// Counts heap allocations made while `gCounting` is set, to check evaluate() allocates nothing.
+// GCC 12 flags malloc/free inside replaced global operators as mismatched: a false positive.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+namespace {
+std::atomic<long> gAllocations{0};
+thread_local bool gCounting = false;
+}  // namespace
+
+void* operator new(std::size_t n) {
+    if (gCounting) ++gAllocations;
+    if (void* p = std::malloc(n ? n : 1)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+    std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+    std::free(p);
+}
+
+namespace {
+
+using hd::Token;
+using hd::Value;
+
+/// Builds networks by path: add nodes, then connect inputs to outputs.
+struct Net {
+    hd::MaterialNetwork net;
+
+    Net() {
+        add("/M/Surface", "UsdPreviewSurface");
+        net.surfaceTerminal = hd::Path("/M/Surface");
+    }
+    hd::MaterialNode& node(const std::string& path) {
+        for (auto& n : net.nodes)
+            if (n.path.str() == path) return n;
+        throw std::runtime_error("no node " + path);
+    }
+    Net& add(const std::string& path, const char* id, std::map<Token, Value> params = {}) {
+        hd::MaterialNode n;
+        n.path = hd::Path(path);
+        n.identifier = Token(id);
+        n.parameters = std::move(params);
+        net.nodes.insert(net.nodes.begin(), n);  // upstream nodes first
+        return *this;
+    }
+    Net& set(const std::string& path, const char* input, Value v) {
+        node(path).parameters[Token(input)] = std::move(v);
+        return *this;
+    }
+    Net& connect(const std::string& path, const char* input, const std::string& from,
+                 const char* output) {
+        node(path).inputConnections[Token(input)].push_back({hd::Path(from), Token(output)});
+        return *this;
+    }
+    Net& surface(const char* input, Value v) { return set("/M/Surface", input, std::move(v)); }
+    Net& surfaceFrom(const char* input, const std::string& from, const char* output) {
+        return connect("/M/Surface", input, from, output);
+    }
+    Net& stReader(const char* path = "/M/St", std::map<Token, Value> extra = {}) {
+        extra[Token("varname")] = Value(std::string("st"));
+        return add(path, "UsdPrimvarReader_float2", std::move(extra));
+    }
+    Net& texture(const std::string& path, const std::string& file,
+                 std::map<Token, Value> extra = {}) {
+        extra[Token("file")] = Value(file);
+        return add(path, "UsdUVTexture", std::move(extra));
+    }
+};
+
+/// Primvars from a map; derivatives for "st" when set.
+class Context : public ShadingContext {
+  public:
+    std::map<std::string, glm::vec4> values;
+    bool hasDerivatives = false;
+    glm::vec2 ddx{0.0f}, ddy{0.0f};
+
+    bool primvar(const Token& name, int components, float* out) const override {
+        auto it = values.find(name.str());
+        if (it == values.end()) return false;
+        for (int i = 0; i < components; ++i) out[i] = it->second[i];
+        return true;
+    }
+    bool primvarDerivatives(const Token& name, glm::vec2* dx, glm::vec2* dy) const override {
+        if (!hasDerivatives || name.str() != "st") return false;
+        *dx = ddx;
+        *dy = ddy;
+        return true;
+    }
+};
+
+constexpr int kSize = 4;
+
+// 8-bit codes per texel (x, row from the top).
+glm::vec3 code(int x, int row) {
+    return glm::vec3(10 + 60 * x, 10 + 60 * row, 200) / 255.0f;
+}
+glm::vec3 decoded(int x, int row) {
+    glm::vec3 c = code(x, row);
+    return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)};
+}
+glm::vec2 centre(int x, int row) {
+    return {(x + 0.5f) / kSize, 1.0f - (row + 0.5f) / kSize};
+}
+
+void expectNear(const glm::vec3& a, const glm::vec3& b, float tol = 1e-4f) {
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], tol) << "component " << i;
+}
+
+void expectFinite(const ShadedMaterial& m) {
+    const auto& p = m.params;
+    for (float v :
+         {p.baseColor.x, p.baseColor.y, p.baseColor.z, p.metallic, p.roughness, p.specular,
+          p.specularTint, p.sheen, p.clearcoat, p.clearcoatGloss, p.ior, m.emission.x, m.emission.y,
+          m.emission.z, m.opacity, m.tangentNormal.x, m.tangentNormal.y, m.tangentNormal.z})
+        EXPECT_TRUE(std::isfinite(v));
+}
+
+class MaterialProgramTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        png = dir.file("tex.png");
+        std::vector<float> px;
+        for (int row = 0; row < kSize; ++row)
+            for (int x = 0; x < kSize; ++x)
+                for (int c = 0; c < 3; ++c) px.push_back(code(x, row)[c]);
+        ASSERT_TRUE(writeImage(png, kSize, kSize, 3, px, OIIO::TypeDesc::UINT8));
+    }
+    MaterialProgram compile(const Net& n) { return MaterialProgram::compile(n.net, cache, &notes); }
+
+    TempDir dir;
+    std::string png;
+    TextureCache cache;
+    std::vector<std::string> notes;
+    Context ctx;
+};
+
+bool anyNoteHas(const std::vector<std::string>& notes, const std::string& text) {
+    for (const auto& n : notes)
+        if (n.find(text) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_F(MaterialProgramTest, ConstantNetworkIsEvaluatedOnce) {
+    Net n;
+    n.surface("diffuseColor", Value(glm::vec3(0.2f, 0.4f, 2.0f)))
+        .surface("metallic", Value(1.0f))
+        .surface("roughness", Value(-3.0f))
+        .surface("clearcoatRoughness", Value(0.3f))
+        .surface("sheen", Value(0.7f));
+    MaterialProgram p = compile(n);
+    EXPECT_TRUE(p.isConstant());
+    EXPECT_TRUE(p.primvarsRead().empty());
+    ShadedMaterial m = p.evaluate(ctx);
+    EXPECT_FLOAT_EQ(m.params.baseColor.z, 1.0f);
+    EXPECT_FLOAT_EQ(m.params.metallic, 1.0f);
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.0f);
+    EXPECT_NEAR(m.params.clearcoatGloss, 0.7f, 1e-6f);
+    EXPECT_FLOAT_EQ(m.params.sheen, 0.7f);
+    EXPECT_TRUE(notes.empty());
+}
+
+TEST_F(MaterialProgramTest, NonFiniteScalarsKeepTheirFallback) {
+    Net n;
+    n.surface("roughness", Value(NAN)).surface("metallic", Value(INFINITY));
+    ShadedMaterial m = compile(n).evaluate(ctx);
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.5f);
+    EXPECT_FLOAT_EQ(m.params.metallic, 0.0f);
+    // A NaN texel on a scalar input keeps the authored value.
+    std::string exr = dir.file("nan.exr");
+    std::vector<float> px(4, NAN);
+    ASSERT_TRUE(writeImage(exr, 2, 2, 1, px, OIIO::TypeDesc::FLOAT));
+    Net t;
+    t.stReader()
+        .texture("/M/T", exr)
+        .connect("/M/T", "st", "/M/St", "result")
+        .surface("roughness", Value(0.25f))
+        .surfaceFrom("roughness", "/M/T", "r")
+        .surfaceFrom("diffuseColor", "/M/T", "rgb");
+    ctx.values["st"] = glm::vec4(0.5f);
+    m = compile(t).evaluate(ctx);
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.25f);
+    expectFinite(m);
+}
+
+TEST_F(MaterialProgramTest, EmptyOrForeignNetworkGivesDefaultsWithANote) {
+    hd::MaterialNetwork empty;
+    MaterialProgram p = MaterialProgram::compile(empty, cache, &notes);
+    EXPECT_TRUE(p.isConstant());
+    EXPECT_FLOAT_EQ(p.evaluate(ctx).params.baseColor.x, 0.18f);
+    EXPECT_EQ(notes.size(), 1u);
+    Net n;
+    n.node("/M/Surface").identifier = Token("ND_standard_surface_surfaceshader");
+    compile(n);
+    EXPECT_TRUE(anyNoteHas(notes, "ND_standard_surface_surfaceshader"));
+}
+
+TEST_F(MaterialProgramTest, TextureReadsStFromThePrimvar) {
+    Net n;
+    n.stReader().texture("/M/Tex", png).connect("/M/Tex", "st", "/M/St", "result");
+    n.surfaceFrom("diffuseColor", "/M/Tex", "rgb").surfaceFrom("metallic", "/M/Tex", "g");
+    MaterialProgram p = compile(n);
+    EXPECT_FALSE(p.isConstant());
+    ASSERT_EQ(p.primvarsRead().size(), 1u);
+    EXPECT_EQ(p.primvarsRead()[0], Token("st"));
+    for (int row = 0; row < kSize; ++row)
+        for (int x = 0; x < kSize; ++x) {
+            glm::vec2 st = centre(x, row);
+            ctx.values["st"] = glm::vec4(st, 0, 0);
+            ShadedMaterial m = p.evaluate(ctx);
+            expectNear(m.params.baseColor, decoded(x, row));  // 8-bit RGB: sRGB decoded
+            EXPECT_NEAR(m.params.metallic, decoded(x, row).y, 1e-4f);
+        }
+    EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
+TEST_F(MaterialProgramTest, MissingPrimvarUsesTheReadersFallback) {
+    Net n;
+    n.stReader("/M/St", {{Token("fallback"), Value(centre(3, 3))}})
+        .texture("/M/Tex", png)
+        .connect("/M/Tex", "st", "/M/St", "result")
+        .surfaceFrom("diffuseColor", "/M/Tex", "rgb");
+    MaterialProgram p = compile(n);
+    ctx.values["uv"] = glm::vec4(centre(0, 0), 0, 0);  // another name: not used
+    expectNear(p.evaluate(ctx).params.baseColor, decoded(3, 3));
+}
+
+TEST_F(MaterialProgramTest, VarnameMayBeAToken) {
+    Net n;
+    n.add("/M/St", "UsdPrimvarReader_float2", {{Token("varname"), Value(Token("uv"))}})
+        .texture("/M/Tex", png)
+        .connect("/M/Tex", "st", "/M/St", "result")
+        .surfaceFrom("diffuseColor", "/M/Tex", "rgb");
+    MaterialProgram p = compile(n);
+    ASSERT_EQ(p.primvarsRead().size(), 1u);
+    EXPECT_EQ(p.primvarsRead()[0], Token("uv"));
+    ctx.values["uv"] = glm::vec4(centre(2, 1), 0, 0);
+    expectNear(p.evaluate(ctx).params.baseColor, decoded(2, 1));
+}
+
+TEST_F(MaterialProgramTest, Transform2dRotatesScalesTranslates) {
+    // result = R(90) (in * 0.5) + (0.5, 0.25): in (0.25, 0.25) -> (0.375, 0.375) = texel (1, 2).
+    Net n;
+    n.stReader()
+        .add("/M/Xf", "UsdTransform2d",
+             {{Token("rotation"), Value(90.0f)},
+              {Token("scale"), Value(glm::vec2(0.5f))},
+              {Token("translation"), Value(glm::vec2(0.5f, 0.25f))}})
+        .connect("/M/Xf", "in", "/M/St", "result")
+        .texture("/M/Tex", png)
+        .connect("/M/Tex", "st", "/M/Xf", "result")
+        .surfaceFrom("diffuseColor", "/M/Tex", "rgb");
+    MaterialProgram p = compile(n);
+    ctx.values["st"] = glm::vec4(0.25f, 0.25f, 0, 0);
+    expectNear(p.evaluate(ctx).params.baseColor, decoded(1, 2));
+
+    Transform2d t = Transform2d::make(90.0f, glm::vec2(2.0f, 3.0f), glm::vec2(1.0f, 0.0f));
+    glm::vec2 r = t.apply(glm::vec2(1.0f, 1.0f));  // (2,3) rotated CCW -> (-3,2), + (1,0)
+    EXPECT_NEAR(r.x, -2.0f, 1e-5f);
+    EXPECT_NEAR(r.y, 2.0f, 1e-5f);
+}
+
+TEST_F(MaterialProgramTest, ConstantSubgraphsFold) {
+    // A texture at an authored st and a transform of a constant are looked up at compile time.
+    Net n;
+    n.texture("/M/A", png, {{Token("st"), Value(centre(2, 0))}})
+        .add("/M/Xf", "UsdTransform2d",
+             {{Token("in"), Value(glm::vec2(0.0f))}, {Token("translation"), Value(centre(1, 3))}})
+        .texture("/M/B", png)
+        .connect("/M/B", "st", "/M/Xf", "result")
+        .surfaceFrom("diffuseColor", "/M/A", "rgb")
+        .surfaceFrom("emissiveColor", "/M/B", "rgb");
+    MaterialProgram p = compile(n);
+    EXPECT_TRUE(p.isConstant());
+    EXPECT_TRUE(p.primvarsRead().empty());
+    ShadedMaterial m = p.evaluate(ctx);
+    expectNear(m.params.baseColor, decoded(2, 0));
+    expectNear(m.emission, decoded(1, 3));
+}
+
+TEST_F(MaterialProgramTest, MissingTextureUsesFallbackAndNotesThePath) {
+    std::string missing = dir.file("gone.png");
+    Net n;
+    n.stReader()
+        .texture("/M/Tex", missing, {{Token("fallback"), Value(glm::vec4(1, 0, 0, 1))}})
+        .connect("/M/Tex", "st", "/M/St", "result")
+        .surfaceFrom("diffuseColor", "/M/Tex", "rgb");
+    MaterialProgram p = compile(n);
+    EXPECT_TRUE(p.isConstant());  // nothing left to look up
+    expectNear(p.evaluate(ctx).params.baseColor, glm::vec3(1, 0, 0));
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find(missing), std::string::npos) << notes[0];
+}
+
+TEST_F(MaterialProgramTest, NormalMapWithScaleAndBias) {
+    std::string exr = dir.file("normal.exr");
+    std::vector<float> px;
+    for (int i = 0; i < 4; ++i) px.insert(px.end(), {0.75f, 0.5f, 1.0f});
+    ASSERT_TRUE(writeImage(exr, 2, 2, 3, px, OIIO::TypeDesc::FLOAT));
+    Net n;
+    n.stReader()
+        .texture("/M/N", exr,
+                 {{Token("scale"), Value(glm::vec4(2, 2, 2, 1))},
+                  {Token("bias"), Value(glm::vec4(-1, -1, -1, 0))},
+                  {Token("sourceColorSpace"), Value(Token("raw"))}})
+        .connect("/M/N", "st", "/M/St", "result")
+        .surfaceFrom("normal", "/M/N", "rgb");
+    MaterialProgram p = compile(n);
+    ctx.values["st"] = glm::vec4(0.5f);
+    ShadedMaterial m = p.evaluate(ctx);
+    EXPECT_TRUE(m.hasNormalMap);
+    expectNear(m.tangentNormal, glm::normalize(glm::vec3(0.5f, 0.0f, 1.0f)));
+    // Without a normal input the map is off.
+    EXPECT_FALSE(compile(Net()).evaluate(ctx).hasNormalMap);
+}
+
+TEST_F(MaterialProgramTest, OpacityFromAlphaWithCutout) {
+    std::string rgba = dir.file("leaf.png");
+    std::vector<float> px = {1, 1, 1, 0.2f, 1, 1, 1, 0.8f, 1, 1, 1, 0.2f, 1, 1, 1, 0.8f};
+    ASSERT_TRUE(writeImage(rgba, 2, 2, 4, px, OIIO::TypeDesc::UINT8));
+    Net n;
+    n.stReader()
+        .texture("/M/T", rgba)
+        .connect("/M/T", "st", "/M/St", "result")
+        .surfaceFrom("diffuseColor", "/M/T", "rgb")
+        .surfaceFrom("opacity", "/M/T", "a")
+        .surface("opacityThreshold", Value(0.5f));
+    MaterialProgram p = compile(n);
+    ctx.values["st"] = glm::vec4(0.25f, 0.5f, 0, 0);  // left column: alpha 0.2
+    ShadedMaterial left = p.evaluate(ctx);
+    EXPECT_NEAR(left.opacity, 51.0f / 255.0f, 1e-4f);
+    EXPECT_FLOAT_EQ(left.presence(), 0.0f);
+    expectNear(left.params.baseColor, glm::vec3(1.0f));  // straight alpha: colour not darkened
+    ctx.values["st"] = glm::vec4(0.75f, 0.5f, 0, 0);
+    EXPECT_FLOAT_EQ(p.evaluate(ctx).presence(), 1.0f);
+}
+
+TEST_F(MaterialProgramTest, PrimvarReaderFeedsAColourAndNaNNeverLeaves) {
+    Net n;
+    n.add("/M/C", "UsdPrimvarReader_float3",
+          {{Token("varname"), Value(std::string("displayColor"))},
+           {Token("fallback"), Value(glm::vec3(0.5f))}})
+        .add("/M/R", "UsdPrimvarReader_float", {{Token("varname"), Value(std::string("rough"))}})
+        .surfaceFrom("diffuseColor", "/M/C", "result")
+        .surfaceFrom("roughness", "/M/R", "result")
+        .surfaceFrom("emissiveColor", "/M/R", "result");
+    MaterialProgram p = compile(n);
+    EXPECT_EQ(p.primvarsRead().size(), 2u);
+    ctx.values["displayColor"] = glm::vec4(0.1f, 0.2f, 0.3f, 0);
+    ctx.values["rough"] = glm::vec4(0.25f);
+    ShadedMaterial m = p.evaluate(ctx);
+    expectNear(m.params.baseColor, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.25f);
+    expectNear(m.emission, glm::vec3(0.25f));  // a float feeding a colour is splatted
+    ctx.values["displayColor"] = glm::vec4(NAN, INFINITY, -INFINITY, 0);
+    ctx.values["rough"] = glm::vec4(NAN);
+    m = p.evaluate(ctx);
+    expectFinite(m);
+    EXPECT_NEAR(m.params.baseColor.x, 0.5f, 1e-6f);  // non-finite -> the reader's fallback
+    ctx.values.clear();
+    expectNear(p.evaluate(ctx).params.baseColor, glm::vec3(0.5f));
+}
+
+TEST_F(MaterialProgramTest, BadNetworksGiveNotesNotCrashes) {
+    Net n;
+    n.add("/M/Weird", "ND_image_color3")
+        .add("/M/A", "UsdTransform2d")
+        .add("/M/B", "UsdTransform2d")
+        .connect("/M/A", "in", "/M/B", "result")
+        .connect("/M/B", "in", "/M/A", "result")
+        .texture("/M/T", png)
+        .connect("/M/T", "st", "/M/A", "result")
+        .surfaceFrom("diffuseColor", "/M/Weird", "out")
+        .surfaceFrom("roughness", "/M/T", "rgba_bogus")
+        .surfaceFrom("metallic", "/M/Nowhere", "r")
+        .surfaceFrom("clearcoat", "/M/T", "r")
+        .surface("useSpecularWorkflow", Value(1))
+        .surfaceFrom("opacityThreshold", "/M/T", "r")
+        .surface("displacement", Value(0.1f))
+        .surface("occlusion", Value(0.5f))
+        .surface("madeUpInput", Value(1.0f));
+    MaterialProgram p = compile(n);
+    ShadedMaterial m = p.evaluate(ctx);
+    expectFinite(m);
+    EXPECT_FLOAT_EQ(m.params.baseColor.x, 0.18f);
+    EXPECT_TRUE(m.specularWorkflow);
+    EXPECT_TRUE(anyNoteHas(notes, "ND_image_color3"));
+    EXPECT_TRUE(anyNoteHas(notes, "cycle"));
+    EXPECT_TRUE(anyNoteHas(notes, "rgba_bogus"));
+    EXPECT_TRUE(anyNoteHas(notes, "/M/Nowhere"));
+    EXPECT_TRUE(anyNoteHas(notes, "interfaceOnly"));
+    EXPECT_TRUE(anyNoteHas(notes, "displacement and occlusion ignored"));
+    EXPECT_TRUE(anyNoteHas(notes, "madeUpInput"));
+}
+
+TEST_F(MaterialProgramTest, FootprintFollowsTheTransformChain) {
+    // A 64x64 0/1 checker: a half-texture footprint averages to ~0.5; the same footprint
+    // through a transform that scales st by 1/64 covers under a texel and keeps the texel.
+    constexpr int size = 64;
+    std::vector<float> px;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) px.push_back(static_cast<float>((x + y) & 1));
+    std::string exr = dir.file("checker.exr");
+    ASSERT_TRUE(writeImage(exr, size, size, 1, px, OIIO::TypeDesc::FLOAT));
+    glm::vec2 texel(1.5f / size, 1.0f - 0.5f / size);  // (1, 0): value 1
+    ctx.hasDerivatives = true;
+    ctx.ddx = glm::vec2(0.5f, 0.0f);
+    ctx.ddy = glm::vec2(0.0f, 0.5f);
+
+    Net direct;
+    direct.stReader()
+        .texture(
+            "/M/T", exr,
+            {{Token("wrapS"), Value(Token("repeat"))}, {Token("wrapT"), Value(Token("repeat"))}})
+        .connect("/M/T", "st", "/M/St", "result")
+        .surfaceFrom("roughness", "/M/T", "r");
+    ctx.values["st"] = glm::vec4(texel, 0, 0);
+    EXPECT_NEAR(compile(direct).evaluate(ctx).params.roughness, 0.5f, 0.05f);
+
+    Net scaled;
+    scaled.stReader()
+        .add("/M/Xf", "UsdTransform2d", {{Token("scale"), Value(glm::vec2(1.0f / size))}})
+        .connect("/M/Xf", "in", "/M/St", "result")
+        .texture(
+            "/M/T", exr,
+            {{Token("wrapS"), Value(Token("repeat"))}, {Token("wrapT"), Value(Token("repeat"))}})
+        .connect("/M/T", "st", "/M/Xf", "result")
+        .surfaceFrom("roughness", "/M/T", "r");
+    ctx.values["st"] = glm::vec4(texel * float(size), 0, 0);
+    EXPECT_GT(compile(scaled).evaluate(ctx).params.roughness, 0.9f);
+}
+
+TEST_F(MaterialProgramTest, EvaluateAllocatesNothingAndIsThreadSafe) {
+    Net n;
+    n.stReader()
+        .add("/M/Xf", "UsdTransform2d", {{Token("rotation"), Value(30.0f)}})
+        .connect("/M/Xf", "in", "/M/St", "result")
+        .texture(
+            "/M/Tex", png,
+            {{Token("wrapS"), Value(Token("repeat"))}, {Token("wrapT"), Value(Token("repeat"))}})
+        .connect("/M/Tex", "st", "/M/Xf", "result")
+        .surfaceFrom("diffuseColor", "/M/Tex", "rgb")
+        .surfaceFrom("roughness", "/M/Tex", "r");
+    MaterialProgram p = compile(n);
+    ctx.values["st"] = glm::vec4(0.3f, 0.6f, 0, 0);
+    ShadedMaterial want = p.evaluate(ctx);  // warms the tile cache
+    gAllocations = 0;
+    gCounting = true;
+    ShadedMaterial got = p.evaluate(ctx);
+    gCounting = false;
+    EXPECT_EQ(gAllocations.load(), 0);
+    EXPECT_EQ(got.params.baseColor, want.params.baseColor);
+
+    std::atomic<int> mismatches{0};
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            Context local;
+            for (int i = 0; i < 2000; ++i) {
+                glm::vec2 st((i % 97) / 97.0f + t, (i % 89) / 89.0f);
+                local.values["st"] = glm::vec4(st, 0, 0);
+                ShadedMaterial a = p.evaluate(local);
+                ShadedMaterial b = p.evaluate(local);
+                if (a.params.baseColor != b.params.baseColor) ++mismatches;
+            }
+        });
+    for (auto& th : threads) th.join();
+    EXPECT_EQ(mismatches.load(), 0);
+}
+
+// usd-wg NormalsTextureBiasAndScale: three normal maps with different encodings and
+// scale/bias must give the same tangent normals (the README: "should appear nearly the same").
+TEST_F(MaterialProgramTest, UsdWgNormalMapEncodingsAgree) {
+    const std::string root =
+        PRINCIPLED_SOURCE_DIR "/../shared/usd-wg/test_assets/NormalsTextureBiasAndScale/";
+    auto program = [&](const char* file, glm::vec4 scale, glm::vec4 bias) {
+        Net n;
+        n.add("/M/UV", "UsdPrimvarReader_float2", {{Token("varname"), Value(Token("st"))}})
+            .texture("/M/N", root + file,
+                     {{Token("scale"), Value(scale)},
+                      {Token("bias"), Value(bias)},
+                      {Token("sourceColorSpace"), Value(Token("raw"))},
+                      {Token("wrapS"), Value(Token("repeat"))},
+                      {Token("wrapT"), Value(Token("repeat"))}})
+            .connect("/M/N", "st", "/M/UV", "result")
+            .surfaceFrom("normal", "/M/N", "rgb")
+            .surface("diffuseColor", Value(glm::vec3(0.486275f)))
+            .surface("roughness", Value(1.0f));
+        return compile(n);
+    };
+    MaterialProgram plain = program("r_normal_map.png", glm::vec4(2), glm::vec4(-1));
+    MaterialProgram reversedX = program("r_normal_map_reversed_x_0_bias_z.png",
+                                        glm::vec4(-2, 2, 1, 2), glm::vec4(1, -1, 0, -1));
+    MaterialProgram reversedY =
+        program("r_normal_map_reversed_y.png", glm::vec4(2, -2, 2, 2), glm::vec4(-1, 1, -1, -1));
+    EXPECT_TRUE(notes.empty()) << notes.front();
+    int tilted = 0;
+    float worst = 0.0f;
+    constexpr int n = 64;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            ctx.values["st"] = glm::vec4((x + 0.5f) / n, (y + 0.5f) / n, 0, 0);
+            ShadedMaterial a = plain.evaluate(ctx);
+            ShadedMaterial b = reversedX.evaluate(ctx);
+            ShadedMaterial c = reversedY.evaluate(ctx);
+            ASSERT_TRUE(a.hasNormalMap);
+            worst = std::max({worst, glm::length(a.tangentNormal - b.tangentNormal),
+                              glm::length(a.tangentNormal - c.tangentNormal)});
+            if (a.tangentNormal.z < 0.95f) ++tilted;
+        }
+    EXPECT_LT(worst, 0.03f);        // 8-bit quantisation: 2/255 per component after scale 2
+    EXPECT_GT(tilted, n * n / 50);  // the "R" relief is there
+}

@@ -1,0 +1,299 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/shading/textureCache.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "testImages.h"
+
+using namespace principled::shading;
+using principled::shading::test::TempDir;
+using principled::shading::test::writeImage;
+
+namespace {
+
+constexpr int kSize = 4;
+
+// Texel (x, row) with row 0 the top of the file: distinct 8-bit codes per texel.
+glm::vec4 code(int x, int row) {
+    return glm::vec4(10 + 60 * x, 10 + 60 * row, 200, 255 - 40 * x) / 255.0f;
+}
+
+std::vector<float> pixels(int channels) {
+    std::vector<float> p;
+    for (int row = 0; row < kSize; ++row)
+        for (int x = 0; x < kSize; ++x)
+            for (int c = 0; c < channels; ++c) p.push_back(code(x, row)[c]);
+    return p;
+}
+
+// The st of texel (x, row) centre: st (0,0) is the bottom-left, rows count from the top.
+glm::vec2 centre(int x, int row) {
+    return {(x + 0.5f) / kSize, 1.0f - (row + 0.5f) / kSize};
+}
+
+void expectNear(const glm::vec4& a, const glm::vec4& b, float tol = 1e-5f) {
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(a[i], b[i], tol) << "channel " << i;
+}
+
+class TextureCacheTest : public ::testing::Test {
+  protected:
+    TempDir dir;
+    TextureCache cache;
+};
+
+}  // namespace
+
+TEST_F(TextureCacheTest, TexelCentresReturnStoredValuesAndTIsFlipped) {
+    std::string png = dir.file("rgb8.png");
+    ASSERT_TRUE(writeImage(png, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT8));
+    TextureOpenResult r = cache.open(png);
+    ASSERT_NE(r.texture, nullptr) << r.error;
+    EXPECT_EQ(r.texture->channels, 3);
+    EXPECT_EQ(r.texture->bitsPerChannel, 8);
+    for (int row = 0; row < kSize; ++row)
+        for (int x = 0; x < kSize; ++x) {
+            glm::vec4 want = code(x, row);
+            want.w = 1.0f;  // 3 channels: a = 1
+            // Raw 8-bit codes / 255: OpenImageIO does not linearise PNG pixels itself.
+            expectNear(cache.sample(*r.texture, Wrap::Black, Wrap::Black, centre(x, row)), want);
+        }
+    // st (0,0) corner texel is the bottom row of the file.
+    glm::vec4 bottomLeft =
+        cache.sample(*r.texture, Wrap::Clamp, Wrap::Clamp, glm::vec2(0.01f, 0.01f));
+    EXPECT_NEAR(bottomLeft.y, code(0, kSize - 1).y, 1e-5f);
+}
+
+TEST_F(TextureCacheTest, SecondOpenReturnsTheSameHandle) {
+    std::string png = dir.file("same.png");
+    ASSERT_TRUE(writeImage(png, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT8));
+    EXPECT_EQ(cache.open(png).texture, cache.open(png).texture);
+}
+
+TEST_F(TextureCacheTest, WrapModesOutsideTheUnitSquare) {
+    std::string exr = dir.file("wrap.exr");
+    ASSERT_TRUE(writeImage(exr, kSize, kSize, 4, pixels(4), OIIO::TypeDesc::FLOAT));
+    const Texture* t = cache.open(exr).texture;
+    ASSERT_NE(t, nullptr);
+    // s = 1.125 is half a texel past the right edge: texel column 4.5 -> wraps.
+    glm::vec2 st(1.0f + 0.5f / kSize, centre(0, 1).y);
+    expectNear(cache.sample(*t, Wrap::Black, Wrap::Black, st), glm::vec4(0.0f));
+    expectNear(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, st), code(3, 1));
+    expectNear(cache.sample(*t, Wrap::Repeat, Wrap::Repeat, st), code(0, 1));
+    expectNear(cache.sample(*t, Wrap::Mirror, Wrap::Mirror, st), code(3, 1));
+    // t below 0 (past the bottom row, which is file row 3).
+    glm::vec2 below(centre(1, 0).x, -0.5f / kSize);
+    expectNear(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, below), code(1, 3));
+    expectNear(cache.sample(*t, Wrap::Repeat, Wrap::Repeat, below), code(1, 0));
+    expectNear(cache.sample(*t, Wrap::Mirror, Wrap::Mirror, below), code(1, 3));
+    expectNear(cache.sample(*t, Wrap::Black, Wrap::Black, below), glm::vec4(0.0f));
+    // Mirror over two periods: s = 1.875 is column 0.5 mirrored -> texel 0.
+    expectNear(cache.sample(*t, Wrap::Mirror, Wrap::Mirror,
+                            glm::vec2(2.0f - 0.5f / kSize, centre(0, 2).y)),
+               code(0, 2));
+}
+
+TEST_F(TextureCacheTest, ChannelCountRules) {
+    for (int n = 1; n <= 4; ++n) {
+        std::string exr = dir.file("c" + std::to_string(n) + ".exr");
+        ASSERT_TRUE(writeImage(exr, kSize, kSize, n, pixels(n), OIIO::TypeDesc::FLOAT));
+        const Texture* t = cache.open(exr).texture;
+        ASSERT_NE(t, nullptr);
+        EXPECT_EQ(t->channels, n);
+        EXPECT_TRUE(t->isFloat);
+        glm::vec4 c = code(2, 1);
+        glm::vec4 got = cache.sample(*t, Wrap::Black, Wrap::Black, centre(2, 1));
+        switch (n) {
+            case 1:
+                expectNear(got, glm::vec4(c.x, c.x, c.x, 1.0f));
+                break;
+            case 2:
+                expectNear(got, glm::vec4(c.x, c.x, c.x, c.y));
+                break;
+            case 3:
+                expectNear(got, glm::vec4(c.x, c.y, c.z, 1.0f));
+                break;
+            default:
+                expectNear(got, c);
+                break;
+        }
+    }
+}
+
+TEST_F(TextureCacheTest, SixteenBitIsNormalised) {
+    std::string png = dir.file("rgb16.png");
+    ASSERT_TRUE(writeImage(png, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT16));
+    const Texture* t = cache.open(png).texture;
+    ASSERT_NE(t, nullptr);
+    EXPECT_EQ(t->bitsPerChannel, 16);
+    glm::vec4 want = code(1, 2);
+    want.w = 1.0f;
+    expectNear(cache.sample(*t, Wrap::Black, Wrap::Black, centre(1, 2)), want, 2e-5f);
+}
+
+TEST_F(TextureCacheTest, StraightAlphaIsKept) {
+    // A white texel at alpha 0.5 must stay white (UsdPreviewSurface colours are unpremultiplied).
+    std::string png = dir.file("alpha.png");
+    std::vector<float> px;
+    for (int i = 0; i < kSize * kSize; ++i) px.insert(px.end(), {1.0f, 1.0f, 1.0f, 0.5f});
+    ASSERT_TRUE(writeImage(png, kSize, kSize, 4, px, OIIO::TypeDesc::UINT8));
+    const Texture* t = cache.open(png).texture;
+    ASSERT_NE(t, nullptr);
+    glm::vec4 c = cache.sample(*t, Wrap::Clamp, Wrap::Clamp, glm::vec2(0.5f));
+    EXPECT_NEAR(c.x, 1.0f, 1e-5f);
+    EXPECT_NEAR(c.w, 128.0f / 255.0f, 1e-5f);
+}
+
+TEST_F(TextureCacheTest, MissingAndUnreadableFilesAreReportedOnce) {
+    std::string missing = dir.file("nope.png");
+    TextureOpenResult a = cache.open(missing);
+    EXPECT_EQ(a.texture, nullptr);
+    EXPECT_NE(a.error.find(missing), std::string::npos) << a.error;
+    EXPECT_NE(a.error.find("not found"), std::string::npos) << a.error;
+    EXPECT_TRUE(a.firstReport);
+    TextureOpenResult b = cache.open(missing);
+    EXPECT_EQ(b.texture, nullptr);
+    EXPECT_FALSE(b.firstReport);
+
+    std::string garbage = dir.file("garbage.png");
+    { std::ofstream(garbage) << "this is not a png"; }
+    TextureOpenResult g = cache.open(garbage);
+    EXPECT_EQ(g.texture, nullptr);
+    EXPECT_NE(g.error.find(garbage), std::string::npos) << g.error;
+    EXPECT_TRUE(g.firstReport);
+
+    // After invalidate() a file that now exists is read.
+    ASSERT_TRUE(writeImage(missing, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT8));
+    cache.invalidate();
+    EXPECT_NE(cache.open(missing).texture, nullptr);
+}
+
+TEST_F(TextureCacheTest, NonFiniteCoordinatesDoNotCrash) {
+    std::string exr = dir.file("nan.exr");
+    ASSERT_TRUE(writeImage(exr, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::FLOAT));
+    const Texture* t = cache.open(exr).texture;
+    ASSERT_NE(t, nullptr);
+    glm::vec4 c = cache.sample(*t, Wrap::Repeat, Wrap::Repeat, glm::vec2(NAN, INFINITY),
+                               glm::vec4(NAN, 1e30f, -INFINITY, 0.0f));
+    for (int i = 0; i < 4; ++i) EXPECT_TRUE(std::isfinite(c[i]));
+}
+
+TEST_F(TextureCacheTest, LargeFootprintFiltersTowardsTheMean) {
+    // A 64x64 checker of 0/1: a footprint covering the whole image averages to ~0.5 via the
+    // automatically built mip levels; a point sample returns a texel.
+    constexpr int n = 64;
+    std::vector<float> px;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) px.push_back(static_cast<float>((x + y) & 1));
+    std::string exr = dir.file("checker.exr");
+    ASSERT_TRUE(writeImage(exr, n, n, 1, px, OIIO::TypeDesc::FLOAT));
+    const Texture* t = cache.open(exr).texture;
+    ASSERT_NE(t, nullptr);
+    glm::vec2 st(1.5f / n, 1.0f - 0.5f / n);  // texel (1, 0): value 1
+    EXPECT_NEAR(cache.sample(*t, Wrap::Repeat, Wrap::Repeat, st).x, 1.0f, 1e-5f);
+    float blurred =
+        cache.sample(*t, Wrap::Repeat, Wrap::Repeat, st, glm::vec4(0.5f, 0.0f, 0.0f, 0.5f)).x;
+    EXPECT_NEAR(blurred, 0.5f, 0.05f);
+}
+
+// Every texture of the usd-wg TextureFileFormatTests corpus opens and reads finite values.
+TEST_F(TextureCacheTest, UsdWgTextureFileFormatsLoad) {
+    const std::string root =
+        PRINCIPLED_SOURCE_DIR "/../shared/usd-wg/test_assets/TextureFileFormatTests/";
+    struct Case {
+        const char* file;
+        int channels;
+        int bits;
+    };
+    const Case cases[] = {
+        {"jpeg_cmyk_8-bit.jpg", 3, 8},  // OpenImageIO converts CMYK to RGB
+        {"jpeg_grayscale_8-bit.jpg", 1, 8}, {"jpeg_rgb_8-bit.jpg", 3, 8},
+        {"png_grayscale_8-bit.png", 2, 8},  {"png_grayscale_16-bit.png", 2, 16},
+        {"png_rgb_8-bit.png", 4, 8},        {"png_rgb_16-bit.png", 4, 16},
+        {"png_rgb_32-bit.png", 4, 16},  // named 32-bit (RGBA x 8), stored 16 bits per channel
+    };
+    for (const Case& c : cases) {
+        TextureOpenResult r = cache.open(root + c.file);
+        ASSERT_NE(r.texture, nullptr) << c.file << ": " << r.error;
+        EXPECT_EQ(r.texture->channels, c.channels) << c.file;
+        EXPECT_EQ(r.texture->bitsPerChannel, c.bits) << c.file;
+        EXPECT_EQ(r.texture->width, 256) << c.file;
+        for (float s : {0.1f, 0.5f, 0.9f}) {
+            glm::vec4 v = cache.sample(*r.texture, Wrap::Repeat, Wrap::Repeat, glm::vec2(s, s));
+            for (int i = 0; i < 4; ++i) {
+                EXPECT_TRUE(std::isfinite(v[i])) << c.file;
+                EXPECT_GE(v[i], 0.0f) << c.file;
+                EXPECT_LE(v[i], 1.0f) << c.file;
+            }
+        }
+    }
+}
+
+TEST_F(TextureCacheTest, UdimTilesByStAndBottomUpRows) {
+    // Tiles 1001 (u 0-1), 1002 (u 1-2) and 1011 (v 1-2); each 2x2, top file row 1, bottom 0,
+    // red channel = tile number - 1000.
+    auto tile = [&](int number) {
+        std::vector<float> px;
+        for (int row = 0; row < 2; ++row)
+            for (int x = 0; x < 2; ++x)
+                px.insert(px.end(), {float(number - 1000), row == 0 ? 1.0f : 0.0f, 0.0f});
+        return writeImage(dir.file("t." + std::to_string(number) + ".exr"), 2, 2, 3, px,
+                          OIIO::TypeDesc::FLOAT);
+    };
+    ASSERT_TRUE(tile(1001) && tile(1002) && tile(1011));
+    TextureOpenResult r = cache.open(dir.file("t.<UDIM>.exr"));
+    ASSERT_NE(r.texture, nullptr) << r.error;
+    EXPECT_TRUE(r.error.empty());
+    EXPECT_EQ(r.texture->channels, 3);
+    ASSERT_EQ(r.texture->udimTiles.size(), 100u);
+    const Texture& t = *r.texture;
+    auto at = [&](float s, float tt) { return cache.sample(t, Wrap::Black, Wrap::Black, {s, tt}); };
+    EXPECT_NEAR(at(0.5f, 0.25f).x, 1.0f, 1e-5f);
+    EXPECT_NEAR(at(0.5f, 0.25f).y, 0.0f, 1e-5f);  // bottom half of tile 1001: bottom row
+    EXPECT_NEAR(at(0.5f, 0.75f).y, 1.0f, 1e-5f);
+    EXPECT_NEAR(at(1.5f, 0.5f).x, 2.0f, 1e-5f);
+    EXPECT_NEAR(at(0.5f, 1.25f).x, 11.0f, 1e-5f);
+    EXPECT_NEAR(at(0.5f, 1.25f).y, 0.0f, 1e-5f);
+    glm::vec4 none(7.0f);
+    EXPECT_FALSE(cache.lookup(t, Wrap::Black, Wrap::Black, {2.5f, 0.5f}, glm::vec4(0), &none));
+    EXPECT_FALSE(cache.lookup(t, Wrap::Black, Wrap::Black, {-0.5f, 0.5f}, glm::vec4(0), &none));
+    EXPECT_EQ(none, glm::vec4(7.0f));
+
+    TextureOpenResult empty = cache.open(dir.file("none.<UDIM>.exr"));
+    EXPECT_EQ(empty.texture, nullptr);
+    EXPECT_NE(empty.error.find("none.<UDIM>.exr"), std::string::npos) << empty.error;
+}
+
+TEST(TextureCacheMemory, TileMemoryStaysNearTheLimit) {
+    // A 2048x2048 RGB float texture is 48 MB; with a 16 MB limit random lookups keep evicting.
+    // The file is tiled (64x64, uncompressed) so a miss reads one tile: an untiled file that
+    // does not fit the cache re-reads whole scanline blocks and is ~100x slower per miss.
+    TempDir dir;
+    constexpr int n = 2048;
+    std::vector<float> px(size_t(n) * n * 3, 0.5f);
+    std::string exr = dir.file("big.exr");
+    {
+        auto out = OIIO::ImageOutput::create(exr);
+        ASSERT_TRUE(out);
+        OIIO::ImageSpec spec(n, n, 3, OIIO::TypeDesc::FLOAT);
+        spec.tile_width = spec.tile_height = 64;
+        spec.attribute("compression", "none");
+        ASSERT_TRUE(out->open(exr, spec));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+        ASSERT_TRUE(out->close());
+    }
+    TextureCache::Options options;
+    options.maxMemoryMB = 16.0f;
+    TextureCache cache(options);
+    const Texture* t = cache.open(exr).texture;
+    ASSERT_NE(t, nullptr);
+    uint32_t h = 1;
+    for (int i = 0; i < 4000; ++i) {
+        h = h * 1664525u + 1013904223u;  // Numerical Recipes LCG
+        glm::vec2 st((h >> 8 & 0xfff) / 4096.0f, (h >> 20) / 4096.0f);
+        EXPECT_NEAR(cache.sample(*t, Wrap::Repeat, Wrap::Repeat, st).x, 0.5f, 1e-6f);
+    }
+    EXPECT_GT(cache.memoryUsed(), 0u);
+    EXPECT_LT(cache.memoryUsed(), size_t(20) << 20);  // 16 MB + a few tiles of slack
+}

@@ -124,8 +124,10 @@ void EmbreeSession::closeStage() {
 
 void EmbreeSession::openFile(const std::string& path) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
+    if (!std::filesystem::exists(path, ec))
         throw SessionError(PRD_ERROR_IO, "cannot open '" + path + "': no such file");
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw SessionError(PRD_ERROR_IO, "cannot open '" + path + "': not a regular file");
     std::unique_ptr<usd::Stage> stage;
     try {
         stage = usd::Stage::open(path);
@@ -147,6 +149,15 @@ void EmbreeSession::openString(const std::string& text, const std::string& displ
 
 void EmbreeSession::open(std::unique_ptr<usd::Stage> stage) {
     closeStage();
+    try {
+        populate(std::move(stage));
+    } catch (...) {
+        closeStage();  // no half-built stage survives a failure
+        throw;
+    }
+}
+
+void EmbreeSession::populate(std::unique_ptr<usd::Stage> stage) {
     _stage = std::move(stage);
     _index = std::make_unique<RenderIndex>(_delegate.get());
     _scene = std::make_unique<EditableSceneDelegate>(*_stage);
@@ -154,10 +165,8 @@ void EmbreeSession::open(std::unique_ptr<usd::Stage> stage) {
     const auto& cams = _scene->cameras();
     if (!_cameraRequest.empty()) {
         if (std::find(cams.begin(), cams.end(), Path(_cameraRequest)) == cams.end()) {
-            std::string message =
-                "camera '" + _cameraRequest + "' not found in the stage" + cameraList();
-            closeStage();
-            throw SessionError(PRD_ERROR_NOT_FOUND, message);
+            throw SessionError(PRD_ERROR_NOT_FOUND,
+                               "camera '" + _cameraRequest + "' not found in the stage" + cameraList());
         }
         _cameraPath = _cameraRequest;
     } else if (!cams.empty()) {

@@ -88,6 +88,7 @@ class EmbreeSession {
         bool multiSampled = true;
     };
     void open(std::unique_ptr<usd::Stage> stage);
+    void populate(std::unique_ptr<usd::Stage> stage);
     void closeStage();
     void requireStage(const char* what) const;
     void allocateBuffer(const std::string& name);

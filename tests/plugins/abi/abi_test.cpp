@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <string>
@@ -213,11 +214,29 @@ TEST_F(AbiTest, AovsAreListedAndDescribed) {
     EXPECT_EQ(byName["primId"].format, PRD_FORMAT_INT32);
     EXPECT_EQ(byName["primId"].multiSampled, 0);
     ASSERT_EQ(prdBindAov(d, "primId"), PRD_OK);
+    ASSERT_EQ(prdBindAov(d, "cameraDepth"), PRD_OK);
     renderToConvergence();
     PrdBufferView v{};
     ASSERT_EQ(prdMapAov(d, "primId", &v), PRD_OK);
     EXPECT_EQ(v.format, PRD_FORMAT_INT32);
     EXPECT_EQ(v.channels, 1);
+    const int32_t* ids = static_cast<const int32_t*>(v.data);
+    PrdBufferView z{};
+    ASSERT_EQ(prdMapAov(d, "cameraDepth", &z), PRD_OK);
+    EXPECT_EQ(z.format, PRD_FORMAT_FLOAT32);
+    const float* depth = static_cast<const float*>(z.data);
+    // IDs and depth are first-hit values: exact on every pixel, the edge included.
+    for (int y = 0; y < v.height; ++y)
+        for (int x = 0; x < v.width; ++x) {
+            int i = y * v.width + x;
+            if (x < v.width / 2) {
+                EXPECT_EQ(ids[i], ids[0]) << x << "," << y;
+                EXPECT_NEAR(depth[i], 10.0f, 1e-4f) << x << "," << y;
+            } else {
+                EXPECT_EQ(ids[i], -1) << x << "," << y;
+            }
+        }
+    EXPECT_GE(ids[0], 0);
     ASSERT_EQ(prdUnbindAov(d, "primId"), PRD_OK);
     EXPECT_EQ(prdMapAov(d, "primId", &v), PRD_ERROR_NOT_BOUND);
     EXPECT_EQ(prdUnbindAov(d, "primId"), PRD_ERROR_NOT_BOUND);

@@ -118,6 +118,8 @@ int main(void) {
     CHECK_STATUS(prdOpenStageString(d, "#usda 1.0\ndef Xform \"A\" {\n", "broken.usda"),
                  PRD_ERROR_IO);
     CHECK_CONTAINS(prdLastError(d), "broken.usda:");
+    CHECK_STATUS(prdOpenStageFile(d, "/tmp"), PRD_ERROR_IO);
+    CHECK_CONTAINS(prdLastError(d), "prdOpenStageFile: cannot open '/tmp': not a regular file");
     CHECK_STATUS(prdOpenStageFile(d, NULL), PRD_ERROR_INVALID_ARGUMENT);
     CHECK_CONTAINS(prdLastError(d), "prdOpenStageFile: path is NULL");
 

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "plugins/registry/pluginRegistry.h"
 #include "tools/bsdfCommand.h"
 #include "tools/renderCommand.h"
 
@@ -14,6 +15,11 @@ int main(int argc, char** argv) {
     int exitCode = 0;
     principled::tools::addRenderCommand(app, &exitCode);
     principled::tools::addBsdfCommands(app, &exitCode);
+    app.add_subcommand("plugins", "List the render-delegate plugins found and where they were searched")
+        ->callback([] {
+            std::fputs(principled::plugins::describePlugins(principled::plugins::PluginRegistry::instance()).c_str(),
+                       stdout);
+        });
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -407,7 +407,8 @@ bool SubdivTopology::refine(const std::vector<glm::vec3>& coarsePoints, RefinedM
     // faulting in a fresh allocation every frame.
     thread_local std::vector<glm::vec3> levelPoints;
     levelPoints.resize(_refinedPoints);
-    applyChain(_vertex, &coarsePoints[0].x, _pointCount, 3, &levelPoints[0].x);
+    applyChain(_vertex, reinterpret_cast<const float*>(coarsePoints.data()), _pointCount, 3,
+               reinterpret_cast<float*>(levelPoints.data()));
     out->points.resize(_refinedPoints);
     out->normals.resize(_refinedPoints);
     if (_limitP.empty()) std::copy(levelPoints.begin(), levelPoints.end(), out->points.begin());

@@ -311,6 +311,22 @@ TEST(SubdivTopology, InvalidTopologyIsAnErrorNotACrash) {
     EXPECT_EQ(lowered->triangleCount(), 12u);
 }
 
+TEST(SubdivTopology, EmptyMeshesGiveNoTriangles) {
+    for (size_t points : {size_t(0), size_t(5)}) {
+        for (int level : {0, 2}) {
+            std::string err;
+            auto t = SubdivTopology::create({}, {}, points, BuildOptions{level}, &err);
+            if (!t) {
+                EXPECT_FALSE(err.empty());
+                continue;
+            }
+            RefinedMesh m;
+            EXPECT_TRUE(t->refine(std::vector<glm::vec3>(points), &m, &err)) << err;
+            EXPECT_TRUE(m.triangles.empty());
+        }
+    }
+}
+
 TEST(SubdivTopology, NonManifoldAndDegenerateInputDoNotCrash) {
     // Three quads sharing one edge (non-manifold), a face repeating a vertex, an unused point.
     hd::MeshTopology t;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <numeric>
 
@@ -245,35 +246,55 @@ bool SubdivTopology::build(std::string* error) {
     refiner->RefineUniform(uniform);
     lap(&_timings.refiner);
 
-    try {
+    // The tables only read the refiner, so they are built concurrently (TBB). Each task
+    // records its own duration; a failure is caught inside its task (no exception crosses TBB).
+    auto chain = [&](Interpolation mode, int channel) {
         // Per-level local tables by default; one flattened Far table as the reference path.
-        auto chain = [&](Interpolation mode, int channel) {
-            if (_options.flatStencils)
-                return StencilChain{refinementStencils(*refiner, mode, channel)};
-            return levelStencils(*refiner, mode, channel);
-        };
-        _vertex = chain(Interpolation::Vertex, 0);
-        lap(&_timings.vertexStencils);
-        if (_options.varying) _varying = chain(Interpolation::Varying, 0);
-        lap(&_timings.varyingStencils);
-        if (_scheme != Scheme::Bilinear) {
-            // Bilinear limit points are the refined points and its tangent masks are arbitrary
-            // (Sdc calls them ambiguous), so bilinear normals come from the triangles.
+        if (_options.flatStencils) return StencilChain{refinementStencils(*refiner, mode, channel)};
+        return levelStencils(*refiner, mode, channel);
+    };
+    std::mutex failureMutex;
+    std::string failure;
+    std::vector<double> fvarSeconds(_fvar.size(), 0.0);
+    std::vector<std::function<void()>> tasks;
+    auto task = [&](double* seconds, std::function<void()> work) {
+        tasks.push_back([&failureMutex, &failure, seconds, work = std::move(work)] {
+            const auto t0 = std::chrono::steady_clock::now();
+            try {
+                work();
+            } catch (const std::exception& e) {
+                std::lock_guard<std::mutex> lock(failureMutex);
+                if (failure.empty()) failure = e.what();
+            }
+            *seconds = secondsSince(t0);
+        });
+    };
+    task(&_timings.vertexStencils, [&] { _vertex = chain(Interpolation::Vertex, 0); });
+    if (_options.varying)
+        task(&_timings.varyingStencils, [&] { _varying = chain(Interpolation::Varying, 0); });
+    if (_scheme != Scheme::Bilinear) {
+        // Bilinear limit points are the refined points and its tangent masks are arbitrary
+        // (Sdc calls them ambiguous), so bilinear normals come from the triangles.
+        task(&_timings.limitMasks, [&] {
             LimitMasks masks = vertexLimitMasks(*refiner);
             _limitP = std::move(masks.position);
             _limitDu = std::move(masks.tangentU);
             _limitDv = std::move(masks.tangentV);
-        }
-        lap(&_timings.limitMasks);
-        for (size_t c = 0; c < _fvar.size(); ++c) {
-            if (osdChannel[c] < 0) continue;
+        });
+    }
+    for (size_t c = 0; c < _fvar.size(); ++c) {
+        if (osdChannel[c] < 0) continue;
+        task(&fvarSeconds[c], [&, c] {
             _fvar[c].toLevel = chain(Interpolation::FaceVarying, osdChannel[c]);
             _fvar[c].limit = faceVaryingLimitMasks(*refiner, osdChannel[c]);
             if (isIdentity(_fvar[c].limit)) _fvar[c].limit = Stencils();
-        }
-        lap(&_timings.faceVarying);
-    } catch (const std::exception& e) {
-        *error = std::string("building stencils failed: ") + e.what();
+        });
+    }
+    tbb::parallel_for(size_t(0), tasks.size(), [&tasks](size_t i) { tasks[i](); });
+    for (double t : fvarSeconds) _timings.faceVarying += t;
+    clock = std::chrono::steady_clock::now();
+    if (!failure.empty()) {
+        *error = "building stencils failed: " + failure;
         return false;
     }
     if (_vertex.empty() ||

@@ -41,7 +41,9 @@ struct BuildOptions {
 
 enum class Scheme { None, CatmullClark, Loop, Bilinear };
 
-/// Where build time went (seconds), for docs/subdivision.md and profiling.
+/// Where build time went (seconds), for docs/subdivision.md and profiling. The stencil
+/// phases (vertex, varying, limit masks, each fvar channel) run as concurrent tasks, so they
+/// can add up to more than `total`.
 struct BuildTimings {
     double refiner = 0;         ///< TopologyRefinerFactory::Create + RefineUniform
     double vertexStencils = 0;  ///< StencilTableFactory, vertex interpolation

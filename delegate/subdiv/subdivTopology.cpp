@@ -5,7 +5,6 @@
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -20,6 +19,7 @@
 
 #include "delegate/subdiv/cageMesh.h"
 #include "delegate/subdiv/osdStencils.h"
+#include "delegate/subdiv/parallelRange.h"
 #include "delegate/subdiv/sharpnessTags.h"
 #include "delegate/subdiv/usdSdc.h"
 
@@ -86,17 +86,6 @@ bool isIdentity(const Stencils& s) {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-template <typename F>
-void parallelRange(size_t n, F&& f) {
-    // 8192 elements per task: see Stencils::apply.
-    if (n <= 8192) {
-        f(size_t(0), n);
-        return;
-    }
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 8192),
-                      [&](const tbb::blocked_range<size_t>& r) { f(r.begin(), r.end()); });
 }
 
 }  // namespace

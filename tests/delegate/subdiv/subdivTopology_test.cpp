@@ -114,6 +114,8 @@ TEST(SubdivTopology, PlanarGridStaysPlanarWithPlaneNormal) {
     edgeOnly.interpolateBoundary = "edgeOnly";
     Built e = refineCage(g, 2, edgeOnly);
     EXPECT_FALSE(hasPointNear(e.mesh, glm::vec3(0, 0, 0), 1e-3f));
+    for (const glm::vec3& n : e.mesh.normals) ASSERT_NEAR(n.z, 1.0f, 1e-5f);
+    expectNormalsFollowWinding(e.mesh);
 }
 
 TEST(SubdivTopology, BoundaryNoneDropsBoundaryFaces) {
@@ -130,6 +132,13 @@ TEST(SubdivTopology, LeftHandedFlipsNormals) {
     Built b = refineCage(g, 2);
     for (const glm::vec3& n : b.mesh.normals) ASSERT_NEAR(n.z, -1.0f, 1e-5f);
     expectNormalsFollowWinding(b.mesh);
+    for (const char* scheme : {"bilinear", "loop"}) {  // loop falls back to catmullClark here
+        Cage s = g;
+        s.topology.scheme = scheme;
+        Built bs = refineCage(s, 2);
+        for (const glm::vec3& n : bs.mesh.normals) ASSERT_NEAR(n.z, -1.0f, 1e-5f) << scheme;
+        expectNormalsFollowWinding(bs.mesh);
+    }
     Cage c = test::cube();
     c.topology.orientation = "leftHanded";
     Built lc = refineCage(c, 2);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace principled::subdiv {
 
@@ -28,6 +29,26 @@ int adaptiveLevel(const glm::vec3& boundsMin, const glm::vec3& boundsMax, size_t
     if (!std::isfinite(ratio)) return maxLevel;
     const int level = int(std::ceil(std::log2(ratio)));
     return std::clamp(level, 0, maxLevel);
+}
+
+int adaptiveLevel(const std::vector<glm::vec3>& objectPoints, const glm::dmat4& objectToWorld,
+                  size_t faceCount, const ScreenMetric& view) {
+    if (objectPoints.empty()) return 0;
+    glm::vec3 lo(objectPoints[0]), hi(objectPoints[0]);
+    for (const glm::vec3& p : objectPoints) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    glm::vec3 worldLo(std::numeric_limits<float>::max()),
+        worldHi(-std::numeric_limits<float>::max());
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec4 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
+                           (corner & 4) ? hi.z : lo.z, 1.0);
+        const glm::vec3 w(objectToWorld * p);
+        worldLo = glm::min(worldLo, w);
+        worldHi = glm::max(worldHi, w);
+    }
+    return adaptiveLevel(worldLo, worldHi, faceCount, view);
 }
 
 }  // namespace principled::subdiv

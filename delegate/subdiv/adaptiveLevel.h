@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace principled::subdiv {
 
@@ -27,5 +28,10 @@ struct ScreenMetric {
 /// Deterministic; a degenerate box, no faces or a bad camera give 0.
 int adaptiveLevel(const glm::vec3& boundsMin, const glm::vec3& boundsMax, size_t faceCount,
                   const ScreenMetric& view);
+
+/// Convenience: the same for object-space cage points under objectToWorld (the world box
+/// of the transformed object-space box, a conservative bound).
+int adaptiveLevel(const std::vector<glm::vec3>& objectPoints, const glm::dmat4& objectToWorld,
+                  size_t faceCount, const ScreenMetric& view);
 
 }  // namespace principled::subdiv

@@ -1,11 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/subdiv/cageMesh.h"
 
+#include <limits>
 #include <utility>
 
 namespace principled::subdiv {
 
 bool checkCage(const hd::MeshTopology& topology, size_t pointCount, std::string* error) {
+    // OpenSubdiv indexes with int.
+    constexpr size_t kIntMax = size_t(std::numeric_limits<int>::max());
+    if (pointCount > kIntMax || topology.faceVertexIndices.size() > kIntMax) {
+        *error = "mesh too large: " + std::to_string(pointCount) + " points, " +
+                 std::to_string(topology.faceVertexIndices.size()) + " face-vertices";
+        return false;
+    }
     const auto& counts = topology.faceVertexCounts;
     const auto& indices = topology.faceVertexIndices;
     size_t total = 0;

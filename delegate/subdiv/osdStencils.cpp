@@ -104,15 +104,6 @@ class RowRecorder {
     bool _broken = false;
 };
 
-/// Destination that ignores everything (lets one Limit() pass record a single mask).
-struct Discard {
-    struct Row {
-        void Clear() {}
-        void AddWithWeight(const Symbol&, float) {}
-    };
-    Row operator[](int) { return {}; }
-};
-
 // The float wrappers Far::StencilTableFactory / Far::StencilTable static_cast a
 // StencilTableReal<float> to the derived StencilTable (UBSan: bad downcast), so the Real
 // templates are used directly.
@@ -181,25 +172,14 @@ LimitMasks vertexLimitMasks(const Far::TopologyRefiner& refiner) {
     const Far::PrimvarRefiner primvars(refiner);
     const SymbolicSource src;
     const size_t n = static_cast<size_t>(refiner.GetLevel(refiner.GetMaxLevel()).GetNumVertices());
-    // One pass per mask keeps one recorder alive at a time (peak memory of one table).
+    // One pass records all three masks: each recorder streams its rows, so memory is the
+    // final tables only.
+    RowRecorder pos(n), du(n), dv(n);
+    primvars.Limit(src, pos, du, dv);
     LimitMasks masks;
-    {
-        RowRecorder pos(n);
-        primvars.Limit(src, pos);
-        masks.position = pos.finish();
-    }
-    {
-        RowRecorder du(n);
-        Discard pos, dv;
-        primvars.Limit(src, pos, du, dv);
-        masks.tangentU = du.finish();
-    }
-    {
-        RowRecorder dv(n);
-        Discard pos, du;
-        primvars.Limit(src, pos, du, dv);
-        masks.tangentV = dv.finish();
-    }
+    masks.position = pos.finish();
+    masks.tangentU = du.finish();
+    masks.tangentV = dv.finish();
     return masks;
 }
 

@@ -111,33 +111,35 @@ void StencilsBuilder::add(int index, float weight) {
 void StencilsBuilder::endRow() {
     const size_t begin = static_cast<size_t>(_table.offsets.back());
     const size_t end = _table.indices.size();
+    int* idx = _table.indices.data();
+    float* wgt = _table.weights.data();
     // Sort the row by index so duplicates (a vertex reached through two mask slots) merge.
-    std::vector<std::pair<int, float>> row;
-    row.reserve(end - begin);
-    for (size_t k = begin; k < end; ++k) row.emplace_back(_table.indices[k], _table.weights[k]);
-    std::sort(row.begin(), row.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    _table.indices.resize(begin);
-    _table.weights.resize(begin);
-    for (const auto& [index, weight] : row) {
-        if (_table.indices.size() > begin && _table.indices.back() == index) {
-            _table.weights.back() += weight;
-        } else {
-            _table.indices.push_back(index);
-            _table.weights.push_back(weight);
+    // Rows hold a few dozen weights at most: insertion sort in place.
+    for (size_t i = begin + 1; i < end; ++i) {
+        const int key = idx[i];
+        const float w = wgt[i];
+        size_t j = i;
+        for (; j > begin && idx[j - 1] > key; --j) {
+            idx[j] = idx[j - 1];
+            wgt[j] = wgt[j - 1];
         }
+        idx[j] = key;
+        wgt[j] = w;
     }
-    // Drop weights that are exactly zero (tangent masks pad with zeros).
-    size_t w = begin;
-    for (size_t k = begin; k < _table.indices.size(); ++k) {
-        if (_table.weights[k] == 0.0f) continue;
-        _table.indices[w] = _table.indices[k];
-        _table.weights[w] = _table.weights[k];
-        ++w;
+    // Merge duplicates, then drop weights that are exactly zero (tangent masks pad with zeros).
+    size_t out = begin;
+    for (size_t k = begin; k < end;) {
+        const int key = idx[k];
+        float w = 0.0f;
+        for (; k < end && idx[k] == key; ++k) w += wgt[k];
+        if (w == 0.0f) continue;
+        idx[out] = key;
+        wgt[out] = w;
+        ++out;
     }
-    _table.indices.resize(w);
-    _table.weights.resize(w);
-    _table.offsets.push_back(static_cast<int>(w));
+    _table.indices.resize(out);
+    _table.weights.resize(out);
+    _table.offsets.push_back(static_cast<int>(out));
     _open = false;
 }
 

@@ -2,6 +2,7 @@
 // SubdivTopology primvar refinement: vertex, varying, face-varying and uniform interpolation.
 #include <algorithm>
 
+#include "delegate/subdiv/parallelRange.h"
 #include "delegate/subdiv/subdivTopology.h"
 
 namespace principled::subdiv {
@@ -70,7 +71,9 @@ bool SubdivTopology::refineFaceVarying(int channel, const float* values, size_t 
         return false;
     const size_t n = size_t(components);
     // coarse values -> last-level values -> limit values, then gathered per triangle corner.
-    std::vector<float> level, limit;
+    // Per-thread scratch: repeated calls reuse the pages (the gather below reads them through
+    // plain pointers, so TBB workers never name these thread_locals).
+    thread_local std::vector<float> level, limit;
     const float* src = values;
     if (!fv.toLevel.empty()) {
         level.resize(chainRows(fv.toLevel, count) * n);
@@ -84,8 +87,11 @@ bool SubdivTopology::refineFaceVarying(int channel, const float* values, size_t 
     }
     out->resize(fv.corners.size() * n);
     float* dst = out->data();
-    for (size_t k = 0; k < fv.corners.size(); ++k, dst += n)
-        std::copy_n(src + size_t(fv.corners[k]) * n, n, dst);
+    const int* corners = fv.corners.data();
+    parallelRange(fv.corners.size(), [=](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k)
+            std::copy_n(src + size_t(corners[k]) * n, n, dst + k * n);
+    });
     return true;
 }
 
@@ -96,10 +102,11 @@ bool SubdivTopology::refineUniform(const float* values, size_t count, int compon
     const size_t n = size_t(components);
     out->resize(_triangleFace.size() * n);
     float* dst = out->data();
-    for (int f : _triangleFace) {
-        std::copy_n(values + size_t(f) * n, n, dst);
-        dst += n;
-    }
+    const int* faces = _triangleFace.data();
+    parallelRange(_triangleFace.size(), [=](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k)
+            std::copy_n(values + size_t(faces[k]) * n, n, dst + k * n);
+    });
     return true;
 }
 

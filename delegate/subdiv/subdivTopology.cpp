@@ -5,7 +5,6 @@
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -14,11 +13,13 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <numeric>
 
 #include "delegate/subdiv/cageMesh.h"
 #include "delegate/subdiv/osdStencils.h"
+#include "delegate/subdiv/parallelRange.h"
 #include "delegate/subdiv/sharpnessTags.h"
 #include "delegate/subdiv/usdSdc.h"
 
@@ -85,17 +86,6 @@ bool isIdentity(const Stencils& s) {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-template <typename F>
-void parallelRange(size_t n, F&& f) {
-    // 8192 elements per task: see Stencils::apply.
-    if (n <= 8192) {
-        f(size_t(0), n);
-        return;
-    }
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 8192),
-                      [&](const tbb::blocked_range<size_t>& r) { f(r.begin(), r.end()); });
 }
 
 }  // namespace
@@ -245,35 +235,55 @@ bool SubdivTopology::build(std::string* error) {
     refiner->RefineUniform(uniform);
     lap(&_timings.refiner);
 
-    try {
+    // The tables only read the refiner, so they are built concurrently (TBB). Each task
+    // records its own duration; a failure is caught inside its task (no exception crosses TBB).
+    auto chain = [&](Interpolation mode, int channel) {
         // Per-level local tables by default; one flattened Far table as the reference path.
-        auto chain = [&](Interpolation mode, int channel) {
-            if (_options.flatStencils)
-                return StencilChain{refinementStencils(*refiner, mode, channel)};
-            return levelStencils(*refiner, mode, channel);
-        };
-        _vertex = chain(Interpolation::Vertex, 0);
-        lap(&_timings.vertexStencils);
-        if (_options.varying) _varying = chain(Interpolation::Varying, 0);
-        lap(&_timings.varyingStencils);
-        if (_scheme != Scheme::Bilinear) {
-            // Bilinear limit points are the refined points and its tangent masks are arbitrary
-            // (Sdc calls them ambiguous), so bilinear normals come from the triangles.
+        if (_options.flatStencils) return StencilChain{refinementStencils(*refiner, mode, channel)};
+        return levelStencils(*refiner, mode, channel);
+    };
+    std::mutex failureMutex;
+    std::string failure;
+    std::vector<double> fvarSeconds(_fvar.size(), 0.0);
+    std::vector<std::function<void()>> tasks;
+    auto task = [&](double* seconds, std::function<void()> work) {
+        tasks.push_back([&failureMutex, &failure, seconds, work = std::move(work)] {
+            const auto t0 = std::chrono::steady_clock::now();
+            try {
+                work();
+            } catch (const std::exception& e) {
+                std::lock_guard<std::mutex> lock(failureMutex);
+                if (failure.empty()) failure = e.what();
+            }
+            *seconds = secondsSince(t0);
+        });
+    };
+    task(&_timings.vertexStencils, [&] { _vertex = chain(Interpolation::Vertex, 0); });
+    if (_options.varying)
+        task(&_timings.varyingStencils, [&] { _varying = chain(Interpolation::Varying, 0); });
+    if (_scheme != Scheme::Bilinear) {
+        // Bilinear limit points are the refined points and its tangent masks are arbitrary
+        // (Sdc calls them ambiguous), so bilinear normals come from the triangles.
+        task(&_timings.limitMasks, [&] {
             LimitMasks masks = vertexLimitMasks(*refiner);
             _limitP = std::move(masks.position);
             _limitDu = std::move(masks.tangentU);
             _limitDv = std::move(masks.tangentV);
-        }
-        lap(&_timings.limitMasks);
-        for (size_t c = 0; c < _fvar.size(); ++c) {
-            if (osdChannel[c] < 0) continue;
+        });
+    }
+    for (size_t c = 0; c < _fvar.size(); ++c) {
+        if (osdChannel[c] < 0) continue;
+        task(&fvarSeconds[c], [&, c] {
             _fvar[c].toLevel = chain(Interpolation::FaceVarying, osdChannel[c]);
             _fvar[c].limit = faceVaryingLimitMasks(*refiner, osdChannel[c]);
             if (isIdentity(_fvar[c].limit)) _fvar[c].limit = Stencils();
-        }
-        lap(&_timings.faceVarying);
-    } catch (const std::exception& e) {
-        *error = std::string("building stencils failed: ") + e.what();
+        });
+    }
+    tbb::parallel_for(size_t(0), tasks.size(), [&tasks](size_t i) { tasks[i](); });
+    for (double t : fvarSeconds) _timings.faceVarying += t;
+    clock = std::chrono::steady_clock::now();
+    if (!failure.empty()) {
+        *error = "building stencils failed: " + failure;
         return false;
     }
     if (_vertex.empty() ||
@@ -407,7 +417,8 @@ bool SubdivTopology::refine(const std::vector<glm::vec3>& coarsePoints, RefinedM
     // faulting in a fresh allocation every frame.
     thread_local std::vector<glm::vec3> levelPoints;
     levelPoints.resize(_refinedPoints);
-    applyChain(_vertex, &coarsePoints[0].x, _pointCount, 3, &levelPoints[0].x);
+    applyChain(_vertex, reinterpret_cast<const float*>(coarsePoints.data()), _pointCount, 3,
+               reinterpret_cast<float*>(levelPoints.data()));
     out->points.resize(_refinedPoints);
     out->normals.resize(_refinedPoints);
     if (_limitP.empty()) std::copy(levelPoints.begin(), levelPoints.end(), out->points.begin());

@@ -41,7 +41,9 @@ struct BuildOptions {
 
 enum class Scheme { None, CatmullClark, Loop, Bilinear };
 
-/// Where build time went (seconds), for docs/subdivision.md and profiling.
+/// Where build time went (seconds), for docs/subdivision.md and profiling. The stencil
+/// phases (vertex, varying, limit masks, each fvar channel) run as concurrent tasks, so they
+/// can add up to more than `total`.
 struct BuildTimings {
     double refiner = 0;         ///< TopologyRefinerFactory::Create + RefineUniform
     double vertexStencils = 0;  ///< StencilTableFactory, vertex interpolation
@@ -62,6 +64,10 @@ struct BuildTimings {
 ///
 /// Scheme "none" and level 0 give the cage itself: points copied, fan-triangulated faces,
 /// no normals (the caller computes them as for any polygon mesh).
+///
+/// refine() and the primvar calls keep per-thread scratch buffers (about 12 bytes per refined
+/// point for positions) so that re-posing does not fault in fresh pages every frame; they stay
+/// allocated at the largest size a thread has used.
 class SubdivTopology {
   public:
     /// Validates and builds. Returns nullptr with *error for unusable topology (bad counts,

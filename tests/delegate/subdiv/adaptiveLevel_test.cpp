@@ -68,3 +68,18 @@ TEST(AdaptiveLevel, DegenerateInputGivesZero) {
     v.verticalFov = std::nanf("");
     EXPECT_EQ(adaptiveLevel(glm::vec3(-1), glm::vec3(1), 6, v), 0);
 }
+
+TEST(AdaptiveLevel, ObjectPointsUnderATransform) {
+    std::vector<glm::vec3> cube = {{-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, {0.0f, 0.2f, 0.1f}};
+    const ScreenMetric v = camera(20.0f);
+    EXPECT_EQ(adaptiveLevel(cube, glm::dmat4(1.0), 6, v),
+              adaptiveLevel(glm::vec3(-0.5f), glm::vec3(0.5f), 6, v));
+    glm::dmat4 away(1.0);
+    away[3] = glm::dvec4(0.0, 0.0, -300.0, 1.0);  // translate 300 units further from the camera
+    EXPECT_LT(adaptiveLevel(cube, away, 6, v), adaptiveLevel(cube, glm::dmat4(1.0), 6, v));
+    glm::dmat4 bigger(4.0);
+    bigger[3][3] = 1.0;
+    bigger[3] = glm::dvec4(0.0, 0.0, -300.0, 1.0);
+    EXPECT_GT(adaptiveLevel(cube, bigger, 6, v), adaptiveLevel(cube, away, 6, v));
+    EXPECT_EQ(adaptiveLevel(std::vector<glm::vec3>{}, glm::dmat4(1.0), 6, v), 0);
+}

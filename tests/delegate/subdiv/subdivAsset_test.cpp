@@ -3,6 +3,7 @@
 // variants, read with a minimal array scanner so this test needs no USD parser.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -110,5 +111,72 @@ TEST(SubdivAsset, UsdWgPyramidCreasesAndCorners) {
         int on = 0;
         for (const glm::vec3& x : sharpEdges.points) on += distanceToSegment(x, a, b) < 1e-5f;
         EXPECT_EQ(on, 9) << "crease " << e;  // 2^3 segments -> 9 points including the ends
+    }
+}
+
+TEST(SubdivAsset, UsdWgSchemeCubes) {
+    // schemaTests/usdGeom/meshes/subdiv_*: unit cubes (12 triangles for loop) per scheme.
+    struct Expect {
+        const char* name;
+        Scheme scheme;
+        bool warns;
+    };
+    const Expect cases[] = {{"subdiv_catmullClark", Scheme::CatmullClark, false},
+                            {"subdiv_bilinear", Scheme::Bilinear, false},
+                            {"subdiv_loop_triangles", Scheme::Loop, false},
+                            {"subdiv_loop_quads", Scheme::CatmullClark, true},
+                            {"subdiv_none", Scheme::None, false}};
+    for (const Expect& e : cases) {
+        const std::string path =
+            std::string("../shared/usd-wg/test_assets/schemaTests/usdGeom/meshes/") + e.name + "/" +
+            e.name + ".usda";
+        std::ifstream f(path);
+        if (!f) GTEST_SKIP() << path << " not found (run from the repository root)";
+        std::stringstream ss;
+        ss << f.rdbuf();
+        const std::string text = ss.str();
+        hd::MeshTopology t;
+        for (double v : firstArray(text, "int[] faceVertexCounts"))
+            t.faceVertexCounts.push_back(int(v));
+        for (double v : firstArray(text, "int[] faceVertexIndices"))
+            t.faceVertexIndices.push_back(int(v));
+        std::vector<glm::vec3> points;
+        std::vector<double> xyz = firstArray(text, "point3f[] points");
+        for (size_t i = 0; i + 2 < xyz.size(); i += 3)
+            points.emplace_back(float(xyz[i]), float(xyz[i + 1]), float(xyz[i + 2]));
+        const size_t q = text.find("subdivisionScheme = \"");
+        ASSERT_NE(q, std::string::npos) << e.name;
+        const size_t b = q + 21;
+        t.scheme = hd::Token(text.substr(b, text.find('"', b) - b));
+
+        std::string err;
+        auto topo = SubdivTopology::create(t, {}, points.size(), BuildOptions{2}, &err);
+        ASSERT_TRUE(topo) << e.name << ": " << err;
+        EXPECT_EQ(topo->scheme(), e.scheme) << e.name;
+        EXPECT_EQ(!topo->warnings().empty(), e.warns) << e.name;
+        RefinedMesh m;
+        ASSERT_TRUE(topo->refine(points, &m));
+        const size_t faces = t.faceVertexCounts.size();
+        const size_t expected = e.scheme == Scheme::None   ? 2 * faces
+                                : e.scheme == Scheme::Loop ? faces * 16
+                                                           : 2 * faces * 16;
+        EXPECT_EQ(m.triangles.size(), expected) << e.name;
+        for (size_t i = 0; i < m.points.size(); ++i) {
+            const glm::vec3& p = m.points[i];
+            const float box = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+            ASSERT_LE(box, 0.5f + 1e-6f) << e.name;  // inside the cage
+            if (e.scheme == Scheme::Bilinear || e.scheme == Scheme::None) {
+                ASSERT_NEAR(box, 0.5f, 1e-6f) << e.name;  // on the cage
+            }
+            if (!m.normals.empty()) {
+                ASSERT_GT(glm::dot(m.normals[i], p), 0.0f) << e.name;
+            }
+        }
+        if (e.scheme == Scheme::CatmullClark) {  // Halstead limit of a cube corner: 0.25
+            float best = 1.0f;
+            for (const glm::vec3& p : m.points)
+                best = std::min(best, glm::length(p - glm::vec3(0.25f)));
+            EXPECT_LT(best, 1e-5f) << e.name;
+        }
     }
 }

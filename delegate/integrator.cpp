@@ -222,6 +222,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     for (int depth = 0;; ++depth) {
         Hit hit;
         ++out.rays;
+        if (_settings.recorder) _settings.recorder->record(ray.origin, ray.direction, ray.tnear, ray.tfar, false);
         if (!intersect(_scene, ray, &hit)) {
             // Escaped: add the lights one could see along this direction, MIS-weighted
             // against the light sampling that would also have found them.
@@ -237,7 +238,12 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                     Le = light.radiance;
                     lightPdf = lightPick / (2.0f * kPi * (1.0f - light.cosHalfAngle));
                 }
-                float w = prevDelta ? 1.0f : powerHeuristic(prevBsdfPdf, lightPdf);
+                // Without MIS, lights that NEE samples are counted only by NEE (weight 0 here),
+                // except after a delta bounce, which NEE cannot follow.
+                // Directions NEE cannot produce (lightPdf 0, e.g. below the surface) count fully.
+                float w = (prevDelta || lightPdf <= 0.0f)
+                              ? 1.0f
+                              : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
                 glm::vec3 c = beta * Le * w;
                 if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                     c *= _settings.clampIndirect / maxComponent(c);
@@ -336,8 +342,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                                         depth == 0 ? &perLobe : nullptr);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
-                    if (!occluded(_scene, offsetOrigin(hit.p, hit.ng, wi), wi, kInf)) {
-                        float w = deltaLight ? 1.0f : powerHeuristic(lightPdf * lightPick, bsdfPdf);
+                    glm::vec3 shadowOrigin = offsetOrigin(hit.p, hit.ng, wi);
+                    if (_settings.recorder) _settings.recorder->record(shadowOrigin, wi, 0.0f, kInf, true);
+                    if (!occluded(_scene, shadowOrigin, wi, kInf)) {
+                        float w = (deltaLight || !_settings.mis) ? 1.0f : powerHeuristic(lightPdf * lightPick, bsdfPdf);
                         glm::vec3 scale = beta * Li * (w / (lightPdf * lightPick));
                         glm::vec3 c = scale * f;
                         if (depth > 0 && _settings.clampIndirect > 0.0f &&

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "bsdf/bsdf.h"
+#include "delegate/rayRecorder.h"
 #include "delegate/sampler.h"
 #include "delegate/sceneData.h"
 
@@ -15,6 +16,8 @@ namespace principled::embree {
 
 struct IntegratorSettings {
     SamplerKind sampler = SamplerKind::Sobol;
+    bool mis = true;          ///< false: lights are found by next-event estimation only
+    RayRecorder* recorder = nullptr;  ///< receives every ray cast (bench/ replay); usually null
     int maxDepth = 8;         ///< path vertices after the camera hit (0 = direct light only)
     int rouletteDepth = 3;    ///< Russian roulette starts at this depth
     float clampIndirect = 0;  ///< max channel of an indirect contribution; 0 = off

@@ -131,6 +131,13 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Clamp indirect", Token("clampIndirect"), Value(0.0f), "max channel value of an indirect contribution; 0 = off"},
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
+        {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
+        {"Lobe pruning", Token("lobePruning"), Value(1), "skip BSDF lobes whose weight is below the cutoff"},
+        {"VNDF sampling", Token("vndf"), Value(1), "GGX visible-normal sampling (0: classic distribution sampling)"},
+        {"Delta roughness", Token("deltaRoughness"), Value(1e-3f), "below this roughness specular is a perfect mirror"},
+        {"Legacy specular G", Token("legacySpecularG"), Value(0), "Burley 2012 course-notes G remap (0.5 + 0.5 r)^2"},
+        {"Noise threshold", Token("noiseThreshold"), Value(0.0f), "stop sampling a pixel when the relative standard error of its mean is below this; 0 = off"},
+        {"Min samples", Token("minSamples"), Value(16), "adaptive sampling: samples before a pixel may stop"},
         {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome"},
         {"Refine level", Token("refineLevel"), Value(-1), "subdivision level for every mesh; -1 = adaptive from the projected size"},
         {"Dicing rate", Token("dicingRate"), Value(1.5f), "adaptive subdivision: target refined edge length in pixels"},
@@ -196,6 +203,11 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
+    s.mis = intSetting("mis", 1) != 0;
+    s.bsdf.pruneLobes = intSetting("lobePruning", 1) != 0;
+    s.bsdf.vndfSampling = intSetting("vndf", 1) != 0;
+    s.bsdf.deltaRoughness = std::clamp(floatSetting("deltaRoughness", 1e-3f), 0.0f, 1.0f);
+    s.bsdf.legacySpecularG = intSetting("legacySpecularG", 0) != 0;
     auto sampler = getString(renderSetting(Token("sampler")));
     s.sampler = (sampler && *sampler == "independent") ? SamplerKind::Independent : SamplerKind::Sobol;
     return s;

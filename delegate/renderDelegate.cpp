@@ -37,8 +37,10 @@ const std::vector<Token>& EmbreeRenderDelegate::supportedRprimTypes() const {
     return t;
 }
 const std::vector<Token>& EmbreeRenderDelegate::supportedSprimTypes() const {
-    static const std::vector<Token> t{tokens::camera(), tokens::material(), tokens::distantLight(),
-                                      tokens::domeLight()};
+    static const std::vector<Token> t{tokens::camera(),      tokens::material(),
+                                      tokens::distantLight(), tokens::domeLight(),
+                                      tokens::sphereLight(),  tokens::rectLight(),
+                                      tokens::diskLight(),    tokens::cylinderLight()};
     return t;
 }
 const std::vector<Token>& EmbreeRenderDelegate::supportedBprimTypes() const {
@@ -55,8 +57,9 @@ std::unique_ptr<Rprim> EmbreeRenderDelegate::createRprim(const Token& typeId, co
 std::unique_ptr<Sprim> EmbreeRenderDelegate::createSprim(const Token& typeId, const Path& id) {
     if (typeId == tokens::camera()) return std::make_unique<Camera>(id);
     if (typeId == tokens::material()) return std::make_unique<Material>(id);
-    if (typeId == tokens::distantLight() || typeId == tokens::domeLight())
-        return std::make_unique<Light>(typeId, id);
+    for (const Token& light : {tokens::distantLight(), tokens::domeLight(), tokens::sphereLight(),
+                               tokens::rectLight(), tokens::diskLight(), tokens::cylinderLight()})
+        if (typeId == light) return std::make_unique<Light>(typeId, id);
     return nullptr;
 }
 

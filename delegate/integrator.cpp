@@ -201,7 +201,6 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             out.lobes[pathLobe] += c;
     };
     const auto& lights = _scene.lights;
-    const float lightPick = lights.empty() ? 0.0f : 1.0f / static_cast<float>(lights.size());
     glm::vec3 L(0.0f), beta(1.0f);
     Ray ray = cameraRay;
     bool prevDelta = true;     // the camera "lobe" is a delta: no MIS on direct hits
@@ -233,7 +232,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             glm::vec3 Le;
             float pdf;
             if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf))
-                addEmitter(Le, pdf * lightPick);
+                addEmitter(Le, pdf * light.pickProbability);
         }
         if (!found) {
             for (const LightRecord& light : lights) {
@@ -241,7 +240,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 if (depth == 0 && (light.kind == LightRecord::Kind::Distant || !_settings.domeVisible)) continue;
                 glm::vec3 Le;
                 float pdf;
-                if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf)) addEmitter(Le, pdf * lightPick);
+                if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf))
+                    addEmitter(Le, pdf * light.pickProbability);
             }
             break;
         }
@@ -307,7 +307,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (!lights.empty() && !bsdf.isDeltaOnly()) {
             float ul = sampler.next1D();
             glm::vec2 u = sampler.next2D();
-            size_t li = std::min(lights.size() - 1, size_t(ul * float(lights.size())));
+            const auto& cdf = _scene.lightCdf;
+            size_t li = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, ul) - (cdf.begin() + 1));
+            li = std::min(li, lights.size() - 1);
+            const float lightPick = lights[li].pickProbability;
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls) && ls.pdf > 0.0f &&
                 glm::dot(ls.wi, hit.ng) > 0.0f) {

@@ -107,6 +107,7 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.usingDefaultLight = true;
         }
     }
+    if (sceneDirty || tablesDirty) buildLightDistribution();
     if (sceneDirty || tablesDirty) {
         _snapshot.geometryByInstance.clear();
         for (GeometrySource* g : _param->geometry()) {
@@ -117,6 +118,52 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.geometryByInstance[id] = g->record();
         }
     }
+}
+
+void EmbreeRenderDelegate::buildLightDistribution() {
+    // Next-event estimation picks lights in proportion to the power they can deliver to the
+    // scene (its bounding sphere of radius R), mixed with 10% uniform so no light starves.
+    RTCBounds b;
+    rtcGetSceneBounds(_scene, &b);
+    float R = 1.0f;
+    if (b.lower_x <= b.upper_x) {
+        glm::vec3 ext(b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z);
+        R = std::max(1e-3f, 0.5f * glm::length(ext));
+        if (!std::isfinite(R)) R = 1.0f;
+    }
+    constexpr float kPi = 3.14159265358979323846f;
+    auto lum = [](const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
+    auto& lights = _snapshot.lights;
+    std::vector<float> power(lights.size());
+    double total = 0.0;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const LightRecord& l = lights[i];
+        float p = 0.0f;
+        switch (l.kind) {
+            case LightRecord::Kind::Distant: p = lum(l.irradiance) * kPi * R * R; break;
+            case LightRecord::Kind::Dome: {
+                glm::vec3 L = l.radiance;
+                if (l.environment && !l.environment->texels.empty()) {
+                    glm::dvec3 sum(0.0);
+                    for (const auto& t : l.environment->texels) sum += glm::dvec3(t);
+                    L = glm::vec3(sum / double(l.environment->texels.size())) * l.environment->scale;
+                }
+                p = lum(L) * kPi * kPi * R * R;
+                break;
+            }
+            default: p = lum(l.radiance) * kPi * l.area;  // one-sided Lambertian emitter
+        }
+        power[i] = std::isfinite(p) && p > 0.0f ? p : 0.0f;
+        total += power[i];
+    }
+    _snapshot.lightCdf.assign(lights.size() + 1, 0.0f);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        float uniform = 1.0f / float(lights.size());
+        float prob = total > 0.0 ? 0.9f * float(power[i] / total) + 0.1f * uniform : uniform;
+        lights[i].pickProbability = prob;
+        _snapshot.lightCdf[i + 1] = _snapshot.lightCdf[i] + prob;
+    }
+    if (!lights.empty()) _snapshot.lightCdf.back() = 1.0f;
 }
 
 AovDescriptor EmbreeRenderDelegate::defaultAovDescriptor(const Token& aovName) const {

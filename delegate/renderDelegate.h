@@ -64,6 +64,7 @@ private:
     float floatSetting(const char* key, float fallback) const;
 
     void updateDicing();
+    void buildLightDistribution();
 
     EmbreeDevice _device;
     shading::TextureCache _textures;

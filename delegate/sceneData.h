@@ -86,6 +86,7 @@ struct LightRecord {
     float radius = 0.0f;                 ///< sphere, cylinder
     float area = 0.0f;
     std::shared_ptr<const EnvironmentMap> environment;  ///< dome texture (null: constant)
+    float pickProbability = 1.0f;  ///< chance next-event estimation picks this light
 };
 
 /// Everything a render pass reads: the committed top-level scene and the tables the records
@@ -95,6 +96,7 @@ struct SceneSnapshot {
     std::vector<GeometryRecord*> geometryByInstance;  ///< indexed by Embree instance geomID
     std::vector<MaterialRecord> materials;
     std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
+    std::vector<float> lightCdf;                      ///< lights.size() + 1 entries, by power
     bool usingDefaultLight = false;                   ///< the scene had no light
 };
 

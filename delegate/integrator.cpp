@@ -286,6 +286,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             f.instanceId = 0;
             f.elementId = hit.element;
             f.materialId = rec.materialIndex;
+            for (size_t i = 0; i < std::min<size_t>(_settings.aovPrimvars.size(), f.primvars.size()); ++i) {
+                float v[3] = {0.0f, 0.0f, 0.0f};
+                context.primvar(_settings.aovPrimvars[i], 3, v);
+                f.primvars[i] = glm::vec3(v[0], v[1], v[2]);
+            }
         }
 
         glm::vec3 wo = -ray.direction;

@@ -57,6 +57,7 @@ Ray cameraRay(const Camera& cam, const glm::vec4& window, int width, int height,
 struct BoundAov {
     AovInfo info;
     EmbreeRenderBuffer* buffer;
+    int primvarSlot = -1;  ///< index into FirstHit::primvars for "primvars:NAME"
 };
 
 // Camera quantities the geometric AOVs need.
@@ -129,6 +130,9 @@ void writeSample(const BoundAov& a, int x, int y, const PathSample& ps, const Ca
         case AovKind::InstanceId: a.buffer->addSample(x, y, int32_t(f.instanceId)); return;
         case AovKind::ElementId: a.buffer->addSample(x, y, int32_t(f.elementId)); return;
         case AovKind::MaterialId: a.buffer->addSample(x, y, int32_t(f.materialId)); return;
+        case AovKind::Primvar:
+            if (a.primvarSlot >= 0) put3(f.primvars[a.primvarSlot]);
+            return;
         default: return;
     }
 }
@@ -210,6 +214,16 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     const SceneSnapshot& scene = _delegate->snapshot();
     IntegratorSettings settings = _delegate->integratorSettings();
     settings.recorder = _recorder;
+    for (auto& a : aovs) {
+        if (a.info.kind != AovKind::Primvar) continue;
+        std::string name;
+        for (const auto& b : state.aovBindings)
+            if (b.renderBuffer == a.buffer) name = b.aovName.str().substr(9);
+        if (settings.aovPrimvars.size() < 4) {
+            a.primvarSlot = int(settings.aovPrimvars.size());
+            settings.aovPrimvars.emplace_back(name);
+        }
+    }
     Integrator integrator(scene, settings);
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
     glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));

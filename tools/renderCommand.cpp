@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <limits>
 #include <regex>
 
 #include <nlohmann/json.hpp>
@@ -38,6 +39,7 @@ struct RenderArgs {
     float noiseThreshold = 0.0f;
     double timeLimit = 0.0;
     std::vector<std::string> settings;
+    double time = std::numeric_limits<double>::quiet_NaN();
     bool split = false;
     bool quiet = false;
 };
@@ -63,6 +65,7 @@ int runRender(const RenderArgs& a) {
     o.sampler = a.sampler;
     o.refineLevel = a.refineLevel;
     o.noiseThreshold = a.noiseThreshold;
+    o.time = a.time;
     for (const auto& kv : a.settings) {
         auto eq = kv.find('=');
         if (eq == std::string::npos || eq == 0)
@@ -212,6 +215,7 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::Range(0.0, 10.0));
     cmd->add_option("--time-limit", args->timeLimit, "Stop after this many seconds of rendering (the image so far is written)")
         ->check(CLI::Range(0.0, 1e9));
+    cmd->add_option("--time", args->time, "Time code to render the stage at (default: startTimeCode, else the default values)");
     cmd->add_option("--set", args->settings, "Render setting KEY=VALUE (repeatable), e.g. --set mis=0 --set maxDepth=3");
     cmd->add_option("--refine-level", args->refineLevel,
                     "Subdivision level for every mesh (0-8); -1 = adaptive from the projected size")

@@ -301,23 +301,88 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
         return;
     }
     if (reportCycle(node, stack, target, ref.location, what)) return;
+    for (const auto& [buildingStack, buildingSite] : _building)
+        if (buildingStack == stack &&
+            (path::hasPrefix(buildingSite, target) || path::hasPrefix(target, buildingSite))) {
+            warn(ref.location, std::string(what) + " cycle: " + describeSite(stack, target) +
+                                   " is referenced while composing itself",
+                 Diagnostic::Severity::Error);
+            return;
+        }
     if (!reserveNode(node, ref.location)) return;
-    auto child = std::make_unique<Node>();
+    // A prim below the root brings the arcs authored on its ancestors (ancestral opinions).
+    bool subroot = path::parent(target) != "/";
+    std::unique_ptr<Node> child = subroot ? buildSubrootIndex(stack, target, ref.location)
+                                          : std::make_unique<Node>();
+    if (!child) return;
     child->stack = stack;
     child->site = target;
     child->arc = arc;
-    child->map.push_back({target, path::stripVariants(node.site), false});
-    child->map.insert(child->map.end(), node.map.begin(), node.map.end());
+    // Maps and time offsets of the whole subtree continue through this arc: first the
+    // reference (target -> the referencing prim), then the referencing node's own mapping.
+    std::vector<MapStep> outer{{target, path::stripVariants(node.site), false}};
+    outer.insert(outer.end(), node.map.begin(), node.map.end());
     // Time mapping: the node's, then the offset of the sublayer that authored the arc, then
     // the arc's own (offset; scale).
     LayerOffset authoring;
     for (std::size_t i = 0; i < node.stack->layers.size(); ++i)
         if (node.stack->layers[i]->file == ref.location.file) authoring = node.stack->offsets[i];
-    child->offset = node.offset.compose(authoring).compose(ref.offset);
+    LayerOffset offset = node.offset.compose(authoring).compose(ref.offset);
+    std::vector<Node*> todo{child.get()};
+    while (!todo.empty()) {
+        Node* n = todo.back();
+        todo.pop_back();
+        n->map.insert(n->map.end(), outer.begin(), outer.end());
+        n->offset = offset.compose(n->offset);
+        for (const auto& c : n->children) todo.push_back(c.get());
+    }
     child->arcLocation = ref.location;
     Node* raw = child.get();
     node.addChild(std::move(child));
-    expandArcs(*raw);
+    if (!subroot) expandArcs(*raw);
+}
+
+std::unique_ptr<PrimIndexNode> Composer::buildSubrootIndex(const LayerStack* stack,
+                                                           const std::string& target,
+                                                           const SourceLocation& where) {
+    // The prim index of `target` inside its own layer stack, built like the stage's: from the
+    // root prim down, expanding arcs and variants at each level. Implied classes and variant
+    // overrides do not apply inside it, and ancestors' variant selections come from the
+    // referenced layer stack only.
+    if (_building.size() >= 16) {  // 16: nested sub-root references, far beyond real assets
+        warn(where, "references to non-root prims nested too deeply", Diagnostic::Severity::Error);
+        return nullptr;
+    }
+    _building.emplace_back(stack, target);
+    Node* savedRoot = _indexRoot;
+    _indexRoot = nullptr;
+    std::vector<std::string> names;
+    for (std::size_t i = 1; i < target.size();) {
+        std::size_t j = target.find('/', i);
+        if (j == std::string::npos) j = target.size();
+        names.push_back(target.substr(i, j - i));
+        i = j + 1;
+    }
+    auto index = std::make_unique<Node>();
+    index->stack = stack;
+    index->site = "/" + names.front();
+    expandArcs(*index);
+    std::map<std::string, std::string> used;
+    expandVariants(*index, {}, used);
+    for (std::size_t i = 1; i < names.size(); ++i) {
+        auto derived = derive(*index, names[i], nullptr);
+        for (Node* n : strengthOrder(*derived)) expandArcs(*n);
+        // The target's own variant sets are left to the referencing prim's index, where
+        // stronger opinions (the referencing layers) may select them.
+        if (i + 1 < names.size()) {
+            used.clear();
+            expandVariants(*derived, {}, used);
+        }
+        index = std::move(derived);
+    }
+    _indexRoot = savedRoot;
+    _building.pop_back();
+    return index;
 }
 
 void Composer::addImpliedClassArc(const Node& node, const std::string& target, Arc arc,

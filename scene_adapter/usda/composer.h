@@ -76,6 +76,8 @@ private:
     void expandArcs(Node& node);
     void addReferenceArc(Node& node, const Reference& ref, Arc arc);
     void addClassArc(Node& node, const PathItem& item, Arc arc);
+    std::unique_ptr<Node> buildSubrootIndex(const LayerStack* stack, const std::string& target,
+                                            const SourceLocation& where);
     /// Pcp's implied inherits/specializes: a class arc inside a referenced asset also picks up
     /// the class at the mapped path in the root layer stack (stronger than the asset's class).
     void addImpliedClassArc(const Node& node, const std::string& target, Arc arc,
@@ -110,6 +112,8 @@ private:
     Node* _indexRoot = nullptr;
     std::size_t _nodeCount = 0;
     std::set<std::string> _reported;
+    /// Sub-root reference targets whose index is being built (cycle detection across them).
+    std::vector<std::pair<const LayerStack*, std::string>> _building;
 };
 
 }  // namespace principled::usd

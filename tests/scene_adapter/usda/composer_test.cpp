@@ -609,6 +609,31 @@ def "D" ( references = </Tree> ) { }
     EXPECT_NE(stage->prim("/A/m"), nullptr);  // still expanded
 }
 
+TEST(Composer, SubRootReferencesBringAncestralOpinions) {
+    test::TempDir dir("subroot");
+    dir.write("lib.usda", R"(#usda 1.0
+def "Lib" ( variantSets = "look"  variants = { string look = "red" } ) {
+    variantSet "look" = {
+        "red" { over "Chair" { double r = 1  rel mat = </Lib/Chair/Mat> } }
+        "blue" { over "Chair" { double r = 0 } }
+    }
+    def "Chair" { double legs = 4  def "Mat" {} }
+}
+)");
+    std::string root = dir.write("root.usda", R"(#usda 1.0
+def "MyChair" ( references = @lib.usda@</Lib/Chair> ) { }
+def "Loop" { def "A" ( references = </Cycle/B> ) {} }
+def "Cycle" { def "B" ( references = </Loop/A> ) {} }
+)");
+    auto stage = Stage::open(root);
+    EXPECT_EQ(number(*stage, "/MyChair", "legs"), 4.0);
+    EXPECT_EQ(number(*stage, "/MyChair", "r"), 1.0);  // from the ancestor's variant
+    EXPECT_EQ(stage->prim("/MyChair")->relationship("mat")->targets(),
+              (std::vector<std::string>{"/MyChair/Mat"}));
+    EXPECT_TRUE(hasWarning(*stage, "reference cycle")) << allWarnings(*stage);
+    EXPECT_NE(stage->prim("/Loop/A"), nullptr);
+}
+
 TEST(Composer, LongReferenceChainsAreBounded) {
     test::TempDir dir("chain");
     const int files = 300;

@@ -17,11 +17,10 @@ Lexer::Lexer(std::string_view text, std::string file) : _text(text), _file(std::
     _next = scan();
 }
 
-std::string Lexer::describe(const Token& t) {
-    if (t.kind == TokenKind::End) return "end of file";
+std::string quoteText(std::string_view text) {
     std::string out = "'";
     std::size_t n = 0;
-    for (char c : t.text) {
+    for (char c : text) {
         if (++n > 40) {
             out += "...";
             break;
@@ -37,6 +36,11 @@ std::string Lexer::describe(const Token& t) {
         }
     }
     return out + "'";
+}
+
+std::string Lexer::describe(const Token& t) {
+    if (t.kind == TokenKind::End) return "end of file";
+    return quoteText(t.text);
 }
 
 void Lexer::fail(const Token& at, std::string_view expected) const {

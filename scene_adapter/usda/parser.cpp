@@ -157,11 +157,13 @@ std::unique_ptr<PrimSpec> Parser::parsePrim(const SiblingNames& seen) {
     spec->name = expectString("a quoted prim name");
     if (spec->name.empty() ||
         spec->name.find_first_of("/.{}<>[]:=@\"' \t\r\n") != std::string::npos ||
+        std::any_of(spec->name.begin(), spec->name.end(),
+                    [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }) ||
         (spec->name[0] >= '0' && spec->name[0] <= '9'))
         _lex.fail(nameTok, "a valid prim name (an identifier)");
     // One layer holds one spec per path (Sdf): a second spec of the same name is an error.
     if (auto it = seen.find(spec->name); it != seen.end())
-        _lex.fail(nameTok, "a unique prim name ('" + spec->name + "' is already defined at " +
+        _lex.fail(nameTok, "a unique prim name (" + quoteText(spec->name) + " is already defined at " +
                                std::to_string(it->second->location.line) + ":" +
                                std::to_string(it->second->location.column) + ")");
     if (peek().is('(')) parsePrimMetadata(*spec);
@@ -471,7 +473,8 @@ Reference Parser::parseReference() {
     } else if (t.kind == TokenKind::Path) {
         r.primPath = pathFromToken(next());
         if (r.primPath.empty() || r.primPath[0] != '/')
-            throw ParseError(r.location, "expected an absolute prim path, found '<" + r.primPath + ">'");
+            throw ParseError(r.location,
+                             "expected an absolute prim path, found " + quoteText("<" + r.primPath + ">"));
     } else {
         fail("an asset path '@...@' or a prim path '<...>'");
     }

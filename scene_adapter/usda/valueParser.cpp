@@ -10,10 +10,8 @@
 namespace principled::usd::detail {
 
 namespace {
-// A value's text for "found Y" in an error: single-quoted, cut at 40 characters like tokens.
-std::string quoted(const std::string& text) {
-    return "'" + (text.size() > 40 ? text.substr(0, 40) + "..." : text) + "'";
-}
+// A value's text for "found Y" in an error, quoted like a token.
+std::string quoted(const std::string& text) { return quoteText(text); }
 }  // namespace
 
 AssetPath Parser::assetFromToken(const Token& t) const {

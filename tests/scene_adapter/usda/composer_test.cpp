@@ -136,6 +136,16 @@ TEST(Composer, ReferenceOffsetsComposeWithTheAuthoringSublayer) {
     EXPECT_EQ(samples.rbegin()->first, 107.0);  // 1 * 2 + 5 + 100
 }
 
+TEST(Composer, SubLayerCycleIsAnErrorAndTheRestLoads) {
+    test::TempDir dir("subcycle");
+    dir.write("b.usda", "#usda 1.0\n( subLayers = [@root.usda@] )\ndef \"B\" {}\n");
+    std::string root = dir.write("root.usda", "#usda 1.0\n( subLayers = [@b.usda@] )\ndef \"R\" {}\n");
+    auto stage = Stage::open(root);
+    EXPECT_NE(stage->prim("/R"), nullptr);
+    EXPECT_NE(stage->prim("/B"), nullptr);
+    EXPECT_TRUE(hasWarning(*stage, "b.usda:2:16: error: sublayer cycle: "));
+}
+
 TEST(Composer, InheritsFromClass) {
     auto stage = Stage::openString(R"(#usda 1.0
 class "_cls" {

@@ -215,14 +215,16 @@ bool Composer::reserveNode(const Node& parent, const SourceLocation& where) {
     int depth = 0;
     for (const Node* n = &parent; n; n = n->parent) ++depth;
     if (depth >= kMaxArcDepth) {
-        warn(where, "composition arcs nested more than " + std::to_string(kMaxArcDepth) +
-                        " deep; further arcs are ignored",
+        warn(where,
+             "composition arcs nested more than " + std::to_string(kMaxArcDepth) +
+                 " deep; further arcs are ignored",
              Diagnostic::Severity::Error);
         return false;
     }
     if (++_nodeCount <= kMaxNodesPerPrim) return true;
-    warn(where, "composition too complex: more than " + std::to_string(kMaxNodesPerPrim) +
-                    " arcs contribute to one prim; further arcs are ignored",
+    warn(where,
+         "composition too complex: more than " + std::to_string(kMaxNodesPerPrim) +
+             " arcs contribute to one prim; further arcs are ignored",
          Diagnostic::Severity::Error);
     return false;
 }
@@ -230,11 +232,11 @@ bool Composer::reserveNode(const Node& parent, const SourceLocation& where) {
 void Composer::expandArcs(Node& node) {
     std::vector<const PrimSpec*> specs = specsAt(node);
     if (specs.empty()) return;
-    for (const PathItem& item :
-         composeListOp<PathItem>(specs, [](const PrimSpec& s) -> auto& { return s.inherits; }))
+    for (const PathItem& item : composeListOp<PathItem>(
+             specs, [](const PrimSpec& s) -> auto& { return s.inherits; }))
         addClassArc(node, item, Arc::Inherit);
-    for (const Reference& r :
-         composeListOp<Reference>(specs, [](const PrimSpec& s) -> auto& { return s.references; }))
+    for (const Reference& r : composeListOp<Reference>(
+             specs, [](const PrimSpec& s) -> auto& { return s.references; }))
         addReferenceArc(node, r, Arc::Reference);
     if (_options.loadPayloads)
         for (const Reference& r : composeListOp<Reference>(
@@ -269,12 +271,13 @@ bool Composer::reportCycle(const Node& from, const LayerStack* stack, const std:
 void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
     const char* what = arc == Arc::Payload ? "payload" : "reference";
     const LayerStack* stack = node.stack;
-    std::string label = ref.assetPath.empty() ? "<" + ref.primPath + ">" : "@" + ref.assetPath + "@";
+    std::string label =
+        ref.assetPath.empty() ? "<" + ref.primPath + ">" : "@" + ref.assetPath + "@";
     if (!ref.assetPath.empty()) {
         if (ref.resolvedPath.empty()) {
             warn(ref.location, std::string(what) + " " + label +
-                                   " not found (relative to the directory of " +
-                                   ref.location.file + "); the prim is composed without it");
+                                   " not found (relative to the directory of " + ref.location.file +
+                                   "); the prim is composed without it");
             return;
         }
         try {
@@ -304,16 +307,17 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
     for (const auto& [buildingStack, buildingSite] : _building)
         if (buildingStack == stack &&
             (path::hasPrefix(buildingSite, target) || path::hasPrefix(target, buildingSite))) {
-            warn(ref.location, std::string(what) + " cycle: " + describeSite(stack, target) +
-                                   " is referenced while composing itself",
+            warn(ref.location,
+                 std::string(what) + " cycle: " + describeSite(stack, target) +
+                     " is referenced while composing itself",
                  Diagnostic::Severity::Error);
             return;
         }
     if (!reserveNode(node, ref.location)) return;
     // A prim below the root brings the arcs authored on its ancestors (ancestral opinions).
     bool subroot = path::parent(target) != "/";
-    std::unique_ptr<Node> child = subroot ? buildSubrootIndex(stack, target, ref.location)
-                                          : std::make_unique<Node>();
+    std::unique_ptr<Node> child =
+        subroot ? buildSubrootIndex(stack, target, ref.location) : std::make_unique<Node>();
     if (!child) return;
     child->stack = stack;
     child->site = target;
@@ -496,9 +500,8 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
                 if (!n->stack->hasPrim(site)) {
                     auto o = _options.variantOverrides.find(primPath);
                     if (o != _options.variantOverrides.end() && o->second.count(set))
-                        warn(specs.front()->location, "variant set \"" + set + "\" of " +
-                                                          primPath + " has no variant \"" +
-                                                          selection + "\"");
+                        warn(specs.front()->location, "variant set \"" + set + "\" of " + primPath +
+                                                          " has no variant \"" + selection + "\"");
                     continue;
                 }
                 if (!reserveNode(*n, specs.front()->location)) return;
@@ -700,15 +703,17 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
 void Composer::composeChildren(Prim& parent, Node* parentIndex,
                                const std::vector<std::string>& names, int depth) {
     if (!names.empty() && depth > kMaxNamespaceDepth) {
-        warn(parent._location, "namespace deeper than " + std::to_string(kMaxNamespaceDepth) +
-                                   " levels below " + parent._path + "; children are ignored",
+        warn(parent._location,
+             "namespace deeper than " + std::to_string(kMaxNamespaceDepth) + " levels below " +
+                 parent._path + "; children are ignored",
              Diagnostic::Severity::Error);
         return;
     }
     for (const std::string& name : names) {
         if (_stage._prims.size() >= kMaxPrims) {
-            warn(parent._location, "too many prims (more than " + std::to_string(kMaxPrims) +
-                                       "); the rest of the stage is not composed",
+            warn(parent._location,
+                 "too many prims (more than " + std::to_string(kMaxPrims) +
+                     "); the rest of the stage is not composed",
                  Diagnostic::Severity::Error);
             return;
         }

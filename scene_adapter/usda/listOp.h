@@ -29,11 +29,21 @@ struct ListOp {
                 isExplicit = true;
                 explicitItems = std::move(items);
                 break;
-            case ListOpKind::Add: added = std::move(items); break;
-            case ListOpKind::Prepend: prepended = std::move(items); break;
-            case ListOpKind::Append: appended = std::move(items); break;
-            case ListOpKind::Delete: deleted = std::move(items); break;
-            case ListOpKind::Reorder: ordered = std::move(items); break;
+            case ListOpKind::Add:
+                added = std::move(items);
+                break;
+            case ListOpKind::Prepend:
+                prepended = std::move(items);
+                break;
+            case ListOpKind::Append:
+                appended = std::move(items);
+                break;
+            case ListOpKind::Delete:
+                deleted = std::move(items);
+                break;
+            case ListOpKind::Reorder:
+                ordered = std::move(items);
+                break;
         }
     }
 

@@ -35,7 +35,7 @@ struct Diagnostic {
 };
 
 class Stage {
-public:
+  public:
     /// Reads and composes `path`. Throws Error (ParseError for syntax) when the root layer cannot
     /// be read or parsed; problems in other layers become diagnostics.
     static std::unique_ptr<Stage> open(const std::string& path, const StageOptions& options = {});
@@ -51,10 +51,10 @@ public:
     std::vector<const Prim*> traverse() const;
 
     std::string defaultPrim() const { return _defaultPrim; }
-    std::string upAxis() const { return _upAxis; }             ///< "Y" fallback
-    double metersPerUnit() const { return _metersPerUnit; }    ///< 0.01 fallback
-    double startTimeCode() const { return _startTimeCode; }    ///< 0 fallback
-    double endTimeCode() const { return _endTimeCode; }        ///< 0 fallback
+    std::string upAxis() const { return _upAxis; }                     ///< "Y" fallback
+    double metersPerUnit() const { return _metersPerUnit; }            ///< 0.01 fallback
+    double startTimeCode() const { return _startTimeCode; }            ///< 0 fallback
+    double endTimeCode() const { return _endTimeCode; }                ///< 0 fallback
     double timeCodesPerSecond() const { return _timeCodesPerSecond; }  ///< 24 fallback
     double framesPerSecond() const { return _framesPerSecond; }        ///< 24 fallback
     /// Both startTimeCode and endTimeCode are authored.
@@ -69,7 +69,7 @@ public:
     /// Every file that contributed, root first.
     std::vector<std::string> layerFiles() const { return _layerFiles; }
 
-private:
+  private:
     friend class Composer;
     Stage() = default;
     std::vector<std::unique_ptr<Prim>> _prims;

@@ -30,7 +30,7 @@ class Value;
 using Dictionary = std::map<std::string, Value, std::less<>>;
 
 class Value {
-public:
+  public:
     enum class Kind : std::uint8_t {
         Empty,        ///< nothing authored
         None,         ///< explicitly blocked with `None`
@@ -69,9 +69,9 @@ public:
     const std::string& typeName() const { return _typeName; }
     bool isArray() const { return _isArray; }
 
-    std::optional<bool> getBool() const;         ///< bool, or an integer 0/1
-    std::optional<std::int64_t> getInt() const;  ///< integer types and exact-integer floats
-    std::optional<double> getDouble() const;     ///< any numeric scalar
+    std::optional<bool> getBool() const;           ///< bool, or an integer 0/1
+    std::optional<std::int64_t> getInt() const;    ///< integer types and exact-integer floats
+    std::optional<double> getDouble() const;       ///< any numeric scalar
     std::optional<std::string> getString() const;  ///< string or token
     std::optional<AssetPath> getAsset() const;
     std::optional<std::string> getPath() const;
@@ -100,7 +100,7 @@ public:
     /// Debug text, e.g. "(1, 2, 3)"; arrays longer than 8 elements are abbreviated.
     std::string toString() const;
 
-private:
+  private:
     struct Storage;
     Kind _kind = Kind::Empty;
     bool _isArray = false;

@@ -11,7 +11,9 @@ namespace principled::usd::detail {
 
 namespace {
 // A value's text for "found Y" in an error, quoted like a token.
-std::string quoted(const std::string& text) { return quoteText(text); }
+std::string quoted(const std::string& text) {
+    return quoteText(text);
+}
 }  // namespace
 
 AssetPath Parser::assetFromToken(const Token& t) const {
@@ -158,9 +160,12 @@ Value Parser::parseGenericValue() {
     SourceLocation where = here();
     const Token& t = peek();
     switch (t.kind) {
-        case TokenKind::String: return Value::string("string", unescapeString(next().text), where);
-        case TokenKind::Asset: return Value::asset(assetFromToken(next()), where);
-        case TokenKind::Path: return Value::path(pathFromToken(next()), where);
+        case TokenKind::String:
+            return Value::string("string", unescapeString(next().text), where);
+        case TokenKind::Asset:
+            return Value::asset(assetFromToken(next()), where);
+        case TokenKind::Path:
+            return Value::path(pathFromToken(next()), where);
         case TokenKind::Number: {
             bool isInt = t.text.find_first_of(".eEin") == std::string_view::npos;
             double v = parseScalarNumber(t, false, false, false);
@@ -176,7 +181,8 @@ Value Parser::parseGenericValue() {
             if (id.text == "nan") return Value::number("double", std::nan(""), where);
             return Value::string("token", std::string(id.text), where);
         }
-        default: break;
+        default:
+            break;
     }
     if (t.is('{')) return Value::dictionary(parseDictionary(), where);
     if (t.is('(')) {
@@ -214,8 +220,10 @@ Value Parser::parseGenericValue() {
             case Value::Kind::Tuple: {
                 std::vector<double> v;
                 for (const Value& e : items) {
-                    if (auto d = e.getDouble()) v.push_back(*d);
-                    else if (auto tup = e.getTuple()) v.insert(v.end(), tup->begin(), tup->end());
+                    if (auto d = e.getDouble())
+                        v.push_back(*d);
+                    else if (auto tup = e.getTuple())
+                        v.insert(v.end(), tup->begin(), tup->end());
                 }
                 return Value::numberArray(first.typeName(), first.components(), std::move(v),
                                           where);
@@ -223,7 +231,8 @@ Value Parser::parseGenericValue() {
             case Value::Kind::String:
             case Value::Kind::Path: {
                 std::vector<std::string> v;
-                for (const Value& e : items) v.push_back(e.getString() ? *e.getString() : *e.getPath());
+                for (const Value& e : items)
+                    v.push_back(e.getString() ? *e.getString() : *e.getPath());
                 return Value::stringArray(first.typeName(), std::move(v), where);
             }
             case Value::Kind::Asset: {

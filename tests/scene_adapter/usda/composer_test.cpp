@@ -126,9 +126,13 @@ over "P" { double b = 3 }
 
 TEST(Composer, ReferenceOffsetsComposeWithTheAuthoringSublayer) {
     test::TempDir dir("refoffset");
-    dir.write("anim.usda", "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" { double x.timeSamples = { 0: 0, 1: 1 } }\n");
-    dir.write("sub.usda", "#usda 1.0\ndef \"P\" ( references = @anim.usda@ (offset = 5; scale = 2) ) {}\n");
-    std::string root = dir.write("root.usda", "#usda 1.0\n( subLayers = [@sub.usda@ (offset = 100)] )\n");
+    dir.write("anim.usda",
+              "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" { double x.timeSamples = { 0: 0, 1: 1 "
+              "} }\n");
+    dir.write("sub.usda",
+              "#usda 1.0\ndef \"P\" ( references = @anim.usda@ (offset = 5; scale = 2) ) {}\n");
+    std::string root =
+        dir.write("root.usda", "#usda 1.0\n( subLayers = [@sub.usda@ (offset = 100)] )\n");
     auto stage = Stage::open(root);
     const auto& samples = stage->prim("/P")->attribute("x")->timeSamples();
     ASSERT_EQ(samples.size(), 2u);
@@ -139,7 +143,8 @@ TEST(Composer, ReferenceOffsetsComposeWithTheAuthoringSublayer) {
 TEST(Composer, SubLayerCycleIsAnErrorAndTheRestLoads) {
     test::TempDir dir("subcycle");
     dir.write("b.usda", "#usda 1.0\n( subLayers = [@root.usda@] )\ndef \"B\" {}\n");
-    std::string root = dir.write("root.usda", "#usda 1.0\n( subLayers = [@b.usda@] )\ndef \"R\" {}\n");
+    std::string root =
+        dir.write("root.usda", "#usda 1.0\n( subLayers = [@b.usda@] )\ndef \"R\" {}\n");
     auto stage = Stage::open(root);
     EXPECT_NE(stage->prim("/R"), nullptr);
     EXPECT_NE(stage->prim("/B"), nullptr);
@@ -176,19 +181,30 @@ TEST(Composer, StrengthOrderLIVRPS) {
             return skip.find(who) == std::string::npos ? "string who = \"" + who + "\"" : "";
         };
         return "#usda 1.0\n"
-               "class \"Inh\" { " + opinion("inherits") + " }\n"
-               "def \"Ref\" { " + opinion("references") + " }\n"
-               "def \"Pay\" { " + opinion("payloads") + " }\n"
-               "def \"Spec\" { " + opinion("specializes") + " }\n"
+               "class \"Inh\" { " +
+               opinion("inherits") +
+               " }\n"
+               "def \"Ref\" { " +
+               opinion("references") +
+               " }\n"
+               "def \"Pay\" { " +
+               opinion("payloads") +
+               " }\n"
+               "def \"Spec\" { " +
+               opinion("specializes") +
+               " }\n"
                "def \"P\" (\n"
                "  inherits = </Inh>\n  references = </Ref>\n  payload = </Pay>\n"
                "  specializes = </Spec>\n  variants = { string v = \"x\" }\n"
                "  variantSets = \"v\"\n) {\n"
-               "  " + opinion("local") + "\n"
-               "  variantSet \"v\" = { \"x\" { " + opinion("variants") + " } }\n}\n";
+               "  " +
+               opinion("local") +
+               "\n"
+               "  variantSet \"v\" = { \"x\" { " +
+               opinion("variants") + " } }\n}\n";
     };
-    const char* order[] = {"local", "inherits", "variants", "references", "payloads",
-                           "specializes"};
+    const char* order[] = {"local",      "inherits", "variants",
+                           "references", "payloads", "specializes"};
     std::string skip;
     for (const char* expected : order) {
         auto stage = Stage::openString(build(skip), "livrps.usda");
@@ -305,25 +321,30 @@ over "World" {
 
 TEST(Composer, ReferenceCycleIsReportedWithItsChain) {
     test::TempDir dir("cycle");
-    dir.write("a.usda", "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" ( references = @b.usda@ ) {}\n");
-    dir.write("b.usda", "#usda 1.0\n( defaultPrim = \"B\" )\ndef \"B\" ( references = @a.usda@ ) {}\n");
-    std::string root = dir.write("root.usda", "#usda 1.0\ndef \"R\" ( references = @a.usda@ ) {}\n");
+    dir.write("a.usda",
+              "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" ( references = @b.usda@ ) {}\n");
+    dir.write("b.usda",
+              "#usda 1.0\n( defaultPrim = \"B\" )\ndef \"B\" ( references = @a.usda@ ) {}\n");
+    std::string root =
+        dir.write("root.usda", "#usda 1.0\ndef \"R\" ( references = @a.usda@ ) {}\n");
     auto stage = Stage::open(root);
     ASSERT_NE(stage->prim("/R"), nullptr);
     ASSERT_FALSE(stage->warnings().empty());
     const Diagnostic& d = stage->warnings().front();
     EXPECT_EQ(d.severity, Diagnostic::Severity::Error);
     std::string a = dir.path("a.usda"), b = dir.path("b.usda");
-    EXPECT_EQ(d.str(), b + ":3:24: error: reference cycle: " + a + "</A> -> " + b + "</B> -> " +
-                           a + "</A>");
+    EXPECT_EQ(d.str(),
+              b + ":3:24: error: reference cycle: " + a + "</A> -> " + b + "</B> -> " + a + "</A>");
     // Internal self-reference and inherits of an ancestor.
     stage = Stage::openString(
         "#usda 1.0\ndef \"X\" { def \"Y\" ( references = </X> ) {} }\n"
         "def \"Z\" ( inherits = </Z> ) {}\n",
         "self.usda");
-    EXPECT_TRUE(hasWarning(*stage, "self.usda:2:34: error: reference cycle: self.usda</X/Y> -> "
-                                   "self.usda</X>"));
-    EXPECT_TRUE(hasWarning(*stage, "self.usda:3:22: error: inherits cycle: self.usda</Z> -> self.usda</Z>"));
+    EXPECT_TRUE(hasWarning(*stage,
+                           "self.usda:2:34: error: reference cycle: self.usda</X/Y> -> "
+                           "self.usda</X>"));
+    EXPECT_TRUE(hasWarning(
+        *stage, "self.usda:3:22: error: inherits cycle: self.usda</Z> -> self.usda</Z>"));
 }
 
 TEST(Composer, MissingFilesAreWarningsAndTheRestLoads) {
@@ -366,7 +387,9 @@ def "Looks" {
     def "Deep" ( references = @../other/deep.usda@ ) {}
 }
 )");
-    dir.write("other/deep.usda", "#usda 1.0\n( defaultPrim = \"D\" )\ndef \"D\" { asset f = @../lib/textures/wood.png@ }\n");
+    dir.write(
+        "other/deep.usda",
+        "#usda 1.0\n( defaultPrim = \"D\" )\ndef \"D\" { asset f = @../lib/textures/wood.png@ }\n");
     std::string root = dir.write("scene/root.usda", R"(#usda 1.0
 ( subLayers = [@../lib/looks.usda@] )
 )");
@@ -479,7 +502,7 @@ TEST(Composer, CorpusStageComposition) {
             return (*s->prim(p)->attribute("primvars:displayColor")->get().numbers())[1];
         };
         EXPECT_EQ(color("/World/cubeWithoutSetColor"), 0.8);  // green from the class
-        EXPECT_EQ(color("/World/cubeWithSetColor"), 0.0);    // local red
+        EXPECT_EQ(color("/World/cubeWithSetColor"), 0.0);     // local red
         EXPECT_TRUE(s->prim("/_myClass")->isAbstract());
     }
     {
@@ -505,7 +528,8 @@ TEST(Composer, CorpusStageComposition) {
 }
 
 TEST(Composer, PyramidAssetWithPayloadsReferencesAndNestedVariants) {
-    const std::string file = test::corpusDir() + "/full_assets/SubdivisionSurfaces/Pyramid/Pyramid.usd";
+    const std::string file =
+        test::corpusDir() + "/full_assets/SubdivisionSurfaces/Pyramid/Pyramid.usd";
     auto stage = Stage::open(file);
     EXPECT_TRUE(stage->warnings().empty()) << allWarnings(*stage);
     const Prim* shape = stage->prim("/Pyramid/geo/shape");
@@ -515,9 +539,10 @@ TEST(Composer, PyramidAssetWithPayloadsReferencesAndNestedVariants) {
     EXPECT_EQ(shape->relationship("material:binding")->targets(),
               (std::vector<std::string>{"/Pyramid/mtl/PyramidMaterial"}));
     EXPECT_EQ(shape->appliedSchemas(), (std::vector<std::string>{"MaterialBindingAPI"}));
-    EXPECT_EQ(stage->prim("/Pyramid/mtl/PyramidMaterial")->attribute("outputs:surface")->connections(),
-              (std::vector<std::string>{
-                  "/Pyramid/mtl/PyramidMaterial/usdpreviewsurface1.outputs:surface"}));
+    EXPECT_EQ(
+        stage->prim("/Pyramid/mtl/PyramidMaterial")->attribute("outputs:surface")->connections(),
+        (std::vector<std::string>{
+            "/Pyramid/mtl/PyramidMaterial/usdpreviewsurface1.outputs:surface"}));
     EXPECT_EQ(*stage->prim("/Pyramid")->metadata("kind")->getString(), "component");
     EXPECT_TRUE(stage->prim("/__class__")->isAbstract());
     EXPECT_EQ(stage->layerFiles().size(), 4u);
@@ -584,9 +609,9 @@ class "_class_Asset" { double color = 2  double extra = 7 }
     EXPECT_TRUE(stage->warnings().empty()) << allWarnings(*stage);
     EXPECT_EQ(number(*stage, "/A", "color"), 2.0);  // root class beats the asset's class
     EXPECT_EQ(number(*stage, "/A", "extra"), 7.0);
-    EXPECT_EQ(number(*stage, "/A", "size"), 1.0);   // the asset's own opinion beats both classes
-    EXPECT_EQ(number(*stage, "/B", "color"), 3.0);  // local beats every class
-    EXPECT_EQ(number(*stage, "/A/Part", "q"), 4.0); // a local class mapped to /A/_local
+    EXPECT_EQ(number(*stage, "/A", "size"), 1.0);    // the asset's own opinion beats both classes
+    EXPECT_EQ(number(*stage, "/B", "color"), 3.0);   // local beats every class
+    EXPECT_EQ(number(*stage, "/A/Part", "q"), 4.0);  // a local class mapped to /A/_local
     EXPECT_EQ(number(*stage, "/B/Part", "q"), 1.0);
 }
 
@@ -652,7 +677,8 @@ TEST(Composer, LongReferenceChainsAreBounded) {
                   "#usda 1.0\n( defaultPrim = \"P\" )\ndef \"P\" ( references = @f" +
                       std::to_string(i + 1) + ".usda@ ) { double d" + std::to_string(i) +
                       " = 1 }\n");
-    dir.write("f" + std::to_string(files) + ".usda", "#usda 1.0\n( defaultPrim = \"P\" )\ndef \"P\" {}\n");
+    dir.write("f" + std::to_string(files) + ".usda",
+              "#usda 1.0\n( defaultPrim = \"P\" )\ndef \"P\" {}\n");
     auto stage = Stage::open(dir.path("f0.usda"));
     EXPECT_NE(stage->prim("/P")->attribute("d200"), nullptr);
     EXPECT_TRUE(hasWarning(*stage, "composition arcs nested more than 256 deep"));
@@ -680,9 +706,23 @@ def "W2" ( inherits = </W> ) { over "x" ( active = false ) {} }
         state = state * 6364136223846793005ULL + 1442695040888963407ULL;
         return static_cast<std::uint32_t>(state >> 33);
     };
-    const std::string pieces[] = {"</W>", "</Base>", "</C>", "</W/child>", "{", "}", "(", ")",
-                                  "\"", "=", "def \"Z\" ", "over ", "class ", "inherits = ",
-                                  "references = ", "variants = ", "active = false "};
+    const std::string pieces[] = {"</W>",
+                                  "</Base>",
+                                  "</C>",
+                                  "</W/child>",
+                                  "{",
+                                  "}",
+                                  "(",
+                                  ")",
+                                  "\"",
+                                  "=",
+                                  "def \"Z\" ",
+                                  "over ",
+                                  "class ",
+                                  "inherits = ",
+                                  "references = ",
+                                  "variants = ",
+                                  "active = false "};
     int composed = 0;
     for (int iter = 0; iter < 1500; ++iter) {
         std::string text = base;

@@ -2,12 +2,12 @@
 // Helpers shared by the usda tests: temporary directories with layer files, error capture.
 #pragma once
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
-
-#include <unistd.h>
 
 #include "scene_adapter/usda/error.h"
 
@@ -15,7 +15,7 @@ namespace principled::usd::test {
 
 /// A fresh directory under the build tree (or /tmp), removed on destruction.
 class TempDir {
-public:
+  public:
     explicit TempDir(std::string_view name) {
         _path = std::filesystem::temp_directory_path() /
                 ("principled_usda_" + std::string(name) + "_" + std::to_string(::getpid()));
@@ -37,7 +37,7 @@ public:
         return relative.empty() ? _path.string() : (_path / relative).string();
     }
 
-private:
+  private:
     std::filesystem::path _path;
 };
 
@@ -52,6 +52,8 @@ std::string parseErrorOf(F&& f) {
     return {};
 }
 
-inline std::string corpusDir() { return PRINCIPLED_SOURCE_DIR "/../shared/usd-wg"; }
+inline std::string corpusDir() {
+    return PRINCIPLED_SOURCE_DIR "/../shared/usd-wg";
+}
 
 }  // namespace principled::usd::test

@@ -49,14 +49,14 @@ struct PrimIndexNode {
 };
 
 class Composer {
-  public:
+public:
     Composer(Stage& stage, const StageOptions& options);
     ~Composer();
     /// Throws Error when the root layer cannot be read or parsed.
     void composeFile(const std::string& path);
     void composeText(std::string_view text, const std::string& displayName);
 
-  private:
+private:
     using Node = PrimIndexNode;
     struct SpecRef {
         const PrimSpec* spec;

@@ -11,7 +11,7 @@ namespace principled::usd {
 
 /// Every usd error. what() is "file:line:col: message" (or "file: message" without a line).
 class Error : public std::runtime_error {
-  public:
+public:
     Error(SourceLocation where, const std::string& message)
         : std::runtime_error(where.file.empty() ? message : where.str() + ": " + message),
           _where(std::move(where)),
@@ -21,14 +21,14 @@ class Error : public std::runtime_error {
     /// The message without the location prefix.
     const std::string& message() const { return _message; }
 
-  private:
+private:
     SourceLocation _where;
     std::string _message;
 };
 
 /// A syntax error: what() is exactly "FILE:LINE:COL: expected X, found Y".
 class ParseError : public Error {
-  public:
+public:
     using Error::Error;
 };
 

@@ -28,7 +28,7 @@ struct Token {
 };
 
 class Lexer {
-  public:
+public:
     Lexer(std::string_view text, std::string file);
 
     const Token& peek() const { return _next; }
@@ -46,7 +46,7 @@ class Lexer {
     /// "end of file" or the token text in single quotes (abbreviated when long).
     static std::string describe(const Token& t);
 
-  private:
+private:
     Token scan();
     void skipSpaceAndComments();
     [[noreturn]] void failHere(std::string_view expected, std::string_view found) const;

@@ -17,13 +17,13 @@
 namespace principled::usd::detail {
 
 class Parser {
-  public:
+public:
     Parser(std::string_view text, const std::string& file, const std::string& anchorDir)
         : _text(text), _lex(checkHeader(text, file), file), _anchor(anchorDir) {}
 
     std::unique_ptr<Layer> parse();
 
-  private:
+private:
     // The `#usda 1.0` header line; the lexer then skips it as a comment.
     static std::string_view checkHeader(std::string_view text, const std::string& file);
 

@@ -22,7 +22,7 @@ class Composer;
 inline constexpr double kDefaultTime = std::numeric_limits<double>::quiet_NaN();
 
 class Attribute {
-  public:
+public:
     const std::string& name() const { return _name; }
     /// As authored without [] ("point3f", "token", "matrix4d").
     const std::string& typeName() const { return _typeName; }
@@ -48,7 +48,7 @@ class Attribute {
     /// The strongest opinion's location.
     const SourceLocation& location() const { return _location; }
 
-  private:
+private:
     friend class Composer;
     std::string _name, _typeName;
     bool _isArray = false, _uniform = false, _custom = false;
@@ -60,14 +60,14 @@ class Attribute {
 };
 
 class Relationship {
-  public:
+public:
     const std::string& name() const { return _name; }
     /// Absolute target paths in stage namespace (composed list ops, remapped through arcs).
     const std::vector<std::string>& targets() const { return _targets; }
     const Value* metadata(std::string_view key) const;
     const SourceLocation& location() const { return _location; }
 
-  private:
+private:
     friend class Composer;
     std::string _name;
     std::vector<std::string> _targets;
@@ -76,7 +76,7 @@ class Relationship {
 };
 
 class Prim {
-  public:
+public:
     const std::string& path() const { return _path; }
     const std::string& name() const { return _name; }
     const std::string& typeName() const { return _typeName; }
@@ -108,7 +108,7 @@ class Prim {
     /// The strongest defining spec (or the strongest spec when none defines it).
     const SourceLocation& location() const { return _location; }
 
-  private:
+private:
     friend class Composer;
     std::string _path, _name, _typeName;
     bool _active = true, _abstract = false, _defined = false;

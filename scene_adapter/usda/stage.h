@@ -35,7 +35,7 @@ struct Diagnostic {
 };
 
 class Stage {
-  public:
+public:
     /// Reads and composes `path`. Throws Error (ParseError for syntax) when the root layer cannot
     /// be read or parsed; problems in other layers become diagnostics.
     static std::unique_ptr<Stage> open(const std::string& path, const StageOptions& options = {});
@@ -69,7 +69,7 @@ class Stage {
     /// Every file that contributed, root first.
     std::vector<std::string> layerFiles() const { return _layerFiles; }
 
-  private:
+private:
     friend class Composer;
     Stage() = default;
     std::vector<std::unique_ptr<Prim>> _prims;

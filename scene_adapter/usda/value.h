@@ -30,7 +30,7 @@ class Value;
 using Dictionary = std::map<std::string, Value, std::less<>>;
 
 class Value {
-  public:
+public:
     enum class Kind : std::uint8_t {
         Empty,        ///< nothing authored
         None,         ///< explicitly blocked with `None`
@@ -100,7 +100,7 @@ class Value {
     /// Debug text, e.g. "(1, 2, 3)"; arrays longer than 8 elements are abbreviated.
     std::string toString() const;
 
-  private:
+private:
     struct Storage;
     Kind _kind = Kind::Empty;
     bool _isArray = false;

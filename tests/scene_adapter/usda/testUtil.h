@@ -15,7 +15,7 @@ namespace principled::usd::test {
 
 /// A fresh directory under the build tree (or /tmp), removed on destruction.
 class TempDir {
-  public:
+public:
     explicit TempDir(std::string_view name) {
         _path = std::filesystem::temp_directory_path() /
                 ("principled_usda_" + std::string(name) + "_" + std::to_string(::getpid()));
@@ -37,7 +37,7 @@ class TempDir {
         return relative.empty() ? _path.string() : (_path / relative).string();
     }
 
-  private:
+private:
     std::filesystem::path _path;
 };
 

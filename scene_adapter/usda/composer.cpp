@@ -17,7 +17,7 @@ namespace principled::usd {
 namespace {
 // Nodes one prim index may hold: far above real assets (tens), low enough that an adversarial
 // diamond of references cannot exhaust memory.
-constexpr std::size_t kMaxNodesPerPrim = 4096;
+constexpr std::size_t kMaxNodesPerPrim = 1024;
 // Composed prims one stage may hold (16M).
 constexpr std::size_t kMaxPrims = std::size_t(1) << 24;
 // Arcs nested inside arcs (a reference of a reference of ...), and composed namespace depth:
@@ -484,15 +484,13 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
     for (std::size_t pass = 0; pass < kMaxNodesPerPrim; ++pass) {
         bool added = false;
         for (Node* n : strengthOrder(root)) {
+            if (n->variantsDone) continue;
             std::vector<const PrimSpec*> specs = specsAt(*n);
-            if (specs.empty()) continue;
-            auto sets = composeListOp<std::string>(
-                specs, [](const PrimSpec& s) -> auto& { return s.variantSetNames; });
-            for (const std::string& set : sets) {
-                if (std::find(n->expandedVariantSets.begin(), n->expandedVariantSets.end(), set) !=
-                    n->expandedVariantSets.end())
-                    continue;
-                n->expandedVariantSets.push_back(set);
+            if (!n->variantSetNames)
+                n->variantSetNames = composeListOp<std::string>(
+                    specs, [](const PrimSpec& s) -> auto& { return s.variantSetNames; });
+            while (n->nextVariantSet < n->variantSetNames->size()) {
+                const std::string set = (*n->variantSetNames)[n->nextVariantSet++];
                 std::string selection = selectVariant(root, primPath, set);
                 if (selection.empty()) continue;
                 used.emplace(set, selection);
@@ -519,6 +517,7 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
                 break;
             }
             if (added) break;
+            n->variantsDone = true;  // every set of this node is expanded
         }
         if (!added) return;
     }

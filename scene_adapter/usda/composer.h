@@ -7,6 +7,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -43,7 +44,10 @@ struct PrimIndexNode {
     SourceLocation arcLocation;
     PrimIndexNode* parent = nullptr;
     std::vector<std::unique_ptr<PrimIndexNode>> children;  ///< sorted by arc (LIVRPS)
-    std::vector<std::string> expandedVariantSets;
+    /// Variant sets listed at this site (composed once), and how many are expanded so far.
+    std::optional<std::vector<std::string>> variantSetNames;
+    std::size_t nextVariantSet = 0;
+    bool variantsDone = false;  ///< all variant sets at this site are expanded
 
     void addChild(std::unique_ptr<PrimIndexNode> child);
 };

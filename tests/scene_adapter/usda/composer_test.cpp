@@ -669,6 +669,30 @@ def "Cycle" { def "B" ( references = </Loop/A> ) {} }
     EXPECT_NE(stage->prim("/Loop/A"), nullptr);
 }
 
+TEST(Composer, ManyVariantSetsAndDiamondsStayBounded) {
+    // 2000 variant sets on one prim, and a diamond of internal references 12 levels deep
+    // (4096 paths): both hit the per-prim node budget instead of running away.
+    std::string text = "#usda 1.0\ndef \"V\" ( variantSets = [";
+    for (int i = 0; i < 2000; ++i) text += (i ? ", \"s" : "\"s") + std::to_string(i) + "\"";
+    text += "] variants = {";
+    for (int i = 0; i < 2000; ++i) text += " string s" + std::to_string(i) + " = \"x\"";
+    text += " } ) {\n";
+    for (int i = 0; i < 2000; ++i)
+        text += "variantSet \"s" + std::to_string(i) + "\" = { \"x\" { double a" +
+                std::to_string(i) + " = 1 } }\n";
+    text += "}\n";
+    for (int i = 0; i < 12; ++i)
+        text += "def \"D" + std::to_string(i) + "\" ( references = [</D" + std::to_string(i + 1) +
+                ">, </E" + std::to_string(i + 1) + ">] ) {}\ndef \"E" + std::to_string(i) +
+                "\" ( references = [</D" + std::to_string(i + 1) + ">, </E" +
+                std::to_string(i + 1) + ">] ) {}\n";
+    text += "def \"D12\" { double leaf = 1 }\ndef \"E12\" { double leaf = 2 }\n";
+    auto stage = Stage::openString(text, "big.usda");
+    EXPECT_NE(stage->prim("/V")->attribute("a0"), nullptr);
+    EXPECT_TRUE(hasWarning(*stage, "composition too complex"));
+    EXPECT_EQ(number(*stage, "/D0", "leaf"), 1.0);
+}
+
 TEST(Composer, LongReferenceChainsAreBounded) {
     test::TempDir dir("chain");
     const int files = 300;

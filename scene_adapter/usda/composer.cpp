@@ -156,6 +156,8 @@ void Composer::compose(const Layer* rootLayer) {
             }
     };
     number("metersPerUnit", s._metersPerUnit, nullptr);
+    number("startFrame", s._startTimeCode, &s._hasStart);  // legacy names (SdfLayer fallbacks)
+    number("endFrame", s._endTimeCode, &s._hasEnd);
     number("startTimeCode", s._startTimeCode, &s._hasStart);
     number("endTimeCode", s._endTimeCode, &s._hasEnd);
     number("framesPerSecond", s._framesPerSecond, nullptr);

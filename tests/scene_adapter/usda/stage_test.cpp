@@ -140,6 +140,11 @@ TEST(Stage, TimeRule) {
     EXPECT_EQ(noTime->metersPerUnit(), 0.01);
     EXPECT_EQ(noTime->timeCodesPerSecond(), 24.0);
     EXPECT_TRUE(noTime->pseudoRoot()->children().empty());
+    auto legacy = Stage::openString("#usda 1.0\n( startFrame = 3 endFrame = 9 framesPerSecond = 30 )\n",
+                                    "legacy.usda");
+    EXPECT_EQ(legacy->defaultTime(), 3.0);
+    EXPECT_EQ(legacy->endTimeCode(), 9.0);
+    EXPECT_EQ(legacy->timeCodesPerSecond(), 30.0);  // falls back to framesPerSecond
 }
 
 TEST(Stage, OpenErrors) {

@@ -519,11 +519,45 @@ TEST(Composer, CorpusStageComposition) {
         EXPECT_TRUE(hasWarning(*s, "reference target </World/Cube_does_not_exist> not found"));
         EXPECT_TRUE(hasWarning(*s, "reference @file_does_not_exist.usda@ not found"));
     }
+    for (const char* dir : {"subLayer/sublayer", "references/reference", "payload/payload"}) {
+        for (const char* where : {"_same_folder", "_child_folder", "_parent_folder"}) {
+            std::string file = base + dir + where + ".usda";
+            SCOPED_TRACE(file);
+            auto s = Stage::open(file);
+            EXPECT_TRUE(s->warnings().empty()) << allWarnings(*s);
+            ASSERT_NE(s->prim("/World/Cube"), nullptr);
+            EXPECT_EQ(s->prim("/World/Cube")->typeName(), "Cube");
+            EXPECT_EQ(s->layerFiles().size(), 2u);
+        }
+        std::string invalid = base + dir + "_invalid.usda";
+        auto s = Stage::open(invalid);
+        ASSERT_EQ(s->warnings().size(), 1u) << allWarnings(*s);
+        EXPECT_EQ(s->warnings()[0].where.file, invalid);
+        EXPECT_NE(s->warnings()[0].message.find("@file_does_not_exist.usda@ not found"),
+                  std::string::npos);
+        EXPECT_EQ(s->prim("/World/cube")->typeName(), "Cube");  // the rest still loads
+    }
     {
-        auto s = Stage::open(base + "subLayer/sublayer_child_folder.usda");
-        EXPECT_EQ(s->prim("/World/Cube")->typeName(), "Cube");
-        s = Stage::open(base + "payload/payload_parent_folder.usda");
-        EXPECT_EQ(s->prim("/World/Cube")->typeName(), "Cube");
+        auto s = Stage::open(base + "active.usda");
+        EXPECT_FALSE(s->prim("/World/CubeInactive")->isActive());
+        EXPECT_TRUE(s->prim("/World/CubeActive")->isActive());
+        std::vector<std::string> paths;
+        for (const Prim* p : s->traverse()) paths.push_back(p->path());
+        EXPECT_EQ(paths, (std::vector<std::string>{"/World", "/World/CubeActive"}));
+    }
+    {
+        auto s = Stage::open(base + "over.usda");
+        EXPECT_TRUE(s->prim("/World")->isDefined());
+        EXPECT_EQ(s->prim("/World")->typeName(), "Scope");
+        EXPECT_EQ((*s->prim("/World/Cube")->attribute("primvars:displayColor")->get().numbers())[2],
+                  0.8);  // blue from the over
+        EXPECT_TRUE(s->prim("/World/definedCube")->isDefined());
+        EXPECT_FALSE(s->prim("/World/undefinedCube")->isDefined());
+        EXPECT_EQ(s->prim("/World/undefinedCube")->typeName(), "Cube");
+    }
+    {
+        auto s = Stage::open(base + "purpose.usda");
+        EXPECT_EQ(s->prim("/World/CubeIsGuide")->attribute("purpose")->get().getString(), "guide");
     }
 }
 

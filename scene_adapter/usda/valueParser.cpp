@@ -257,6 +257,16 @@ Dictionary Parser::parseDictionary() {
         if (accept('}')) return d;
         if (accept(';')) continue;
         if (peek().kind == TokenKind::End) fail("'}'");
+        // Untyped map entries: prefixSubstitutions { "a": "b", ... }, relocates { </a>: </b> }.
+        if (peek().kind == TokenKind::String || peek().kind == TokenKind::Path) {
+            Token keyTok = next();
+            std::string key = keyTok.kind == TokenKind::String ? unescapeString(keyTok.text)
+                                                               : pathFromToken(keyTok);
+            expect(':');
+            d[key] = parseGenericValue();
+            if (!accept(',') && !peek().is('}') && !peek().is(';')) fail("',' or '}'");
+            continue;
+        }
         Token typeTok = expectIdent("a value type name or '}'");
         bool isArray = false;
         if (accept('[')) {

@@ -398,6 +398,18 @@ def "P" (  # trailing comment
     EXPECT_EQ(*defaultOf(*layer, "/P", "s4").getString(), "");
 }
 
+TEST(Parser, UntypedMapMetadata) {
+    auto layer = parse(R"(#usda 1.0
+(
+    relocates = { </A/b>: </A/c>, </X>: </Y> }
+)
+def "P" ( prefixSubstitutions = { "$ROOT": "/assets", "$V": "2" } ) {}
+)");
+    EXPECT_EQ(*layer->field("relocates")->find("/A/b")->getPath(), "/A/c");
+    EXPECT_EQ(*layer->prim("/P")->metadata.at("prefixSubstitutions").find("$ROOT")->getString(),
+              "/assets");
+}
+
 TEST(Parser, HeaderAndBinaryRefusal) {
     EXPECT_NO_THROW(parse("#usda 1.0"));
     EXPECT_NO_THROW(parse("\xEF\xBB\xBF#usda 1.0\r\ndef \"A\" {}\r\n"));

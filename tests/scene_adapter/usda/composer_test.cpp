@@ -471,7 +471,7 @@ reorder rootPrims = ["Q", "P"]
     EXPECT_EQ(names, (std::vector<std::string>{"z", "x", "y"}));
     names.clear();
     for (const Prim* c : stage->pseudoRoot()->children()) names.push_back(c->name());
-    EXPECT_EQ(names, (std::vector<std::string>{"Q", "P", "Ref"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"Ref", "Q", "P"}));
 }
 
 TEST(Composer, AncestralReferenceAndArcsInsideReferencedPrims) {

@@ -18,8 +18,6 @@ namespace {
 // Nodes one prim index may hold: far above real assets (tens), low enough that an adversarial
 // diamond of references cannot exhaust memory.
 constexpr std::size_t kMaxNodesPerPrim = 1024;
-// Composed prims one stage may hold (16M).
-constexpr std::size_t kMaxPrims = std::size_t(1) << 24;
 // Arcs nested inside arcs (a reference of a reference of ...), and composed namespace depth:
 // both bound the composer's recursion so that chained layers cannot overflow the stack.
 constexpr int kMaxArcDepth = 256;
@@ -40,6 +38,13 @@ void composeField(Dictionary& out, const std::string& key, const Value& weaker) 
     Dictionary merged = *strong;
     for (const auto& [k, v] : *weak) composeField(merged, k, v);
     it->second = Value::dictionary(std::move(merged), it->second.location());
+}
+
+// [inner..., outer...]: a mapping through `inner`, then through `outer`.
+std::shared_ptr<const std::vector<MapStep>> chain(std::vector<MapStep> inner,
+                                                  const std::vector<MapStep>& outer) {
+    inner.insert(inner.end(), outer.begin(), outer.end());
+    return std::make_shared<const std::vector<MapStep>>(std::move(inner));
 }
 
 template <class T, class Get>
@@ -327,7 +332,7 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
     // Maps and time offsets of the whole subtree continue through this arc: first the
     // reference (target -> the referencing prim), then the referencing node's own mapping.
     std::vector<MapStep> outer{{target, path::stripVariants(node.site), false}};
-    outer.insert(outer.end(), node.map.begin(), node.map.end());
+    outer.insert(outer.end(), node.map->begin(), node.map->end());
     // Time mapping: the node's, then the offset of the sublayer that authored the arc, then
     // the arc's own (offset; scale).
     LayerOffset authoring;
@@ -338,7 +343,7 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
     while (!todo.empty()) {
         Node* n = todo.back();
         todo.pop_back();
-        n->map.insert(n->map.end(), outer.begin(), outer.end());
+        n->map = chain(*n->map, outer);
         n->offset = offset.compose(n->offset);
         for (const auto& c : n->children) todo.push_back(c.get());
     }
@@ -401,7 +406,7 @@ void Composer::addImpliedClassArc(const Node& node, const std::string& target, A
     // Map the class into stage namespace; paths outside the referenced prim are global classes
     // and keep their path (Pcp adds the root identity to reference map functions).
     std::string mapped = target;
-    for (const MapStep& step : node.map)
+    for (const MapStep& step : *node.map)
         if (path::hasPrefix(mapped, step.source))
             mapped = path::replacePrefix(mapped, step.source, step.target);
     if (!_rootStack->hasPrim(mapped)) return;
@@ -415,7 +420,7 @@ void Composer::addImpliedClassArc(const Node& node, const std::string& target, A
     child->stack = _rootStack;
     child->site = mapped;
     child->arc = arc;
-    child->map.push_back({mapped, _indexRoot->site, true});
+    child->map = chain({{mapped, _indexRoot->site, true}}, {});
     child->arcLocation = where;
     Node* raw = child.get();
     _indexRoot->addChild(std::move(child));
@@ -435,8 +440,7 @@ void Composer::addClassArc(Node& node, const PathItem& item, Arc arc) {
     child->stack = node.stack;
     child->site = target;
     child->arc = arc;
-    child->map.push_back({target, site, true});
-    child->map.insert(child->map.end(), node.map.begin(), node.map.end());
+    child->map = chain({{target, site, true}}, *node.map);
     child->offset = node.offset;
     child->arcLocation = item.location;
     Node* raw = child.get();
@@ -552,7 +556,7 @@ std::vector<Composer::SpecRef> Composer::gatherSpecs(const std::vector<Node*>& o
 
 std::optional<std::string> Composer::mapToStage(const Node& node, const std::string& p) const {
     std::string out = p;
-    for (const MapStep& step : node.map) {
+    for (const MapStep& step : *node.map) {
         if (path::hasPrefix(out, step.source)) {
             out = path::replacePrefix(out, step.source, step.target);
         } else if (!step.identityFallback) {
@@ -711,11 +715,13 @@ void Composer::composeChildren(Prim& parent, Node* parentIndex,
         return;
     }
     for (const std::string& name : names) {
-        if (_stage._prims.size() >= kMaxPrims) {
-            warn(parent._location,
-                 "too many prims (more than " + std::to_string(kMaxPrims) +
-                     "); the rest of the stage is not composed",
-                 Diagnostic::Severity::Error);
+        if (_stage._prims.size() >= _options.maxPrims) {
+            if (!_primLimitHit)
+                warn(parent._location, "too many prims (StageOptions::maxPrims = " +
+                                           std::to_string(_options.maxPrims) +
+                                           "); the rest of the stage is not composed",
+                     Diagnostic::Severity::Error);
+            _primLimitHit = true;
             return;
         }
         std::string primPath = path::child(parent._path, name);

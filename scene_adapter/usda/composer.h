@@ -39,7 +39,9 @@ struct PrimIndexNode {
     const LayerStack* stack = nullptr;
     std::string site;  ///< prim path in the stack, with variant selections: "/A{v=x}/B"
     Arc arc = Arc::Root;
-    std::vector<MapStep> map;  ///< node namespace -> stage namespace, innermost step first
+    /// Node namespace -> stage namespace, innermost step first. Shared between a node and the
+    /// nodes derived from it for descendant prims (the mapping is prefix-based).
+    std::shared_ptr<const std::vector<MapStep>> map = std::make_shared<std::vector<MapStep>>();
     LayerOffset offset;        ///< node time -> stage time
     SourceLocation arcLocation;
     PrimIndexNode* parent = nullptr;
@@ -115,6 +117,7 @@ private:
     const LayerStack* _rootStack = nullptr;
     Node* _indexRoot = nullptr;
     std::size_t _nodeCount = 0;
+    bool _primLimitHit = false;
     std::set<std::string> _reported;
     /// Sub-root reference targets whose index is being built (cycle detection across them).
     std::vector<std::pair<const LayerStack*, std::string>> _building;

@@ -21,6 +21,9 @@ struct StageOptions {
     std::map<std::string, std::map<std::string, std::string>> variantOverrides;
     /// Most distinct layer files one stage may load.
     std::size_t maxLayers = 4096;
+    /// Most composed prims (about 1-2 KB each): references can multiply a small file into an
+    /// exponential namespace, so composition stops here with an error diagnostic.
+    std::size_t maxPrims = 2'000'000;
     /// Compose payload arcs (false: prims with payloads are composed without them).
     bool loadPayloads = true;
 };

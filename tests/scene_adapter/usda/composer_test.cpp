@@ -727,6 +727,25 @@ TEST(Composer, ManyVariantSetsAndDiamondsStayBounded) {
     EXPECT_EQ(number(*stage, "/D0", "leaf"), 1.0);
 }
 
+TEST(Composer, ExponentialNamespaceHitsThePrimBudget) {
+    // Each level references the next twice: 2^40 prims if nothing stopped it.
+    std::string text = "#usda 1.0\n";
+    for (int i = 0; i < 40; ++i)
+        text += "def \"N" + std::to_string(i) + "\" { def \"a\" ( references = </N" +
+                std::to_string(i + 1) + "> ) {} def \"b\" ( references = </N" +
+                std::to_string(i + 1) + "> ) {} }\n";
+    text += "def \"N40\" {}\n";
+    StageOptions options;
+    options.maxPrims = 5000;
+    auto stage = Stage::openString(text, "exp.usda", options);
+    int errors = 0;
+    for (const Diagnostic& d : stage->warnings())
+        if (d.message.find("too many prims (StageOptions::maxPrims = 5000)") != std::string::npos)
+            ++errors;
+    EXPECT_EQ(errors, 1);
+    EXPECT_NE(stage->prim("/N0"), nullptr);
+}
+
 TEST(Composer, LongReferenceChainsAreBounded) {
     test::TempDir dir("chain");
     const int files = 300;

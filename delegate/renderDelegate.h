@@ -62,6 +62,7 @@ private:
     float floatSetting(const char* key, float fallback) const;
 
     void updateDicing();
+    void addInstancerInstances();
 
     EmbreeDevice _device;
     shading::TextureCache _textures;

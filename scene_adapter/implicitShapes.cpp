@@ -132,6 +132,12 @@ bool validLength(double v) { return std::isfinite(v) && v >= 0.0; }
 
 }  // namespace
 
+ShapeParams shapeFallbacks(const std::string& type) {
+    ShapeParams p;
+    if (type == "Capsule") p.radius = 0.5, p.height = 1.0;  // UsdGeomCapsule's schema
+    return p;
+}
+
 bool isImplicitShape(const std::string& t) {
     return t == "Cube" || t == "Cylinder" || t == "Cone" || t == "Capsule";
 }

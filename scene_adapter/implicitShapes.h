@@ -22,8 +22,8 @@ inline constexpr int kCapsuleRings = 36;  ///< latitude steps per hemisphere (po
 /// USD attribute values of a shape with the schema fallbacks (UsdGeom generatedSchema.usda).
 struct ShapeParams {
     double size = 2.0;    ///< Cube edge length
-    double radius = 1.0;  ///< Cylinder, Cone, Capsule
-    double height = 2.0;  ///< Cylinder, Cone; Capsule: the cylinder part, caps excluded
+    double radius = 1.0;  ///< Cylinder, Cone, Capsule (fallback 0.5)
+    double height = 2.0;  ///< Cylinder, Cone; Capsule (fallback 1): the cylinder part, caps excluded
     char axis = 'Z';      ///< 'X', 'Y' or 'Z'
 };
 
@@ -34,6 +34,9 @@ struct ShapeMesh {
     std::vector<glm::vec3> normals;  ///< face-varying: one per face-vertex index, outward
     glm::vec3 extentMin{0.0f}, extentMax{0.0f};
 };
+
+/// The schema fallbacks of a shape type: those above, except Capsule (radius 0.5, height 1).
+ShapeParams shapeFallbacks(const std::string& typeName);
 
 /// True for "Cube", "Cylinder", "Cone", "Capsule".
 bool isImplicitShape(const std::string& typeName);

@@ -41,7 +41,7 @@ std::vector<int> intArray(const Value& v) {
 }  // namespace
 
 bool UsdSceneDelegate::prepareShape(const usd::Prim& prim, Entry* e) {
-    ShapeParams params;
+    ShapeParams params = shapeFallbacks(prim.typeName());
     auto number = [&](const char* name, double fallback) {
         auto f = getFloat(attributeValue(prim, name));
         return f ? double(*f) : fallback;

@@ -83,10 +83,10 @@ TEST(ImplicitShapes, UsdFallbacksAndSilhouetteError) {
     EXPECT_GT(mid, 1.0 - 1e-3);
     ASSERT_TRUE(buildImplicitShape("Cube", ShapeParams{}, &m, &error));
     EXPECT_EQ(m.extentMax, glm::vec3(1, 1, 1));  // size 2
-    ShapeParams capsule;
-    capsule.radius = 0.5, capsule.height = 1.0;  // height excludes the caps
-    ASSERT_TRUE(buildImplicitShape("Capsule", capsule, &m, &error));
+    // Capsule fallbacks: radius 0.5, height 1, and the height excludes the caps.
+    ASSERT_TRUE(buildImplicitShape("Capsule", shapeFallbacks("Capsule"), &m, &error));
     EXPECT_EQ(m.extentMax, glm::vec3(0.5f, 0.5f, 1.0f));
+    EXPECT_EQ(shapeFallbacks("Cone").radius, 1.0);
     ShapeParams bad;
     bad.radius = -1;
     EXPECT_FALSE(buildImplicitShape("Cone", bad, &m, &error));

@@ -24,6 +24,8 @@ public:
     void release();
 
     unsigned instanceId() const { return _instId; }
+    /// The bottom-level scene (PointInstancer instances share it), nullptr if none.
+    RTCScene blas() const { return _blas; }
     bool valid() const { return _blas != nullptr; }
 
 private:

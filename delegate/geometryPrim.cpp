@@ -11,7 +11,8 @@ void GeometryPrim::finalize(RenderParam* param) {
     auto* p = static_cast<EmbreeRenderParam*>(param);
     if (_registered) p->remove(static_cast<GeometrySource*>(this));
     _registered = false;
-    if (_instance.valid()) p->markSceneDirty();
+    if (_instance.valid() || !_instances.geomIds().empty()) p->markSceneDirty();
+    _instances.release();
     _instance.release();
 }
 
@@ -21,6 +22,9 @@ void GeometryPrim::sync(SceneDelegate* delegate, RenderParam* renderParam, Dirty
         param->add(static_cast<GeometrySource*>(this));
         _registered = true;
     }
+    if (*bits & RprimDirty::Instancer) _instancer = delegate->getInstancerId(id());
+    // A PointInstancer prototype keeps its own instance disabled: only its instances draw.
+    const bool drawnAlone = _instancer.empty();
     if (*bits & RprimDirty::Transform) {
         glm::mat4 m(delegate->getTransform(id()));
         _record.objectToWorld = m;
@@ -32,32 +36,75 @@ void GeometryPrim::sync(SceneDelegate* delegate, RenderParam* renderParam, Dirty
     }
     if (*bits & RprimDirty::Visibility) {
         _visible = delegate->getVisible(id());
-        _instance.setEnabled(_visible);
+        _instance.setEnabled(_visible && drawnAlone);
         param->markSceneDirty();
     }
+    bool rebuilt = false;
     if (*bits & geometryBits()) {
         if (RTCGeometry geom = rebuildGeometry(delegate, param)) {
             _instance.setGeometry(param->device(), param->scene(), geom, &_record);
             _instance.setTransform(_record.objectToWorld);
-            if (!_visible) _instance.setEnabled(false);
+            if (!_visible || !drawnAlone) _instance.setEnabled(false);
             param->blasBuilds++;
         } else {
             _instance.release();
         }
+        rebuilt = true;
         param->markSceneDirty();
+        // Per-triangle GeomSubset materials follow the new triangles.
+        if (!_subsets.empty()) param->markTablesDirty();
     }
     if (*bits & RprimDirty::DoubleSided) _record.doubleSided = delegate->getDoubleSided(id());
     if (*bits & RprimDirty::MaterialId) {
         _materialId = delegate->getMaterialId(id());
+        _subsets = delegate->getMaterialSubsets(id());
         param->markTablesDirty();
     }
+    constexpr DirtyBits kInstanceBits = RprimDirty::Transform | RprimDirty::Visibility |
+                                        RprimDirty::Instancer | RprimDirty::InstanceIndex;
+    if (!drawnAlone && (rebuilt || (*bits & kInstanceBits))) syncInstances(delegate, param);
+    else if (drawnAlone && !_instances.geomIds().empty()) _instances.release();
     _record.primId = primId();
     *bits = RprimDirty::Clean;
 }
 
+void GeometryPrim::syncInstances(SceneDelegate* delegate, EmbreeRenderParam* param) {
+    std::vector<InstanceRecord> records;
+    if (_visible && _instance.blas()) {
+        std::vector<std::string> warnings;
+        records = computeInstances(delegate, _instancer, id(), _record.objectToWorld, &warnings);
+        for (const auto& w : warnings) param->warn(_instancer, w);
+    }
+    _instances.rebuild(param->device(), param->scene(), _instance.blas(), &_record,
+                       std::move(records));
+    param->transformUpdates++;
+    param->markSceneDirty();
+}
+
 void GeometryPrim::bindMaterials(const std::unordered_map<Path, int>& materialIndex) {
-    auto it = materialIndex.find(_materialId);
-    _record.materialIndex = it == materialIndex.end() ? -1 : it->second;
+    auto find = [&](const Path& p) {
+        auto it = materialIndex.find(p);
+        return it == materialIndex.end() ? -1 : it->second;
+    };
+    _record.materialIndex = find(_materialId);
+    _record.triangleMaterial.clear();
+    if (_subsets.empty() || _record.triangleFace.empty()) return;
+    // Face -> material through the subsets (the first subset naming a face wins; USD requires
+    // a materialBind family to be a partition), then per triangle through triangleFace.
+    int faces = 0;
+    for (int f : _record.triangleFace) faces = std::max(faces, f + 1);
+    std::vector<int> faceMaterial(size_t(faces), -2);
+    for (const auto& [material, indices] : _subsets) {
+        int m = find(material);
+        for (int f : indices)
+            if (f >= 0 && f < faces && faceMaterial[size_t(f)] == -2) faceMaterial[size_t(f)] = m;
+    }
+    _record.triangleMaterial.resize(_record.triangleFace.size());
+    for (size_t t = 0; t < _record.triangleFace.size(); ++t) {
+        int f = _record.triangleFace[t];
+        int m = (f >= 0 && f < faces) ? faceMaterial[size_t(f)] : -2;
+        _record.triangleMaterial[t] = m == -2 ? _record.materialIndex : m;
+    }
 }
 
 }  // namespace principled::embree

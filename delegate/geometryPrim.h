@@ -5,6 +5,7 @@
 #pragma once
 
 #include "delegate/embreeInstance.h"
+#include "delegate/instancer.h"
 #include "delegate/hd/prim.h"
 #include "delegate/renderParam.h"
 
@@ -20,6 +21,12 @@ public:
     unsigned instanceId() const override { return _instance.instanceId(); }
     GeometryRecord* record() override { return &_record; }
     void bindMaterials(const std::unordered_map<hd::Path, int>& materialIndex) override;
+    const std::vector<unsigned>* instanceGeomIds() const override {
+        return _instancer.empty() ? nullptr : &_instances.geomIds();
+    }
+    const std::vector<InstanceRecord>* instanceRecords() const override {
+        return _instancer.empty() ? nullptr : &_instances.records();
+    }
 
 protected:
     /// The dirty bits that make rebuildGeometry() run.
@@ -31,8 +38,13 @@ protected:
     GeometryRecord _record;
 
 private:
+    void syncInstances(hd::SceneDelegate* delegate, EmbreeRenderParam* param);
+
     EmbreeInstance _instance;
     hd::Path _materialId;
+    std::vector<std::pair<hd::Path, std::vector<int>>> _subsets;  ///< GeomSubset bindings
+    hd::Path _instancer;      ///< non-empty: a PointInstancer prototype, drawn only by _instances
+    InstanceSet _instances;
     bool _registered = false;
     bool _visible = true;
 };

@@ -50,6 +50,7 @@ struct Hit {
     glm::vec3 ns;  ///< shading normal, same hemisphere as ng
     const GeometryRecord* record;
     float t = 0.0f;   ///< distance along the (unit) ray
+    const InstanceRecord* instance = nullptr;  ///< PointInstancer placement, else record's
     int element = 0;  ///< authored face (meshes), 0 for implicit surfaces
     unsigned triangle = 0;
     float u = 0.0f, v = 0.0f;  ///< barycentrics of corners 1 and 2
@@ -76,10 +77,17 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     const GeometryRecord& rec = *scene.geometryByInstance[inst];
     hit->record = &rec;
     hit->t = rh.ray.tfar;
+    // PointInstancer instances share the prototype's record but have their own placement.
+    const InstanceRecord* placed =
+        inst < scene.instanceByInstance.size() ? scene.instanceByInstance[inst] : nullptr;
+    hit->instance = placed;
+    const glm::mat3 normalToWorld =
+        placed ? glm::transpose(glm::inverse(glm::mat3(placed->objectToWorld))) : rec.normalToWorld;
     hit->p = ray.origin + rh.ray.tfar * ray.direction;
     glm::vec3 ngObj, nsObj;
     if (rec.kind == GeometryRecord::Kind::Sphere) {
-        glm::vec3 pObj = glm::vec3(rec.worldToObject * glm::vec4(hit->p, 1.0f));
+        glm::mat4 worldToObject = placed ? glm::inverse(placed->objectToWorld) : rec.worldToObject;
+        glm::vec3 pObj = glm::vec3(worldToObject * glm::vec4(hit->p, 1.0f));
         ngObj = nsObj = pObj - rec.center;
     } else {
         const glm::uvec3& t = rec.triangles[rh.hit.primID];
@@ -96,8 +104,8 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
             nsObj = (1.0f - u - v) * n[0] + u * n[1] + v * n[2];
         }
     }
-    glm::vec3 ng = rec.normalToWorld * ngObj;
-    glm::vec3 ns = rec.normalToWorld * nsObj;
+    glm::vec3 ng = normalToWorld * ngObj;
+    glm::vec3 ns = normalToWorld * nsObj;
     float lg = glm::length(ng), ls = glm::length(ns);
     if (!(lg > 0.0f) || !std::isfinite(lg)) return false;  // degenerate triangle
     ng /= lg;
@@ -173,7 +181,7 @@ Frame tangentFrame(const Hit& hit, const glm::vec3& n) {
         float det = d1.x * d2.y - d1.y * d2.x;
         if (std::abs(det) > 1e-12f) {
             glm::vec3 dpdu = (e1 * d2.y - e2 * d1.y) / det;
-            glm::vec3 tw = glm::mat3(rec.objectToWorld) * dpdu;
+            glm::vec3 tw = glm::mat3(hit.instance ? hit.instance->objectToWorld : rec.objectToWorld) * dpdu;
             tw -= n * glm::dot(n, tw);
             float l = glm::length(tw);
             if (l > 1e-12f && std::isfinite(l)) {
@@ -251,8 +259,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         const GeometryRecord& rec = *hit.record;
         HitContext context(hit);
         shading::ShadedMaterial shaded;
-        if (rec.materialIndex >= 0 && rec.materialIndex < int(_scene.materials.size())) {
-            const MaterialRecord& m = _scene.materials[rec.materialIndex];
+        const int materialIndex = rec.materialFor(hit.triangle);  // GeomSubset or the prim's
+        if (materialIndex >= 0 && materialIndex < int(_scene.materials.size())) {
+            const MaterialRecord& m = _scene.materials[materialIndex];
             shaded = m.program ? m.program->evaluate(context) : m.constant;
         } else {
             shaded.params.baseColor = rec.displayColor;
@@ -283,9 +292,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             f.normal = hit.ns;
             f.albedo = mat->params.baseColor;
             f.primId = rec.primId;
-            f.instanceId = 0;
+            f.instanceId = hit.instance ? hit.instance->instanceIndex : 0;
             f.elementId = hit.element;
-            f.materialId = rec.materialIndex;
+            f.materialId = materialIndex;
             for (size_t i = 0; i < std::min<size_t>(_settings.aovPrimvars.size(), f.primvars.size()); ++i) {
                 float v[3] = {0.0f, 0.0f, 0.0f};
                 context.primvar(_settings.aovPrimvars[i], 3, v);

@@ -110,6 +110,7 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
     if (sceneDirty || tablesDirty) buildLightDistribution();
     if (sceneDirty || tablesDirty) {
         _snapshot.geometryByInstance.clear();
+        _snapshot.instanceByInstance.clear();
         for (GeometrySource* g : _param->geometry()) {
             unsigned id = g->instanceId();
             if (id == RTC_INVALID_GEOMETRY_ID) continue;
@@ -117,6 +118,7 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
                 _snapshot.geometryByInstance.resize(id + 1, nullptr);
             _snapshot.geometryByInstance[id] = g->record();
         }
+        addInstancerInstances();
     }
 }
 
@@ -164,6 +166,26 @@ void EmbreeRenderDelegate::buildLightDistribution() {
         _snapshot.lightCdf[i + 1] = _snapshot.lightCdf[i] + prob;
     }
     if (!lights.empty()) _snapshot.lightCdf.back() = 1.0f;
+}
+
+void EmbreeRenderDelegate::addInstancerInstances() {
+    // PointInstancer instances: their geomIDs map to the prototype's record plus a placement.
+    for (GeometrySource* g : _param->geometry()) {
+        const std::vector<unsigned>* ids = g->instanceGeomIds();
+        if (!ids || ids->empty()) continue;
+        const std::vector<InstanceRecord>& recs = *g->instanceRecords();
+        unsigned top = *std::max_element(ids->begin(), ids->end());
+        if (top >= _snapshot.geometryByInstance.size())
+            _snapshot.geometryByInstance.resize(top + 1, nullptr);
+        if (_snapshot.instanceByInstance.size() < _snapshot.geometryByInstance.size())
+            _snapshot.instanceByInstance.resize(_snapshot.geometryByInstance.size(), nullptr);
+        for (size_t i = 0; i < ids->size(); ++i) {
+            _snapshot.geometryByInstance[(*ids)[i]] = g->record();
+            _snapshot.instanceByInstance[(*ids)[i]] = &recs[i];
+        }
+    }
+    if (!_snapshot.instanceByInstance.empty())
+        _snapshot.instanceByInstance.resize(_snapshot.geometryByInstance.size(), nullptr);
 }
 
 AovDescriptor EmbreeRenderDelegate::defaultAovDescriptor(const Token& aovName) const {

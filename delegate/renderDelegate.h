@@ -65,6 +65,7 @@ private:
 
     void updateDicing();
     void buildLightDistribution();
+    void addInstancerInstances();
 
     EmbreeDevice _device;
     shading::TextureCache _textures;

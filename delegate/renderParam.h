@@ -30,6 +30,10 @@ public:
     virtual GeometryRecord* record() = 0;
     /// Resolves material paths to indices into the material table.
     virtual void bindMaterials(const std::unordered_map<hd::Path, int>& materialIndex) = 0;
+    /// PointInstancer prototypes: the geomIDs of the top-level instances drawing record() and
+    /// their placements (parallel arrays); nullptr for a prim drawn on its own.
+    virtual const std::vector<unsigned>* instanceGeomIds() const { return nullptr; }
+    virtual const std::vector<InstanceRecord>* instanceRecords() const { return nullptr; }
 };
 
 /// Implemented by light sprims.

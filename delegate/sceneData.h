@@ -50,6 +50,12 @@ struct GeometryRecord {
     std::vector<glm::vec3> cornerNormals;
     std::vector<int> triangleFace;
     std::vector<PrimvarChannel> primvars;  ///< the mesh's float primvars (st, displayColor...)
+    /// GeomSubset materials: per triangle, into SceneSnapshot::materials (empty: none).
+    std::vector<int> triangleMaterial;
+    /// The material of a hit triangle: its GeomSubset's, else the prim's own.
+    int materialFor(unsigned triangle) const {
+        return triangle < triangleMaterial.size() ? triangleMaterial[triangle] : materialIndex;
+    }
     const PrimvarChannel* primvar(const hd::Token& name) const {
         for (const auto& p : primvars)
             if (p.name == name) return &p;
@@ -58,6 +64,13 @@ struct GeometryRecord {
     // Sphere: centre and radius in object space.
     glm::vec3 center{0.0f};
     float radius = 1.0f;
+};
+
+/// One PointInstancer instance: a top-level Embree instance of a prototype's BLAS. The
+/// prototype's GeometryRecord supplies everything but the placement.
+struct InstanceRecord {
+    glm::mat4 objectToWorld{1.0f};  ///< instancer * translate * rotate * scale * prototype
+    int instanceIndex = -1;         ///< index into the instancer's arrays (instanceId AOV)
 };
 
 /// A light as the integrator samples it.
@@ -94,6 +107,9 @@ struct LightRecord {
 struct SceneSnapshot {
     RTCScene scene = nullptr;
     std::vector<GeometryRecord*> geometryByInstance;  ///< indexed by Embree instance geomID
+    /// Also by geomID: the instance's own placement for PointInstancer instances, else null
+    /// (empty when the scene has no instancer).
+    std::vector<const InstanceRecord*> instanceByInstance;
     std::vector<MaterialRecord> materials;
     std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
     std::vector<float> lightCdf;                      ///< lights.size() + 1 entries, by power

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "delegate/hd/tokens.h"
+#include "scene_adapter/implicitShapes.h"
 #include "scene_adapter/usda/stage.h"
 #include "scene_adapter/valueConvert.h"
 #include "scene_adapter/xformOps.h"
@@ -99,6 +100,12 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     bool isRprim = false;
     if (type == "Mesh") hdType = tokens::mesh(), isRprim = true;
     else if (type == "Sphere") hdType = tokens::sphere(), isRprim = true;
+    else if (isImplicitShape(type)) hdType = tokens::mesh(), isRprim = true;
+    else if (type == "PointInstancer") {
+        // Its prototypes are drawn only through it; nothing below it is drawn directly.
+        if (prim.isDefined()) visitPointInstancer(prim, world, visible, index);
+        return;
+    }
     else if (type == "Camera") hdType = tokens::camera();
     else if (type == "Material") hdType = tokens::material();
     else if (type == "DistantLight") hdType = tokens::distantLight();
@@ -118,8 +125,9 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
         e.world = world;
         e.visible = visible;
         if (isRprim) e.material = resolveMaterialBinding(prim);
-        bool inserted = isRprim ? index->insertRprim(hdType, this, id)
-                                : index->insertSprim(hdType, this, id);
+        bool ok = !isImplicitShape(type) || prepareShape(prim, &e);  // warns when not
+        bool inserted = ok && (isRprim ? index->insertRprim(hdType, this, id)
+                                       : index->insertSprim(hdType, this, id));
         if (inserted) {
             _entries[id] = e;
             if (hdType == tokens::camera()) _cameras.push_back(id);
@@ -169,6 +177,12 @@ MeshTopology UsdSceneDelegate::getMeshTopology(const Path& id) const {
     MeshTopology t;
     const usd::Prim* p = prim(id);
     if (!p) return t;
+    if (const Entry* e = entry(id); e->shape) {
+        t.faceVertexCounts = e->shape->faceVertexCounts;
+        t.faceVertexIndices = e->shape->faceVertexIndices;
+        t.scheme = Token("none");
+        return t;
+    }
     auto ints = [&](const char* name) {
         Value v = attributeValue(*p, name);
         if (auto* a = getIf<std::vector<int>>(v)) return *a;
@@ -234,6 +248,8 @@ bool UsdSceneDelegate::getDoubleSided(const Path& id) const {
 Value UsdSceneDelegate::get(const Path& id, const Token& key) const {
     const usd::Prim* p = prim(id);
     if (!p) return {};
+    if (const Entry* e = entry(id); e->shape || !e->instancer.empty() || e->type == Token("instancer"))
+        if (Value v = shapeOrInstancerValue(*e, key); !isEmpty(v)) return v;
     const std::string& k = key.str();
     if (k == "points" || k == "radius") return attributeValue(*p, k);
     if (k == "normals") {
@@ -283,6 +299,8 @@ std::vector<PrimvarDescriptor> UsdSceneDelegate::getPrimvarDescriptors(const Pat
         if (const usd::Attribute* a = p->attribute("normals"); a && a->hasValue())
             if (attributeInterpolation(*a, Interpolation::Vertex) == interp)
                 out.push_back({tokens::normals(), interp, Token("normal"), false});
+    if (entry(id)->shape && interp == Interpolation::FaceVarying)
+        out.push_back({tokens::normals(), interp, Token("normal"), false});
     return out;
 }
 
@@ -392,7 +410,9 @@ Path UsdSceneDelegate::addDefaultCamera(RenderIndex* index, double aspect) {
         }
     };
     for (const auto& [id, e] : _entries) {
-        if (e.type == tokens::mesh()) {
+        if (!e.instancer.empty()) {
+            growInstancedBounds(id, e, grow);
+        } else if (e.type == tokens::mesh()) {
             Value v = get(id, tokens::points());
             if (auto* pts = getIf<std::vector<glm::vec3>>(v))
                 for (const auto& p : *pts) grow(e.world, glm::dvec3(p));

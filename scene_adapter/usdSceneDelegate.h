@@ -4,6 +4,7 @@
 // from the stage at the delegate's time code.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -19,6 +20,8 @@ class Prim;
 }  // namespace principled::usd
 
 namespace principled::adapter {
+
+struct ShapeMesh;
 
 struct AdapterOptions {
     double time = std::numeric_limits<double>::quiet_NaN();  ///< NaN: the stage's default time
@@ -57,6 +60,11 @@ public:
     std::vector<hd::PrimvarDescriptor> getPrimvarDescriptors(
         const hd::Path& id, hd::Interpolation interp) const override;
     hd::Path getMaterialId(const hd::Path& id) const override;
+    std::vector<std::pair<hd::Path, std::vector<int>>> getMaterialSubsets(
+        const hd::Path& id) const override;
+    hd::Path getInstancerId(const hd::Path& id) const override;
+    std::vector<int> getInstanceIndices(const hd::Path& instancerId,
+                                        const hd::Path& prototypeId) const override;
     hd::MaterialNetwork getMaterialResource(const hd::Path& materialId) const override;
     hd::Value getLightParamValue(const hd::Path& id, const hd::Token& param) const override;
     hd::Value getCameraParamValue(const hd::Path& id, const hd::Token& param) const override;
@@ -68,10 +76,27 @@ private:
         glm::dmat4 world{1.0};
         bool visible = true;
         hd::Path material;
+        // Implicit shapes (Cube, Cylinder, Cone, Capsule): the generated mesh.
+        std::shared_ptr<const ShapeMesh> shape;
+        // PointInstancer prototypes: the instancer drawing them and their prototype index
+        // (getTransform is then relative to the instancer).
+        hd::Path instancer;
+        int protoIndex = -1;
     };
 
     void visit(const usd::Prim& prim, const glm::dmat4& parentWorld, bool parentVisible,
                hd::RenderIndex* index);
+    // Implicit shapes and PointInstancers (usdSceneDelegateGeom.cpp).
+    bool prepareShape(const usd::Prim& prim, Entry* e);
+    void visitPointInstancer(const usd::Prim& prim, const glm::dmat4& world, bool visible,
+                             hd::RenderIndex* index);
+    void visitPrototype(const usd::Prim& prim, const hd::Path& id, const glm::dmat4& parentRel,
+                        bool parentVisible, const hd::Path& instancer, int protoIndex,
+                        hd::RenderIndex* index);
+    hd::Value shapeOrInstancerValue(const Entry& e, const hd::Token& key) const;
+    void growInstancedBounds(const hd::Path& id, const Entry& e,
+                             const std::function<void(const glm::dmat4&, const glm::dvec3&)>& grow) const;
+
     const Entry* entry(const hd::Path& id) const;
     const usd::Prim* prim(const hd::Path& id) const;
     hd::Value attributeValue(const usd::Prim& prim, const std::string& name) const;

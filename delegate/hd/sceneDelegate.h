@@ -42,6 +42,21 @@ public:
         return {};
     }
     virtual MaterialNetwork getMaterialResource(const Path& materialId) const = 0;
+    /// Instancing (UsdGeomPointInstancer, hydra.md section 1.5): the instancer that draws rprim
+    /// `id` (empty: the rprim is drawn on its own). An instanced rprim's getTransform() is
+    /// relative to the instancer; the instancer's own transform is getTransform(instancerId),
+    /// and its per-instance arrays are get(instancerId, tokens::instanceTranslations()...).
+    virtual Path getInstancerId(const Path& id) const {
+        (void)id;
+        return Path();
+    }
+    /// The instances of `instancerId` that draw prototype rprim `prototypeId`: indices into
+    /// the instancer's arrays, invisible instances already left out.
+    virtual std::vector<int> getInstanceIndices(const Path& instancerId, const Path& prototypeId) const {
+        (void)instancerId;
+        (void)prototypeId;
+        return {};
+    }
     /// Light parameters by USD input name without the "inputs:" prefix ("intensity", "color").
     virtual Value getLightParamValue(const Path& id, const Token& param) const = 0;
     /// Camera parameters in scene units (apertures already converted from tenths of a unit).

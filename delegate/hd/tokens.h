@@ -27,6 +27,11 @@ inline const Token& normals() { static const Token t("normals"); return t; }
 inline const Token& radius() { static const Token t("radius"); return t; }
 inline const Token& displayColor() { static const Token t("displayColor"); return t; }
 
+// Instancer keys for SceneDelegate::get(instancerId, ...): per-instance arrays, Hydra's names.
+inline const Token& instanceTranslations() { static const Token t("instanceTranslations"); return t; }  ///< vec3[]
+inline const Token& instanceRotations() { static const Token t("instanceRotations"); return t; }  ///< vec4[] (real, i, j, k)
+inline const Token& instanceScales() { static const Token t("instanceScales"); return t; }  ///< vec3[]
+
 // AOV names.
 inline const Token& color() { static const Token t("color"); return t; }
 inline const Token& depth() { static const Token t("depth"); return t; }

@@ -68,6 +68,11 @@ class EditableSceneDelegate : public hd::SceneDelegate {
     hd::Path getMaterialId(const hd::Path& id) const override;
     std::vector<std::pair<hd::Path, std::vector<int>>> getMaterialSubsets(
         const hd::Path& id) const override;
+    hd::Path getInstancerId(const hd::Path& id) const override { return _base.getInstancerId(id); }
+    std::vector<int> getInstanceIndices(const hd::Path& instancerId,
+                                        const hd::Path& prototypeId) const override {
+        return _base.getInstanceIndices(instancerId, prototypeId);
+    }
     hd::MaterialNetwork getMaterialResource(const hd::Path& materialId) const override;
     hd::Value getLightParamValue(const hd::Path& id, const hd::Token& param) const override;
     hd::Value getCameraParamValue(const hd::Path& id, const hd::Token& param) const override;

@@ -93,9 +93,10 @@ TEST(UsdSceneDelegate, PopulatesRenderablePrimsAndSkipsGuides) {
     EXPECT_NE(p.index.rprim(hd::Path("/World/Hidden")), nullptr);
     EXPECT_FALSE(p.scene->getVisible(hd::Path("/World/Hidden")));
     EXPECT_EQ(p.scene->cameras(), std::vector<hd::Path>{hd::Path("/World/Cam")});
-    bool cubeWarned = false;
-    for (const auto& w : p.scene->warnings()) cubeWarned |= w.find("Cube") != std::string::npos;
-    EXPECT_TRUE(cubeWarned);
+    // Implicit shapes are meshes now (scene_adapter/implicitShapes.h), without a warning.
+    EXPECT_NE(p.index.rprim(hd::Path("/World/Box")), nullptr);
+    for (const auto& w : p.scene->warnings()) EXPECT_EQ(w.find("Cube"), std::string::npos) << w;
+    EXPECT_EQ(p.scene->getMeshTopology(hd::Path("/World/Box")).faceVertexCounts.size(), 6u);
 }
 
 TEST(UsdSceneDelegate, TransformsTopologyAndPrimvars) {

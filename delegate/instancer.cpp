@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/instancer.h"
+
+#include <cmath>
+
+#include <glm/gtc/quaternion.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "delegate/hd/sceneDelegate.h"
+#include "delegate/hd/tokens.h"
+
+namespace principled::embree {
+
+using namespace hd;
+
+glm::mat4 instanceTransform(const glm::mat4& instancer, const glm::vec3& position,
+                            const glm::vec4& rotation, const glm::vec3& scale,
+                            const glm::mat4& prototype) {
+    glm::quat q(rotation.x, rotation.y, rotation.z, rotation.w);  // glm: (w, x, y, z)
+    float len = glm::length(q);
+    glm::mat3 r = (len > 0.0f && std::isfinite(len)) ? glm::mat3_cast(q / len) : glm::mat3(1.0f);
+    // Column-vector convention: scale first, then rotate, then translate.
+    glm::mat4 m(1.0f);
+    m[0] = glm::vec4(r[0] * scale.x, 0.0f);
+    m[1] = glm::vec4(r[1] * scale.y, 0.0f);
+    m[2] = glm::vec4(r[2] * scale.z, 0.0f);
+    m[3] = glm::vec4(position, 1.0f);
+    return instancer * m * prototype;
+}
+
+std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, const Path& instancerId,
+                                             const Path& prototypeId,
+                                             const glm::mat4& prototypeTransform,
+                                             std::vector<std::string>* warnings) {
+    std::vector<int> indices = delegate->getInstanceIndices(instancerId, prototypeId);
+    Value tv = delegate->get(instancerId, tokens::instanceTranslations());
+    Value rv = delegate->get(instancerId, tokens::instanceRotations());
+    Value sv = delegate->get(instancerId, tokens::instanceScales());
+    const auto* t = getIf<std::vector<glm::vec3>>(tv);
+    const auto* r = getIf<std::vector<glm::vec4>>(rv);
+    const auto* s = getIf<std::vector<glm::vec3>>(sv);
+    size_t count = t ? t->size() : 0;
+    if (!t && !indices.empty())
+        warnings->push_back("instancer has no positions; its instances are not drawn");
+    if (r && r->size() != count) {
+        warnings->push_back("orientations has " + std::to_string(r->size()) + " values for " +
+                            std::to_string(count) + " positions; ignored");
+        r = nullptr;
+    }
+    if (s && s->size() != count) {
+        warnings->push_back("scales has " + std::to_string(s->size()) + " values for " +
+                            std::to_string(count) + " positions; ignored");
+        s = nullptr;
+    }
+    glm::mat4 instancer(delegate->getTransform(instancerId));
+    std::vector<InstanceRecord> out;
+    out.reserve(indices.size());
+    for (int i : indices) {
+        if (i < 0 || size_t(i) >= count) continue;
+        InstanceRecord rec;
+        rec.instanceIndex = i;
+        rec.objectToWorld = instanceTransform(instancer, (*t)[size_t(i)],
+                                              r ? (*r)[size_t(i)] : glm::vec4(1, 0, 0, 0),
+                                              s ? (*s)[size_t(i)] : glm::vec3(1.0f), prototypeTransform);
+        const glm::mat4& m = rec.objectToWorld;
+        bool finite = true;
+        for (int c = 0; c < 4; ++c)
+            for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(m[c][k]);
+        if (finite) out.push_back(rec);
+    }
+    return out;
+}
+
+void InstanceSet::rebuild(RTCDevice device, RTCScene top, RTCScene blas, void* userData,
+                          std::vector<InstanceRecord> records) {
+    release();
+    _top = top;
+    _records = std::move(records);
+    if (!blas) {
+        _records.clear();
+        return;
+    }
+    _geoms.resize(_records.size());
+    _geomIds.resize(_records.size());
+    // Creating the instance geometries is most of the cost for large instancers; it runs in
+    // parallel (rtcAttachGeometry is thread-safe, Embree 3.13 docs).
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, _records.size(), 1024),
+                      [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(g, blas);
+            rtcSetGeometryTimeStepCount(g, 1);
+            rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                                    &_records[i].objectToWorld[0][0]);
+            rtcSetGeometryUserData(g, userData);
+            rtcCommitGeometry(g);
+            _geomIds[i] = rtcAttachGeometry(top, g);
+            _geoms[i] = g;
+        }
+    });
+}
+
+void InstanceSet::setScene(RTCScene blas) {
+    for (RTCGeometry g : _geoms) {
+        rtcSetGeometryInstancedScene(g, blas);
+        rtcCommitGeometry(g);
+    }
+}
+
+void InstanceSet::release() {
+    for (size_t i = 0; i < _geoms.size(); ++i) {
+        rtcDetachGeometry(_top, _geomIds[i]);
+        rtcReleaseGeometry(_geoms[i]);
+    }
+    _geoms.clear();
+    _geomIds.clear();
+    _records.clear();
+}
+
+}  // namespace principled::embree

@@ -1,0 +1,225 @@
+// SPDX-License-Identifier: Apache-2.0
+// UsdSceneDelegate, geometry beyond Mesh and Sphere: implicit shapes served as meshes,
+// GeomSubset material bindings, and PointInstancers (prototype rprims drawn only through
+// their instancer, Hydra-style: getInstancerId / getInstanceIndices / instancer arrays).
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "delegate/hd/tokens.h"
+#include "scene_adapter/implicitShapes.h"
+#include "scene_adapter/usdSceneDelegate.h"
+#include "scene_adapter/usda/stage.h"
+#include "scene_adapter/valueConvert.h"
+#include "scene_adapter/xformOps.h"
+
+namespace principled::adapter {
+
+using namespace hd;
+
+namespace {
+
+const Token& instancerType() {
+    static const Token t("instancer");  // adapter-only entry type; not inserted in the index
+    return t;
+}
+
+std::string tokenOf(const usd::Prim& prim, const char* name, double time, const std::string& fallback) {
+    if (const usd::Attribute* a = prim.attribute(name))
+        if (auto s = a->get(time).getString()) return *s;
+    return fallback;
+}
+
+std::vector<int> intArray(const Value& v) {
+    if (auto* a = getIf<std::vector<int>>(v)) return *a;
+    return {};
+}
+
+}  // namespace
+
+bool UsdSceneDelegate::prepareShape(const usd::Prim& prim, Entry* e) {
+    ShapeParams params = shapeFallbacks(prim.typeName());
+    auto number = [&](const char* name, double fallback) {
+        auto f = getFloat(attributeValue(prim, name));
+        return f ? double(*f) : fallback;
+    };
+    params.size = number("size", params.size);
+    params.radius = number("radius", params.radius);
+    params.height = number("height", params.height);
+    std::string axis = tokenOf(prim, "axis", _time, "Z");
+    params.axis = axis.empty() ? 'Z' : axis[0];
+    auto mesh = std::make_shared<ShapeMesh>();
+    std::string error;
+    if (!buildImplicitShape(prim.typeName(), params, mesh.get(), &error)) {
+        warn(prim.location().str() + ": " + prim.path(), prim.typeName() + " not rendered: " + error);
+        return false;
+    }
+    e->shape = std::move(mesh);
+    return true;
+}
+
+Value UsdSceneDelegate::shapeOrInstancerValue(const Entry& e, const Token& key) const {
+    if (e.shape) {
+        if (key == tokens::points()) return Value(e.shape->points);
+        if (key == tokens::normals()) return Value(e.shape->normals);
+        return {};
+    }
+    if (e.type == instancerType()) {
+        if (key == tokens::instanceTranslations()) return attributeValue(*e.prim, "positions");
+        if (key == tokens::instanceRotations()) return attributeValue(*e.prim, "orientations");
+        if (key == tokens::instanceScales()) return attributeValue(*e.prim, "scales");
+    }
+    return {};
+}
+
+std::vector<std::pair<Path, std::vector<int>>> UsdSceneDelegate::getMaterialSubsets(const Path& id) const {
+    std::vector<std::pair<Path, std::vector<int>>> out;
+    const usd::Prim* p = prim(id);
+    if (!p || p->typeName() != "Mesh") return out;
+    for (const usd::Prim* child : p->children()) {
+        if (child->typeName() != "GeomSubset" || !child->isActive()) continue;
+        if (tokenOf(*child, "familyName", _time, "") != "materialBind") continue;
+        if (tokenOf(*child, "elementType", _time, "face") != "face") continue;
+        // The subset's own binding; without one its faces keep the mesh's material.
+        for (const char* rel : {"material:binding:full", "material:binding"}) {
+            const usd::Relationship* r = child->relationship(rel);
+            if (!r || r->targets().empty()) continue;
+            const usd::Prim* m = _stage.prim(r->targets().front());
+            if (m && m->typeName() == "Material")
+                out.emplace_back(Path(r->targets().front()), intArray(attributeValue(*child, "indices")));
+            break;
+        }
+    }
+    return out;
+}
+
+Path UsdSceneDelegate::getInstancerId(const Path& id) const {
+    const Entry* e = entry(id);
+    return e ? e->instancer : Path();
+}
+
+std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
+                                                      const Path& prototypeId) const {
+    std::vector<int> out;
+    const Entry* inst = entry(instancerId);
+    const Entry* proto = entry(prototypeId);
+    if (!inst || !proto || proto->instancer != instancerId || !inst->prim) return out;
+    std::vector<int> protoIndices = intArray(attributeValue(*inst->prim, "protoIndices"));
+    std::vector<int> ids = intArray(attributeValue(*inst->prim, "ids"));
+    std::vector<int> invisible = intArray(attributeValue(*inst->prim, "invisibleIds"));
+    std::unordered_set<int> hidden(invisible.begin(), invisible.end());
+    bool useIds = ids.size() == protoIndices.size();  // ids, when authored, name the instances
+    for (size_t i = 0; i < protoIndices.size(); ++i) {
+        if (protoIndices[i] != proto->protoIndex) continue;
+        if (!hidden.empty() && hidden.count(useIds ? ids[i] : int(i))) continue;
+        out.push_back(int(i));
+    }
+    return out;
+}
+
+void UsdSceneDelegate::visitPointInstancer(const usd::Prim& prim, const glm::dmat4& world,
+                                           bool visible, RenderIndex* index) {
+    Path id(prim.path());
+    Entry e;
+    e.prim = &prim;
+    e.type = instancerType();
+    e.world = world;
+    e.visible = visible;
+    _entries[id] = e;
+    const usd::Relationship* rel = prim.relationship("prototypes");
+    if (!rel || rel->targets().empty()) {
+        warn(prim.location().str() + ": " + prim.path(), "PointInstancer has no prototypes");
+        return;
+    }
+    for (size_t k = 0; k < rel->targets().size(); ++k) {
+        const std::string& target = rel->targets()[k];
+        const usd::Prim* proto = _stage.prim(target);
+        if (!proto) {
+            warn(rel->location().str() + ": " + prim.path(), "prototype '" + target + "' does not exist");
+            continue;
+        }
+        // A prototype outside the instancer is also drawn where it is; its instanced copy
+        // needs an id of its own.
+        Path protoId = Path(target).hasPrefix(id) ? Path(target) : id.appendChild("__prototype" + std::to_string(k));
+        visitPrototype(*proto, protoId, glm::dmat4(1.0), visible, id, int(k), index);
+    }
+}
+
+void UsdSceneDelegate::visitPrototype(const usd::Prim& prim, const Path& id, const glm::dmat4& parentRel,
+                                      bool parentVisible, const Path& instancer, int protoIndex,
+                                      RenderIndex* index) {
+    if (!prim.isActive() || prim.isAbstract()) return;
+    std::string purpose = tokenOf(prim, "purpose", _time, "default");
+    if (purpose == "guide" || purpose == "proxy") return;
+    const std::string& type = prim.typeName();
+    if (type == "Material") {
+        visit(prim, glm::dmat4(1.0), true, index);
+        return;
+    }
+    std::string warning;
+    LocalTransform local = computeLocalTransform(prim, _time, &warning);
+    if (!warning.empty()) warn(prim.location().str() + ": " + prim.path(), warning);
+    // Relative to the instancer: the prototype root's own ops and everything below it.
+    glm::dmat4 rel = local.resetsXformStack ? local.matrix : parentRel * local.matrix;
+    bool visible = parentVisible && tokenOf(prim, "visibility", _time, "inherited") != "invisible";
+    if (type == "PointInstancer") {
+        warn(prim.location().str() + ": " + prim.path(), "nested PointInstancers are not supported yet; skipped");
+        return;
+    }
+    bool shape = isImplicitShape(type);
+    if ((type == "Mesh" || type == "Sphere" || shape) && prim.isDefined()) {
+        Entry e;
+        e.prim = &prim;
+        e.type = type == "Sphere" ? tokens::sphere() : tokens::mesh();
+        e.world = rel;
+        e.visible = visible;
+        e.material = resolveMaterialBinding(prim);
+        e.instancer = instancer;
+        e.protoIndex = protoIndex;
+        if ((!shape || prepareShape(prim, &e)) && index->insertRprim(e.type, this, id)) _entries[id] = e;
+    }
+    for (const usd::Prim* child : prim.children())
+        visitPrototype(*child, id.appendChild(child->name()), rel, visible, instancer, protoIndex, index);
+}
+
+void UsdSceneDelegate::growInstancedBounds(
+    const Path& id, const Entry& e, const std::function<void(const glm::dmat4&, const glm::dvec3&)>& grow) const {
+    // The prototype's object-space box, placed by every instance.
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    if (e.type == tokens::sphere()) {
+        double r = getFloat(get(id, tokens::radius())).value_or(1.0f);
+        lo = glm::dvec3(-r), hi = glm::dvec3(r);
+    } else {
+        Value points = get(id, tokens::points());
+        if (auto* pts = getIf<std::vector<glm::vec3>>(points))
+            for (const auto& p : *pts) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+    }
+    if (lo.x > hi.x) return;
+    const Entry* inst = entry(e.instancer);
+    if (!inst) return;
+    Value tv = get(e.instancer, tokens::instanceTranslations());
+    Value rv = get(e.instancer, tokens::instanceRotations());
+    Value sv = get(e.instancer, tokens::instanceScales());
+    const auto* t = getIf<std::vector<glm::vec3>>(tv);
+    const auto* r = getIf<std::vector<glm::vec4>>(rv);
+    const auto* s = getIf<std::vector<glm::vec3>>(sv);
+    if (!t) return;
+    for (int i : getInstanceIndices(e.instancer, id)) {
+        if (size_t(i) >= t->size()) continue;
+        glm::dmat4 m(1.0);
+        if (r && r->size() == t->size()) {
+            glm::dquat q((*r)[size_t(i)].x, (*r)[size_t(i)].y, (*r)[size_t(i)].z, (*r)[size_t(i)].w);
+            if (glm::length(q) > 0.0) m = glm::mat4_cast(glm::normalize(q));
+        }
+        if (s && s->size() == t->size()) m = m * glm::scale(glm::dmat4(1.0), glm::dvec3((*s)[size_t(i)]));
+        m = glm::translate(glm::dmat4(1.0), glm::dvec3((*t)[size_t(i)])) * m;
+        glm::dmat4 full = inst->world * m * e.world;
+        for (int c = 0; c < 8; ++c)
+            grow(full, glm::dvec3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z));
+    }
+}
+
+}  // namespace principled::adapter

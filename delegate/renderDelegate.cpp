@@ -204,10 +204,12 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
+        {"NEE", Token("nee"), Value(1), "next-event estimation (shadow rays to lights); 0: lights found by BSDF sampling only"},
         {"Lobe pruning", Token("lobePruning"), Value(1), "skip BSDF lobes whose weight is below the cutoff"},
         {"VNDF sampling", Token("vndf"), Value(1), "GGX visible-normal sampling (0: classic distribution sampling)"},
         {"Delta roughness", Token("deltaRoughness"), Value(1e-3f), "below this roughness specular is a perfect mirror"},
         {"Legacy specular G", Token("legacySpecularG"), Value(0), "Burley 2012 course-notes G remap (0.5 + 0.5 r)^2"},
+        {"Lobe mask", Token("lobeMask"), Value(31), "diagnostics: BSDF lobes allowed (bits: 1 diffuse, 2 sheen, 4 specular, 8 clearcoat, 16 transmission)"},
         {"Noise threshold", Token("noiseThreshold"), Value(0.0f), "stop sampling a pixel when the relative standard error of its mean is below this; 0 = off"},
         {"Min samples", Token("minSamples"), Value(16), "adaptive sampling: samples before a pixel may stop"},
         {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome"},
@@ -276,10 +278,12 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
     s.mis = intSetting("mis", 1) != 0;
+    s.nee = intSetting("nee", 1) != 0;
     s.bsdf.pruneLobes = intSetting("lobePruning", 1) != 0;
     s.bsdf.vndfSampling = intSetting("vndf", 1) != 0;
     s.bsdf.deltaRoughness = std::clamp(floatSetting("deltaRoughness", 1e-3f), 0.0f, 1.0f);
     s.bsdf.legacySpecularG = intSetting("legacySpecularG", 0) != 0;
+    s.bsdf.lobeMask = bsdf::LobeMask(intSetting("lobeMask", 31)) & ((1u << bsdf::kLobeCount) - 1u);
     auto sampler = getString(renderSetting(Token("sampler")));
     s.sampler = (sampler && *sampler == "independent") ? SamplerKind::Independent : SamplerKind::Sobol;
     return s;

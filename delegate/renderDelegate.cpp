@@ -188,6 +188,42 @@ void EmbreeRenderDelegate::addInstancerInstances() {
         _snapshot.instanceByInstance.resize(_snapshot.geometryByInstance.size(), nullptr);
 }
 
+EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
+    Summary out;
+    for (GeometrySource* g : _param->geometry()) {
+        const GeometryRecord* r = g->record();
+        const auto* ids = g->instanceGeomIds();
+        size_t copies = ids && !ids->empty() ? ids->size() : 1;
+        if (ids && !ids->empty()) ++out.instancers;
+        if (g->instanceId() == RTC_INVALID_GEOMETRY_ID && (!ids || ids->empty())) continue;
+        if (r->kind == GeometryRecord::Kind::Sphere) {
+            ++out.spheres;
+        } else {
+            ++out.meshes;
+            out.triangles += r->triangles.size();
+        }
+        out.instances += copies;
+    }
+    static const char* kinds[] = {"distant", "dome", "sphere", "rect", "disk", "cylinder"};
+    for (const auto& l : _snapshot.lights)
+        if (!_snapshot.usingDefaultLight) ++out.lightsByKind[kinds[int(l.kind)]];
+    static const char* lobeNames[] = {"diffuse", "sheen", "specular", "clearcoat", "transmission"};
+    IntegratorSettings settings = integratorSettings();
+    for (MaterialSource* m : _param->materials()) {
+        const MaterialRecord& rec = m->record();
+        if (rec.program) {
+            out.materialLobes[m->materialId().str()] = "textured";
+            continue;
+        }
+        bsdf::Bsdf b(rec.constant.params, settings.bsdf);
+        std::string lobes;
+        for (int i = 0; i < bsdf::kLobeCount; ++i)
+            if (b.lobes() & (1u << i)) lobes += (lobes.empty() ? "" : "+") + std::string(lobeNames[i]);
+        out.materialLobes[m->materialId().str()] = lobes.empty() ? "none" : lobes;
+    }
+    return out;
+}
+
 AovDescriptor EmbreeRenderDelegate::defaultAovDescriptor(const Token& aovName) const {
     auto info = findAov(aovName.str());
     if (!info) return {};

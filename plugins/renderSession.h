@@ -93,6 +93,7 @@ public:
     std::map<std::string, double> stats() const;
     embree::EmbreeRenderPass* pass() const;
     hd::RenderIndex* index() const { return _index.get(); }
+    const usd::Stage& stage() const { return *_stage; }
     embree::EmbreeRenderDelegate* delegate() const { return _delegate.get(); }
     /// The render buffer of an AOV (nullptr if not bound).
     embree::EmbreeRenderBuffer* buffer(const std::string& aov) const;

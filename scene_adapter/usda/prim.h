@@ -98,6 +98,9 @@ public:
     const Value* metadata(std::string_view key) const;
     const Dictionary& allMetadata() const { return _metadata; }
     const std::vector<std::string>& appliedSchemas() const { return _appliedSchemas; }
+    /// `schema` is applied ("MaterialBindingAPI"); for multiple-apply schemas give the instance
+    /// ("CollectionAPI:lightLink") or just the schema name to match any instance.
+    bool hasAPI(std::string_view schema) const;
     /// Variant set -> the selection used for composition.
     std::map<std::string, std::string> variantSelections() const { return _variantSelections; }
     /// For `instanceable = true` prims: equal keys mean the same composition arcs and variant

@@ -40,6 +40,8 @@ public:
     /// The value at `time`. Finite time: time samples if they win, else the default. NaN
     /// (kDefaultTime): the default if authored, else the earliest sample. Empty Value if none.
     Value get(double time = kDefaultTime) const;
+    /// More than one time sample wins: the value may change over time.
+    bool isTimeVarying() const { return _samples.size() > 1; }
     /// Absolute connection targets "/Prim/Path.inputs:name" in stage namespace.
     const std::vector<std::string>& connections() const { return _connections; }
     /// Attribute metadata (interpolation, elementSize, customData, colorSpace, ...).

@@ -130,6 +130,8 @@ TEST(Stage, TimeRule) {
     auto stage = Stage::openString(kScene, "scene.usda");
     const Attribute* t = stage->prim("/World")->attribute("xformOp:translate");
     EXPECT_EQ(t->timeSamples().size(), 2u);
+    EXPECT_TRUE(t->isTimeVarying());
+    EXPECT_FALSE(stage->prim("/World/mesh")->attribute("points")->isTimeVarying());
     EXPECT_EQ((*t->get(6.0).getTuple())[0], 5.0);                   // interpolated
     EXPECT_EQ((*t->get(-3.0).getTuple())[0], 0.0);                  // held before
     EXPECT_EQ((*t->get(100.0).getTuple())[0], 10.0);                // held after

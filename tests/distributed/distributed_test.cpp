@@ -186,6 +186,17 @@ TEST(Mpi, FramesGoToRanksWholeAndMatchSingleProcessBitForBit) {
     EXPECT_TRUE(identical(readExr(d / "anim.0003.exr"), readExr(d / "one.0003.exr")));
 }
 
+TEST(Mpi, FewerFramesThanRanksSplitEachFrame) {
+    fs::path d = dir() / "fewframes";
+    fs::remove_all(d);
+    Result r = shell(mpirun(4) + render(" --spp 8 --frames 0:1", d / "mpi.exr"));
+    ASSERT_EQ(r.status, 0) << r.output;
+    ASSERT_EQ(shell(render(" --spp 8 --frames 0:1", d / "one.exr")).status, 0);
+    for (const char* f : {"0000", "0001"})
+        expectEquivalent(readExr(d / ("one." + std::string(f) + ".exr")), readExr(d / ("mpi." + std::string(f) + ".exr")), 8,
+                         std::string("frame ") + f);
+}
+
 #endif  // PRINCIPLED_TEST_MPI
 
 TEST(Checkpoint, ResumeEqualsUninterruptedSingleProcess) {

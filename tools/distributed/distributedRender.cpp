@@ -171,13 +171,22 @@ void writeOutputs(host::RenderSession& session, const std::vector<std::string>& 
     }
 }
 
+/// Under mpirun a rank's stderr is a pipe to the launcher; rank 0 usually runs on the node
+/// mpirun was started on, as its child: draw the bar when mpirun's own stderr is a terminal.
+bool launcherOnTerminal() {
+    std::error_code ec;
+    std::string target = fs::read_symlink("/proc/" + std::to_string(getppid()) + "/fd/2", ec).string();
+    return !ec && (target.rfind("/dev/pts/", 0) == 0 || target.rfind("/dev/tty", 0) == 0);
+}
+
 class Job {
 public:
     Job(Comm& comm, const host::SessionOptions& base, std::string scene, std::vector<std::string> outputs,
         bool split, bool quiet, Options options)
         : _comm(comm), _base(base), _scene(std::move(scene)), _outputs(std::move(outputs)),
           _split(split), _quiet(quiet), _opt(std::move(options)),
-          _bar("render", !quiet && comm.rank() == 0) {}
+          _bar("render", !quiet && comm.rank() == 0 && (!comm.distributed() || launcherOnTerminal()),
+               !comm.distributed()) {}
 
     void run();
 
@@ -203,7 +212,7 @@ private:
     Options _opt;
     ProgressBar _bar;
     bool _checked = false;
-    long long _doneBefore = 0, _totalWork = 0;
+    long long _doneBefore = 0, _totalWork = 0, _shown = -1;
     std::vector<long long> _done;  // rank 0: samples per pixel finished by each rank
     std::vector<std::string> _written;  // checkpoints this rank wrote (removed at the end)
     int _checkpointsWritten = 0;
@@ -250,6 +259,8 @@ void Job::serveProgress() {
         _done[size_t(src)] = _comm.recvInt64(src, Comm::kProgress);
     long long sum = 0;
     for (long long d : _done) sum += d;
+    if (sum == _shown) return;
+    _shown = sum;
     _bar.update(double(sum), double(_totalWork),
                 std::to_string(sum) + "/" + std::to_string(_totalWork) + " spp" +
                     (_comm.distributed() ? " over " + std::to_string(_comm.size()) + " ranks" : ""));

@@ -54,6 +54,16 @@ fs::path dir() {
     return d;
 }
 
+// Removes this process's scratch directory after its tests.
+class ScratchCleanup : public ::testing::Environment {
+public:
+    void TearDown() override {
+        std::error_code ec;
+        fs::remove_all(dir(), ec);
+    }
+};
+const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+
 using Image = std::map<std::string, std::vector<float>>;  // channel name -> pixels
 
 Image readExr(const fs::path& path) {

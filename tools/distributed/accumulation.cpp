@@ -60,7 +60,17 @@ Accumulation Accumulation::capture(const host::RenderSession& session) {
 }
 
 bool Accumulation::applyTo(host::RenderSession& session) const {
-    if (!sameShape(capture(session))) return false;
+    // Same shape as the session's buffers, checked without copying them.
+    size_t n = size_t(width) * height;
+    if (width != session.width() || height != session.height() || aovs.size() != session.aovs().size() ||
+        lumSum.size() != n || lumSqSum.size() != n || pixelSamples.size() != n)
+        return false;
+    for (const auto& a : aovs) {
+        const auto* buf = session.buffer(a.name);
+        if (!buf || buf->isMultiSampled() != a.multiSampled || buf->sums().size() != a.sums.size() ||
+            buf->ints().size() != a.ints.size() || buf->counts().size() != a.counts.size())
+            return false;
+    }
     embree::EmbreeRenderPass::PixelStats stats{lumSum, lumSqSum, pixelSamples};
     if (!session.pass()->setPixelStats(stats, completedSamples)) return false;
     for (const auto& a : aovs) {

@@ -30,7 +30,7 @@ total=$(wc -l < "$out")
 minp=$(awk '{print $NF}' "$out" | sort -g | head -1)
 fails=$(awk -v n="$TESTS" 'BEGIN{a=1-(0.99)^(1/n)} {if ($NF < a) print}' "$out")
 echo "runs $total, smallest p-value $minp"
-echo "smallest five:"; sort -g -k2 <(awk '{print $0, $NF}' "$out" | awk '{print $NF, $0}') | head -5 | cut -d' ' -f2-
+echo "smallest five:"; awk '{print $NF, $0}' "$out" | sort -g | head -5 | cut -d' ' -f2-
 [[ -z ${KEEP:-} ]] && rm -f "$out"
 if [[ -n $fails ]]; then echo "failures:"; echo "$fails"; exit 1; fi
 echo "all passed"

@@ -7,7 +7,7 @@ set -uo pipefail
 BIN=${1:-build/bin/principled}
 JOBS=${2:-2}
 TESTS=${TESTS:-1280}
-out=$(mktemp)
+out=${KEEP:-$(mktemp)}  # KEEP=file keeps the per-run results
 for r in 0.05 0.2 0.5 1; do
  for a in 0 0.8; do
   for m in 0 1; do
@@ -30,6 +30,7 @@ total=$(wc -l < "$out")
 minp=$(awk '{print $NF}' "$out" | sort -g | head -1)
 fails=$(awk -v n="$TESTS" 'BEGIN{a=1-(0.99)^(1/n)} {if ($NF < a) print}' "$out")
 echo "runs $total, smallest p-value $minp"
-if [[ -n $fails ]]; then echo "failures:"; echo "$fails"; rm -f "$out"; exit 1; fi
+echo "smallest five:"; awk '{print $NF, $0}' "$out" | sort -g | head -5 | cut -d' ' -f2-
+[[ -z ${KEEP:-} ]] && rm -f "$out"
+if [[ -n $fails ]]; then echo "failures:"; echo "$fails"; exit 1; fi
 echo "all passed"
-rm -f "$out"

@@ -50,6 +50,7 @@ struct Hit {
     glm::vec3 ns;  ///< shading normal, same hemisphere as ng
     const GeometryRecord* record;
     float t = 0.0f;   ///< distance along the (unit) ray
+    bool backface = false;  ///< the ray hit the back of the surface (inside a closed object)
     const InstanceRecord* instance = nullptr;  ///< PointInstancer placement, else record's
     int element = 0;  ///< authored face (meshes), 0 for implicit surfaces
     unsigned triangle = 0;
@@ -110,8 +111,10 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     if (!(lg > 0.0f) || !std::isfinite(lg)) return false;  // degenerate triangle
     ng /= lg;
     ns = (ls > 0.0f && std::isfinite(ls)) ? ns / ls : ng;
-    // Shade both sides: face the normals toward the incoming ray.
-    if (glm::dot(ng, ray.direction) > 0.0f) ng = -ng;
+    // Shade both sides: face the normals toward the incoming ray (remembering whether the ray
+    // arrived from behind, which solid transmissive materials need to know).
+    hit->backface = glm::dot(ng, ray.direction) > 0.0f;
+    if (hit->backface) ng = -ng;
     if (glm::dot(ns, ng) < 0.0f) ns = -ns;
     hit->ng = ng;
     hit->ns = ns;
@@ -320,7 +323,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // A shading normal that puts the viewer below the surface is replaced by the geometric
         // one (no black rims); the BSDF then sees a consistent upper hemisphere.
         glm::vec3 ns = glm::dot(hit.ns, wo) > 1e-4f ? hit.ns : hit.ng;
-        if (mat->hasNormalMap) {
+        // Solid dielectrics need the outward normal: inside the object the BSDF sees
+        // wo.z < 0 and refracts with the inverse index of refraction.
+        bool solidTransmission = mat->params.specTrans > 0.0f && !mat->params.thin;
+        if (solidTransmission && hit.backface) ns = -ns;
+        if (mat->hasNormalMap && !(solidTransmission && hit.backface)) {
             Frame tf = tangentFrame(hit, ns);
             glm::vec3 mapped = glm::normalize(tf.toWorld(mat->tangentNormal));
             if (glm::dot(mapped, wo) > 1e-4f && std::isfinite(mapped.x)) ns = mapped;
@@ -376,7 +383,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (!s || !(s->pdf > 0.0f)) break;
         glm::vec3 wi = frame.toWorld(s->wi);
         // Reject directions on the wrong side of the geometric surface (light leaks).
-        bool transmit = s->wi.z < 0.0f;
+        bool transmit = s->wi.z * woLocal.z < 0.0f;  // opposite sides of the shading surface
         if ((glm::dot(wi, hit.ng) > 0.0f) == transmit) break;
         beta *= s->f / s->pdf;
         if (!finite(beta)) {
@@ -385,7 +392,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             return out;
         }
         if (depth == 0) pathLobe = static_cast<int>(s->lobe);
-        prevDelta = s->delta;
+        // NEE only samples the hemisphere facing the viewer: a transmitted direction could not
+        // have come from it, so lights it reaches count fully (treated like a delta bounce).
+        prevDelta = s->delta || transmit;
         prevBsdfPdf = s->pdf;
         prevNg = hit.ng;
         ray.origin = offsetOrigin(hit.p, hit.ng, wi);

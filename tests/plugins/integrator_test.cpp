@@ -195,3 +195,19 @@ TEST(Integrator, TransformEditMovesTheInstanceWithoutRebuildingTheMesh) {
     }
     EXPECT_EQ(s->stats()["blasBuilds"], after["blasBuilds"] + 1);
 }
+
+TEST(Integrator, SmoothGlassInAWhiteFurnaceIsOne) {
+    // A smooth dielectric neither absorbs nor emits: Fresnel reflection plus transmission is 1
+    // at every bounce, inside (total internal reflection) and out. Getting the inside right
+    // needs the outward normal on back-face hits.
+    std::string glass = kFurnace;
+    glass.replace(glass.find("color3f inputs:diffuseColor = (1, 1, 1)"), 39,
+                  "color3f inputs:diffuseColor = (1, 1, 1)\n        float inputs:roughness = 0\n        float inputs:specTrans = 1");
+    host::SessionOptions o;
+    o.width = o.height = 24;
+    o.samplesPerPixel = 32;
+    o.maxDepth = 64;
+    auto s = run(glass, o);
+    Stats st = hitStats(*s);
+    EXPECT_NEAR(st.mean, 1.0, 0.01);
+}

@@ -40,8 +40,16 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
     const auto* t = getIf<std::vector<glm::vec3>>(tv);
     const auto* r = getIf<std::vector<glm::vec4>>(rv);
     const auto* s = getIf<std::vector<glm::vec3>>(sv);
-    size_t count = t ? t->size() : 0;
-    if (!t && !indices.empty())
+    // Whole matrices per instance (native USD instancing), applied before scale.
+    Value xv = delegate->get(instancerId, tokens::instanceTransforms());
+    const auto* x = getIf<std::vector<glm::dmat4>>(xv);
+    size_t count = t ? t->size() : x ? x->size() : 0;
+    if (x && x->size() != count) {
+        warnings->push_back("instanceTransforms has the wrong length; ignored");
+        x = nullptr;
+    }
+    if (t && t->size() != count) t = nullptr;
+    if (!t && !x && !indices.empty())
         warnings->push_back("instancer has no positions; its instances are not drawn");
     if (r && r->size() != count) {
         warnings->push_back("orientations has " + std::to_string(r->size()) + " values for " +
@@ -60,9 +68,10 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
         if (i < 0 || size_t(i) >= count) continue;
         InstanceRecord rec;
         rec.instanceIndex = i;
-        rec.objectToWorld = instanceTransform(instancer, (*t)[size_t(i)],
+        glm::mat4 local = x ? glm::mat4((*x)[size_t(i)]) * prototypeTransform : prototypeTransform;
+        rec.objectToWorld = instanceTransform(instancer, t ? (*t)[size_t(i)] : glm::vec3(0.0f),
                                               r ? (*r)[size_t(i)] : glm::vec4(1, 0, 0, 0),
-                                              s ? (*s)[size_t(i)] : glm::vec3(1.0f), prototypeTransform);
+                                              s ? (*s)[size_t(i)] : glm::vec3(1.0f), local);
         const glm::mat4& m = rec.objectToWorld;
         bool finite = true;
         for (int c = 0; c < 4; ++c)

@@ -67,6 +67,10 @@ Value UsdSceneDelegate::shapeOrInstancerValue(const Entry& e, const Token& key) 
         if (key == tokens::normals()) return Value(e.shape->normals);
         return {};
     }
+    if (e.type == instancerType() && e.instanceXforms) {
+        if (key == tokens::instanceTransforms()) return Value(*e.instanceXforms);
+        return {};
+    }
     if (e.type == instancerType()) {
         if (key == tokens::instanceTranslations()) return attributeValue(*e.prim, "positions");
         if (key == tokens::instanceRotations()) return attributeValue(*e.prim, "orientations");
@@ -107,6 +111,11 @@ std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
     const Entry* inst = entry(instancerId);
     const Entry* proto = entry(prototypeId);
     if (!inst || !proto || proto->instancer != instancerId || !inst->prim) return out;
+    if (inst->instanceXforms) {  // instanceable prims: every (visible) instance
+        out.resize(inst->instanceXforms->size());
+        for (size_t i = 0; i < out.size(); ++i) out[i] = int(i);
+        return out;
+    }
     std::vector<int> protoIndices = intArray(attributeValue(*inst->prim, "protoIndices"));
     std::vector<int> ids = intArray(attributeValue(*inst->prim, "ids"));
     std::vector<int> invisible = intArray(attributeValue(*inst->prim, "invisibleIds"));
@@ -118,6 +127,31 @@ std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
         out.push_back(int(i));
     }
     return out;
+}
+
+bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& world, bool visible,
+                                     RenderIndex* index) {
+    const std::string& type = prim.typeName();
+    if (type == "Mesh" || type == "Sphere" || type == "PointInstancer" || isImplicitShape(type))
+        return false;  // an instanceable gprim is simply drawn
+    // Instances of one prototype share its BLAS unless an inherited binding differs.
+    std::string key = prim.instanceKey() + "|" + resolveMaterialBinding(prim).str();
+    auto it = _instanceGroups.find(key);
+    if (it == _instanceGroups.end()) {
+        // The first instance's subtree is the prototype; its rprims keep their own paths and
+        // are drawn only through a synthetic instancer placing every instance.
+        Path instancer = Path("/__principled/instancers").appendChild("i" + std::to_string(_instanceGroups.size()));
+        Entry e;
+        e.prim = &prim;
+        e.type = instancerType();
+        e.instanceXforms = std::make_shared<std::vector<glm::dmat4>>();
+        _entries[instancer] = e;
+        it = _instanceGroups.emplace(key, instancer).first;
+        for (const usd::Prim* child : prim.children())
+            visitPrototype(*child, Path(child->path()), glm::dmat4(1.0), true, instancer, 0, index);
+    }
+    if (visible) _entries[it->second].instanceXforms->push_back(world);
+    return true;
 }
 
 void UsdSceneDelegate::visitPointInstancer(const usd::Prim& prim, const glm::dmat4& world,
@@ -200,6 +234,12 @@ void UsdSceneDelegate::growInstancedBounds(
     if (lo.x > hi.x) return;
     const Entry* inst = entry(e.instancer);
     if (!inst) return;
+    if (inst->instanceXforms) {
+        for (const glm::dmat4& x : *inst->instanceXforms)
+            for (int c = 0; c < 8; ++c)
+                grow(x * e.world, glm::dvec3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z));
+        return;
+    }
     Value tv = get(e.instancer, tokens::instanceTranslations());
     Value rv = get(e.instancer, tokens::instanceRotations());
     Value sv = get(e.instancer, tokens::instanceScales());

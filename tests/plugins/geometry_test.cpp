@@ -204,3 +204,41 @@ TEST(Geometry, HundredThousandInstancesShareOneBlas) {
     EXPECT_LT(seconds, 5.0);
     std::printf("100k instances: parse + sync + 16x16x1 render in %.3f s\n", seconds);
 }
+
+TEST(Geometry, InstanceablePrimsShareOnePrototypeBlas) {
+    Rendered r = render(R"(
+class Xform "_Ball"
+{
+    def Sphere "Ball" { double radius = 0.4 }
+}
+def Xform "A" (instanceable = true
+    prepend references = </_Ball>)
+{
+    double3 xformOp:translate = (-1.2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "B" (instanceable = true
+    prepend references = </_Ball>)
+{
+    double3 xformOp:translate = (1.2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "C" (instanceable = true
+    prepend references = </_Ball>)
+{
+    token visibility = "invisible"
+    double3 xformOp:translate = (0, 1.2, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)",
+                        64);
+    int y = r.py(0.0);
+    int a = r.id("primId", r.px(-1.2), y);
+    EXPECT_GE(a, 0);
+    EXPECT_EQ(r.id("primId", r.px(1.2), y), a);  // B's hits report the prototype rprim (A's)
+    EXPECT_EQ(r.id("instanceId", r.px(-1.2), y), 0);
+    EXPECT_EQ(r.id("instanceId", r.px(1.2), y), 1);
+    EXPECT_EQ(r.id("primId", r.px(0.0), r.py(1.2)), -1);  // invisible instance
+    EXPECT_EQ(r.id("primId", r.px(0.0), y), -1);          // nothing at the prototype's origin
+    EXPECT_EQ(r.session->stats()["blasBuilds"], 1.0);
+}

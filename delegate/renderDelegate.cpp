@@ -120,9 +120,11 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
 
 void EmbreeRenderDelegate::addInstancerInstances() {
     // PointInstancer instances: their geomIDs map to the prototype's record plus a placement.
+    long count = 0;
     for (GeometrySource* g : _param->geometry()) {
         const std::vector<unsigned>* ids = g->instanceGeomIds();
         if (!ids || ids->empty()) continue;
+        count += long(ids->size());
         const std::vector<InstanceRecord>& recs = *g->instanceRecords();
         unsigned top = *std::max_element(ids->begin(), ids->end());
         if (top >= _snapshot.geometryByInstance.size())
@@ -136,6 +138,7 @@ void EmbreeRenderDelegate::addInstancerInstances() {
     }
     if (!_snapshot.instanceByInstance.empty())
         _snapshot.instanceByInstance.resize(_snapshot.geometryByInstance.size(), nullptr);
+    _instances = count;
 }
 
 AovDescriptor EmbreeRenderDelegate::defaultAovDescriptor(const Token& aovName) const {
@@ -248,6 +251,7 @@ std::map<std::string, double> EmbreeRenderDelegate::renderStats() const {
         {"defaultLight", _snapshot.usingDefaultLight ? 1.0 : 0.0},
         {"lights", double(_snapshot.lights.size())},
         {"materials", double(_snapshot.materials.size())},
+        {"instances", double(_instances.load())},  // PointInstancer / instanceable instances
     };
 }
 

@@ -170,6 +170,7 @@ def PointInstancer "Inst"
     EXPECT_EQ(r.id("primId", r.px(0.3), r.py(1.2)), -1);
     auto stats = r.session->stats();
     EXPECT_EQ(stats["blasBuilds"], 2.0);  // one per prototype rprim
+    EXPECT_EQ(stats["instances"], 3.0);   // 4 minus the invisible one
 }
 
 TEST(Geometry, HundredThousandInstancesShareOneBlas) {
@@ -241,4 +242,24 @@ def Xform "C" (instanceable = true
     EXPECT_EQ(r.id("primId", r.px(0.0), r.py(1.2)), -1);  // invisible instance
     EXPECT_EQ(r.id("primId", r.px(0.0), y), -1);          // nothing at the prototype's origin
     EXPECT_EQ(r.session->stats()["blasBuilds"], 1.0);
+}
+
+TEST(Geometry, UsdWgPrimitivesRender) {
+    std::string dir = std::string(PRINCIPLED_SOURCE_DIR) +
+                      "/../shared/usd-wg/test_assets/schemaTests/usdGeom/primitives";
+    for (const char* name : {"cube", "cylinder", "cone", "capsule", "sphere", "all_primitives"}) {
+        SCOPED_TRACE(name);
+        host::SessionOptions o;
+        o.width = o.height = 32;
+        o.samplesPerPixel = 2;
+        auto s = host::RenderSession::openFile(dir + "/" + name + ".usda", o);
+        while (!s->step()) {
+        }
+        int hits = 0;
+        for (int i = 0; i < 32 * 32; ++i) {
+            for (int k = 0; k < 4; ++k) ASSERT_TRUE(std::isfinite(s->color()[4 * i + k]));
+            hits += s->color()[4 * i + 3] > 0.0f;
+        }
+        EXPECT_GT(hits, 20);
+    }
 }

@@ -110,13 +110,6 @@ void InstanceSet::rebuild(RTCDevice device, RTCScene top, RTCScene blas, void* u
     });
 }
 
-void InstanceSet::setScene(RTCScene blas) {
-    for (RTCGeometry g : _geoms) {
-        rtcSetGeometryInstancedScene(g, blas);
-        rtcCommitGeometry(g);
-    }
-}
-
 void InstanceSet::release() {
     for (size_t i = 0; i < _geoms.size(); ++i) {
         rtcDetachGeometry(_top, _geomIds[i]);

@@ -3,10 +3,10 @@
 // on wo only, and combines them into the one-sample mixture (eval, pdf, sample agree exactly).
 #include "bsdf/bsdf.h"
 
+#include <bit>
+
 #include "bsdf/disney.h"
 #include "bsdf/ue4.h"
-
-#include <bit>
 
 namespace principled::bsdf {
 
@@ -133,6 +133,7 @@ std::optional<BsdfSample> Bsdf::sample(const glm::vec3& woIn, float uLobe,
         cdf += v.prob[k];
     }
     if (pick < 0) return std::nullopt;
+    // 0.99999994: the largest float below 1, keeping the remapped number in [0, 1).
     float uSub = std::clamp((uLobe - cdf) / v.prob[pick], 0.0f, 0.99999994f);
     std::optional<LobeSample> ls = withLobe(
         _set, v.inside, Lobe(pick), [&](const auto& lobe) { return lobe.sample(v.wo, u, uSub); });

@@ -21,7 +21,7 @@ AlbedoResult directionalAlbedo(const Bsdf& bsdf, float mu, int samples, uint64_t
     int n = side * side;
     for (int k = 0; k < n; ++k) {
         glm::vec2 u((float(k % side) + rng.uniform()) / side, (float(k / side) + rng.uniform()) / side);
-        u = glm::min(u, glm::vec2(0.99999994f));
+        u = glm::min(u, glm::vec2(0.99999994f));  // largest float below 1
         auto s = bsdf.sample(wo, rng.uniform(), u);
         if (!s || !(s->pdf > 0.0f)) continue;
         glm::dvec3 w = glm::dvec3(s->f) / double(s->pdf);

@@ -33,6 +33,9 @@ const std::vector<AovInfo>& allAovs() {
 std::optional<AovInfo> findAov(const std::string& name) {
     for (const auto& a : allAovs())
         if (name == a.name) return a;
+    if (name.rfind("primvars:", 0) == 0 && name.size() > 9)
+        return AovInfo{AovKind::Primvar, "primvars:", hd::Format::Float32Vec3, false, 0.0f,
+                       "a primvar at the first hit, padded to 3 components"};
     return std::nullopt;
 }
 

@@ -13,7 +13,8 @@ namespace principled::embree {
 enum class AovKind {
     Color, Alpha, Depth, CameraDepth, Position, Normal, Neye, Albedo,
     Diffuse, Sheen, Specular, Clearcoat, Transmission, Emission,
-    PrimId, InstanceId, ElementId, MaterialId, SampleCount, Variance
+    PrimId, InstanceId, ElementId, MaterialId, SampleCount, Variance,
+    Primvar  ///< "primvars:NAME": the primvar interpolated at the first hit (up to 3 components)
 };
 
 struct AovInfo {
@@ -27,7 +28,7 @@ struct AovInfo {
 
 /// Every AOV, in the order `--aov all` writes them.
 const std::vector<AovInfo>& allAovs();
-/// Looks an AOV up by name ("color", "primId"...).
+/// Looks an AOV up by name ("color", "primId", "primvars:st"...).
 std::optional<AovInfo> findAov(const std::string& name);
 
 }  // namespace principled::embree

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "delegate/hd/token.h"
+#include "delegate/lightSampling.h"
 
 namespace principled::embree {
 namespace {
@@ -37,19 +38,6 @@ float powerHeuristic(float a, float b) {
     return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 
-// Malley's method: cosine-weighted direction about +z; pdf = cos(theta) / pi.
-glm::vec3 cosineHemisphere(const glm::vec2& u) {
-    float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x))};
-}
-
-// Uniform direction in the cone of half-angle acos(cosMax) about +z; pdf = 1/(2 pi (1-cosMax)).
-glm::vec3 uniformCone(const glm::vec2& u, float cosMax) {
-    float c = 1.0f - u.x * (1.0f - cosMax);
-    float s = std::sqrt(std::max(0.0f, 1.0f - c * c)), phi = 2.0f * kPi * u.y;
-    return {s * std::cos(phi), s * std::sin(phi), c};
-}
-
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -61,6 +49,7 @@ struct Hit {
     glm::vec3 ng;  ///< geometric normal, facing the incoming ray
     glm::vec3 ns;  ///< shading normal, same hemisphere as ng
     const GeometryRecord* record;
+    float t = 0.0f;   ///< distance along the (unit) ray
     const InstanceRecord* instance = nullptr;  ///< PointInstancer placement, else record's
     int element = 0;  ///< authored face (meshes), 0 for implicit surfaces
     unsigned triangle = 0;
@@ -87,6 +76,7 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     if (inst >= scene.geometryByInstance.size() || !scene.geometryByInstance[inst]) return false;
     const GeometryRecord& rec = *scene.geometryByInstance[inst];
     hit->record = &rec;
+    hit->t = rh.ray.tfar;
     // PointInstancer instances share the prototype's record but have their own placement.
     const InstanceRecord* placed =
         inst < scene.instanceByInstance.size() ? scene.instanceByInstance[inst] : nullptr;
@@ -219,7 +209,6 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             out.lobes[pathLobe] += c;
     };
     const auto& lights = _scene.lights;
-    const float lightPick = lights.empty() ? 0.0f : 1.0f / static_cast<float>(lights.size());
     glm::vec3 L(0.0f), beta(1.0f);
     Ray ray = cameraRay;
     bool prevDelta = true;     // the camera "lobe" is a delta: no MIS on direct hits
@@ -230,26 +219,37 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     for (int depth = 0;; ++depth) {
         Hit hit;
         ++out.rays;
-        if (!intersect(_scene, ray, &hit)) {
-            // Escaped: add the lights one could see along this direction, MIS-weighted
-            // against the light sampling that would also have found them.
+        if (_settings.recorder) _settings.recorder->record(ray.origin, ray.direction, ray.tnear, ray.tfar, false);
+        bool found = intersect(_scene, ray, &hit);
+        // Emitters this ray reaches, MIS-weighted against the light sampling that would also
+        // have found them. Without MIS, lights that NEE samples are counted only by NEE
+        // (weight 0 here), except after a delta bounce, which NEE cannot follow; directions
+        // NEE cannot produce (pdf 0, e.g. below the surface) always count fully.
+        auto addEmitter = [&](const glm::vec3& Le, float lightPdf) {
+            float w = (prevDelta || lightPdf <= 0.0f)
+                          ? 1.0f
+                          : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
+            glm::vec3 c = beta * Le * w;
+            if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
+                c *= _settings.clampIndirect / maxComponent(c);
+            credit(c);
+        };
+        float tHit = found ? hit.t : kInf;
+        for (const LightRecord& light : lights) {
+            if (!isAreaLight(light) || (depth == 0 && !light.visibleToCamera)) continue;
+            glm::vec3 Le;
+            float pdf;
+            if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf))
+                addEmitter(Le, pdf * light.pickProbability);
+        }
+        if (!found) {
             for (const LightRecord& light : lights) {
-                glm::vec3 Le(0.0f);
-                float lightPdf = 0.0f;
-                if (light.kind == LightRecord::Kind::Dome) {
-                    if (depth == 0 && !_settings.domeVisible) continue;
-                    Le = light.radiance;
-                    lightPdf = lightPick * std::max(0.0f, glm::dot(prevNg, ray.direction)) / kPi;
-                } else if (light.cosHalfAngle < 1.0f && depth > 0 &&
-                           glm::dot(ray.direction, -light.direction) >= light.cosHalfAngle) {
-                    Le = light.radiance;
-                    lightPdf = lightPick / (2.0f * kPi * (1.0f - light.cosHalfAngle));
-                }
-                float w = prevDelta ? 1.0f : powerHeuristic(prevBsdfPdf, lightPdf);
-                glm::vec3 c = beta * Le * w;
-                if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
-                    c *= _settings.clampIndirect / maxComponent(c);
-                credit(c);
+                if (isAreaLight(light)) continue;
+                if (depth == 0 && (light.kind == LightRecord::Kind::Distant || !_settings.domeVisible)) continue;
+                glm::vec3 Le;
+                float pdf;
+                if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf))
+                    addEmitter(Le, pdf * light.pickProbability);
             }
             break;
         }
@@ -295,6 +295,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             f.instanceId = hit.instance ? hit.instance->instanceIndex : 0;
             f.elementId = hit.element;
             f.materialId = materialIndex;
+            for (size_t i = 0; i < std::min<size_t>(_settings.aovPrimvars.size(), f.primvars.size()); ++i) {
+                float v[3] = {0.0f, 0.0f, 0.0f};
+                context.primvar(_settings.aovPrimvars[i], 3, v);
+                f.primvars[i] = glm::vec3(v[0], v[1], v[2]);
+            }
         }
 
         glm::vec3 wo = -ray.direction;
@@ -316,41 +321,29 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (!lights.empty() && !bsdf.isDeltaOnly()) {
             float ul = sampler.next1D();
             glm::vec2 u = sampler.next2D();
-            size_t li = std::min(lights.size() - 1, size_t(ul * float(lights.size())));
-            const LightRecord& light = lights[li];
-            glm::vec3 wi, Li;
-            float lightPdf = 0.0f;
-            bool deltaLight = false;
-            if (light.kind == LightRecord::Kind::Dome) {
-                Frame gframe(hit.ng);
-                glm::vec3 d = cosineHemisphere(u);
-                wi = gframe.toWorld(d);
-                lightPdf = d.z / kPi;
-                Li = light.radiance;
-            } else if (light.cosHalfAngle >= 1.0f) {
-                wi = -light.direction;
-                Li = light.irradiance;
-                lightPdf = 1.0f;
-                deltaLight = true;
-            } else {
-                Frame lframe(-light.direction);
-                wi = lframe.toWorld(uniformCone(u, light.cosHalfAngle));
-                lightPdf = 1.0f / (2.0f * kPi * (1.0f - light.cosHalfAngle));
-                Li = light.radiance;
-            }
-            if (lightPdf > 0.0f && glm::dot(wi, hit.ng) > 0.0f) {
+            const auto& cdf = _scene.lightCdf;
+            size_t li = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, ul) - (cdf.begin() + 1));
+            li = std::min(li, lights.size() - 1);
+            const float lightPick = lights[li].pickProbability;
+            LightSample ls;
+            if (sampleLight(lights[li], hit.p, hit.ng, u, &ls) && ls.pdf > 0.0f &&
+                glm::dot(ls.wi, hit.ng) > 0.0f) {
                 float bsdfPdf = 0.0f;
                 bsdf::LobeValues perLobe;
-                glm::vec3 f = bsdf.eval(woLocal, frame.toLocal(wi), &bsdfPdf,
+                glm::vec3 f = bsdf.eval(woLocal, frame.toLocal(ls.wi), &bsdfPdf,
                                         depth == 0 ? &perLobe : nullptr);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
-                    if (!occluded(_scene, offsetOrigin(hit.p, hit.ng, wi), wi, kInf)) {
-                        float w = deltaLight ? 1.0f : powerHeuristic(lightPdf * lightPick, bsdfPdf);
-                        glm::vec3 scale = beta * Li * (w / (lightPdf * lightPick));
+                    glm::vec3 shadowOrigin = offsetOrigin(hit.p, hit.ng, ls.wi);
+                    // Stop just short of a sampled point on an area light.
+                    float tfar = ls.distance >= kInf ? kInf
+                                                      : std::max(0.0f, glm::length(hit.p + ls.distance * ls.wi - shadowOrigin) * (1.0f - 1e-4f));
+                    if (_settings.recorder) _settings.recorder->record(shadowOrigin, ls.wi, 0.0f, tfar, true);
+                    if (!occluded(_scene, shadowOrigin, ls.wi, tfar)) {
+                        float w = (ls.delta || !_settings.mis) ? 1.0f : powerHeuristic(ls.pdf * lightPick, bsdfPdf);
+                        glm::vec3 scale = beta * ls.Li * (w / (ls.pdf * lightPick));
                         glm::vec3 c = scale * f;
-                        if (depth > 0 && _settings.clampIndirect > 0.0f &&
-                            maxComponent(c) > _settings.clampIndirect)
+                        if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                             c *= _settings.clampIndirect / maxComponent(c);
                         if (depth == 0) {
                             for (int i = 0; i < bsdf::kLobeCount; ++i) out.lobes[i] += scale * perLobe[i];

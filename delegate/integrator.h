@@ -3,11 +3,16 @@
 // sampling (power heuristic) over the scene snapshot's lights.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <vector>
+
+#include "delegate/hd/token.h"
 
 #include <glm/glm.hpp>
 
 #include "bsdf/bsdf.h"
+#include "delegate/rayRecorder.h"
 #include "delegate/sampler.h"
 #include "delegate/sceneData.h"
 
@@ -15,6 +20,9 @@ namespace principled::embree {
 
 struct IntegratorSettings {
     SamplerKind sampler = SamplerKind::Sobol;
+    bool mis = true;          ///< false: lights are found by next-event estimation only
+    RayRecorder* recorder = nullptr;  ///< receives every ray cast (bench/ replay); usually null
+    std::vector<hd::Token> aovPrimvars;  ///< primvars the first hit records (at most 4)
     int maxDepth = 8;         ///< path vertices after the camera hit (0 = direct light only)
     int rouletteDepth = 3;    ///< Russian roulette starts at this depth
     float clampIndirect = 0;  ///< max channel of an indirect contribution; 0 = off
@@ -37,6 +45,7 @@ struct FirstHit {
     glm::vec3 normal{0.0f};      ///< world-space shading normal, facing the camera
     glm::vec3 albedo{0.0f};      ///< base colour of the material
     int primId = -1, instanceId = -1, elementId = -1, materialId = -1;
+    std::array<glm::vec3, 4> primvars{};  ///< IntegratorSettings::aovPrimvars at the hit
 };
 
 /// What a camera path returns for one sample. radiance = sum(lobes) + emission: the light that

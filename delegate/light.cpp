@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <OpenImageIO/imageio.h>
+
+#include "delegate/colorTemperature.h"
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
 
@@ -19,6 +22,59 @@ glm::vec3 finiteNonNegative(glm::vec3 v) {
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(v[i]) || v[i] < 0.0f) v[i] = 0.0f;
     return v;
+}
+
+glm::vec3 point(const glm::dmat4& m, double x, double y, double z) {
+    return glm::vec3(m * glm::dvec4(x, y, z, 1.0));
+}
+glm::vec3 vector(const glm::dmat4& m, double x, double y, double z) {
+    return glm::vec3(m * glm::dvec4(x, y, z, 0.0));
+}
+
+// Reads a lat-long image as linear RGB; empty on failure (with *error).
+std::shared_ptr<EnvironmentMap> loadEnvironment(const std::string& path, std::string* error) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        *error = "cannot read dome texture '" + path + "': " + OIIO::geterror();
+        return nullptr;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || size_t(spec.width) * spec.height > (size_t(1) << 26)) {
+        *error = "dome texture '" + path + "' has an unsupported size";
+        return nullptr;
+    }
+    int channels = spec.nchannels;
+    std::vector<float> px(size_t(spec.width) * spec.height * channels);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, px.data())) {
+        *error = "cannot read dome texture '" + path + "': " + in->geterror();
+        return nullptr;
+    }
+    // 8-bit images are display-encoded (sRGB); float images are linear.
+    bool srgb = spec.format.basetype == OIIO::TypeDesc::UINT8;
+    auto decode = [&](float v) {
+        if (!std::isfinite(v) || v < 0.0f) return 0.0f;
+        if (!srgb) return v;
+        return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);  // IEC 61966-2-1
+    };
+    auto env = std::make_shared<EnvironmentMap>();
+    env->width = spec.width;
+    env->height = spec.height;
+    env->texels.resize(size_t(spec.width) * spec.height);
+    std::vector<float> weights(env->texels.size());
+    for (int y = 0; y < spec.height; ++y) {
+        // Pharr et al. 2023, PBR 4th ed. §12.5.2: weight texels by sin(theta) of their row.
+        float sinTheta = std::sin(kPi * (y + 0.5f) / spec.height);
+        for (int x = 0; x < spec.width; ++x) {
+            size_t i = size_t(y) * spec.width + x;
+            const float* p = &px[i * channels];
+            glm::vec3 c = channels >= 3 ? glm::vec3(decode(p[0]), decode(p[1]), decode(p[2]))
+                                        : glm::vec3(decode(p[0]));
+            env->texels[i] = c;
+            weights[i] = (0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z) * sinTheta;
+        }
+    }
+    env->distribution = Distribution2D(weights, spec.width, spec.height);
+    return env;
 }
 
 }  // namespace
@@ -39,16 +95,19 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
         // USD light units: L = color * intensity * 2^exposure (UsdLux LightAPI).
         glm::vec3 color = getVec3(delegate->getLightParamValue(id(), Token("color")))
                               .value_or(glm::vec3(1.0f));
+        if (scalar("enableColorTemperature", 0.0f) > 0.5f)
+            color *= blackbodyColor(scalar("colorTemperature", 6500.0f));
         float intensity = scalar("intensity", _type == tokens::distantLight() ? 50000.0f : 1.0f);
         float exposure = scalar("exposure", 0.0f);
         bool normalize = scalar("normalize", 0.0f) > 0.5f;
         glm::vec3 scaled = finiteNonNegative(color * intensity * std::exp2(exposure));
         glm::dmat4 xf = delegate->getTransform(id());
+        _record = LightRecord();
         if (_type == tokens::distantLight()) {
             _record.kind = LightRecord::Kind::Distant;
-            glm::dvec3 d = glm::dmat3(xf) * glm::dvec3(0.0, 0.0, -1.0);
-            double len = glm::length(d);
-            _record.direction = len > 0.0 ? glm::vec3(d / len) : glm::vec3(0, 0, -1);
+            glm::vec3 d = vector(xf, 0.0, 0.0, -1.0);
+            float len = glm::length(d);
+            _record.direction = len > 0.0f ? d / len : glm::vec3(0, 0, -1);
             float angle = std::clamp(scalar("angle", 0.53f), 0.0f, 180.0f);
             float half = 0.5f * angle * kPi / 180.0f;
             _record.cosHalfAngle = std::cos(half);
@@ -68,10 +127,71 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 _record.radiance = scaled;
                 _record.irradiance = scaled * solid;
             }
-        } else {
+        } else if (_type == tokens::domeLight()) {
             _record.kind = LightRecord::Kind::Dome;
             _record.radiance = scaled;
             _record.irradiance = scaled * kPi;
+            auto file = getString(delegate->getLightParamValue(id(), Token("texture:file")));
+            if (file && !file->empty()) {
+                auto format = getString(delegate->getLightParamValue(id(), Token("texture:format")));
+                if (format && *format != "automatic" && *format != "latlong")
+                    param->warn(id(), "dome texture format '" + *format + "' is not supported; read as latlong");
+                std::string error;
+                if (auto env = loadEnvironment(*file, &error)) {
+                    glm::mat3 r(xf);
+                    for (int c = 0; c < 3; ++c) {
+                        float l = glm::length(r[c]);
+                        if (l > 0.0f) r[c] /= l;
+                    }
+                    env->localToWorld = r;
+                    env->worldToLocal = glm::transpose(r);
+                    env->scale = scaled;
+                    _record.environment = std::move(env);
+                } else {
+                    param->warn(id(), error + "; using its constant colour");
+                }
+            }
+        } else {
+            // Area lights: shapes in the light's frame, taken to world space.
+            glm::vec3 c = point(xf, 0, 0, 0);
+            _record.center = c;
+            if (_type == tokens::sphereLight()) {
+                _record.kind = LightRecord::Kind::Sphere;
+                float r = std::max(0.0f, scalar("radius", 0.5f));
+                float s = std::max({glm::length(vector(xf, 1, 0, 0)), glm::length(vector(xf, 0, 1, 0)),
+                                    glm::length(vector(xf, 0, 0, 1))});
+                _record.radius = std::max(r * s, 1e-6f);
+                _record.area = 4.0f * kPi * _record.radius * _record.radius;
+            } else if (_type == tokens::rectLight()) {
+                _record.kind = LightRecord::Kind::Rect;
+                float w = std::max(0.0f, scalar("width", 1.0f)), h = std::max(0.0f, scalar("height", 1.0f));
+                _record.axisU = vector(xf, 0.5 * w, 0, 0);
+                _record.axisV = vector(xf, 0, 0.5 * h, 0);
+                _record.area = 4.0f * glm::length(glm::cross(_record.axisU, _record.axisV));
+                if (getString(delegate->getLightParamValue(id(), Token("texture:file"))).value_or("") != "")
+                    param->warn(id(), "rect light textures are not supported yet; using its colour");
+            } else if (_type == tokens::diskLight()) {
+                _record.kind = LightRecord::Kind::Disk;
+                float r = std::max(0.0f, scalar("radius", 0.5f));
+                _record.axisU = vector(xf, r, 0, 0);
+                _record.axisV = vector(xf, 0, r, 0);
+                _record.area = kPi * glm::length(glm::cross(_record.axisU, _record.axisV));
+            } else {  // cylinder: major axis X, no caps
+                _record.kind = LightRecord::Kind::Cylinder;
+                float len = std::max(0.0f, scalar("length", 1.0f)), r = std::max(0.0f, scalar("radius", 0.5f));
+                _record.axisU = vector(xf, 0.5 * len, 0, 0);
+                float s = std::max(glm::length(vector(xf, 0, 1, 0)), glm::length(vector(xf, 0, 0, 1)));
+                _record.radius = std::max(r * s, 1e-6f);
+                _record.area = 2.0f * kPi * _record.radius * 2.0f * glm::length(_record.axisU);
+            }
+            glm::vec3 n = vector(xf, 0, 0, -1);
+            _record.normal = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, -1);
+            // normalize: the power no longer depends on the size (divide by the world area).
+            _record.radiance = normalize && _record.area > 0.0f ? scaled / _record.area : scaled;
+            if (!(_record.area > 0.0f) || !std::isfinite(_record.area)) {
+                param->warn(id(), "light has zero or invalid area; disabled");
+                _enabled = false;
+            }
         }
         param->markTablesDirty();
     }

@@ -58,6 +58,16 @@ void EmbreeRenderBuffer::setPixel(int x, int y, const float* values) {
     _count[p] = _multiSampled ? 1 : std::max(_count[p], 1);
 }
 
+bool EmbreeRenderBuffer::setAccumulation(std::vector<double> sums, std::vector<int32_t> ints,
+                                         std::vector<int32_t> counts) {
+    if (sums.size() != _sum.size() || ints.size() != _ints.size() || counts.size() != _count.size())
+        return false;
+    _sum = std::move(sums);
+    _ints = std::move(ints);
+    _count = std::move(counts);
+    return true;
+}
+
 void EmbreeRenderBuffer::resolve() {
     if (_format == hd::Format::Int32) return;
     size_t n = size_t(_width) * _height;

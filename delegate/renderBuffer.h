@@ -36,6 +36,13 @@ public:
     /// Overwrites pixel (x, y) with one value per component, counted as one sample (for
     /// statistics the pass computes itself, e.g. sampleCount and variance).
     void setPixel(int x, int y, const float* values);
+    /// Raw accumulation, for merging partial renders of disjoint sample ranges (another process,
+    /// a checkpoint): float sums (or first samples), int32 first samples, per-pixel counts.
+    const std::vector<double>& sums() const { return _sum; }
+    const std::vector<int32_t>& ints() const { return _ints; }
+    const std::vector<int32_t>& counts() const { return _count; }
+    /// Replaces the accumulation; sizes must match the allocation (returns false otherwise).
+    bool setAccumulation(std::vector<double> sums, std::vector<int32_t> ints, std::vector<int32_t> counts);
     /// Samples accumulated at a pixel.
     int sampleCount(int x, int y) const { return _count[size_t(y) * _width + x]; }
 

@@ -37,8 +37,10 @@ const std::vector<Token>& EmbreeRenderDelegate::supportedRprimTypes() const {
     return t;
 }
 const std::vector<Token>& EmbreeRenderDelegate::supportedSprimTypes() const {
-    static const std::vector<Token> t{tokens::camera(), tokens::material(), tokens::distantLight(),
-                                      tokens::domeLight()};
+    static const std::vector<Token> t{tokens::camera(),      tokens::material(),
+                                      tokens::distantLight(), tokens::domeLight(),
+                                      tokens::sphereLight(),  tokens::rectLight(),
+                                      tokens::diskLight(),    tokens::cylinderLight()};
     return t;
 }
 const std::vector<Token>& EmbreeRenderDelegate::supportedBprimTypes() const {
@@ -55,8 +57,9 @@ std::unique_ptr<Rprim> EmbreeRenderDelegate::createRprim(const Token& typeId, co
 std::unique_ptr<Sprim> EmbreeRenderDelegate::createSprim(const Token& typeId, const Path& id) {
     if (typeId == tokens::camera()) return std::make_unique<Camera>(id);
     if (typeId == tokens::material()) return std::make_unique<Material>(id);
-    if (typeId == tokens::distantLight() || typeId == tokens::domeLight())
-        return std::make_unique<Light>(typeId, id);
+    for (const Token& light : {tokens::distantLight(), tokens::domeLight(), tokens::sphereLight(),
+                               tokens::rectLight(), tokens::diskLight(), tokens::cylinderLight()})
+        if (typeId == light) return std::make_unique<Light>(typeId, id);
     return nullptr;
 }
 
@@ -104,6 +107,7 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.usingDefaultLight = true;
         }
     }
+    if (sceneDirty || tablesDirty) buildLightDistribution();
     if (sceneDirty || tablesDirty) {
         _snapshot.geometryByInstance.clear();
         _snapshot.instanceByInstance.clear();
@@ -116,6 +120,52 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
         }
         addInstancerInstances();
     }
+}
+
+void EmbreeRenderDelegate::buildLightDistribution() {
+    // Next-event estimation picks lights in proportion to the power they can deliver to the
+    // scene (its bounding sphere of radius R), mixed with 10% uniform so no light starves.
+    RTCBounds b;
+    rtcGetSceneBounds(_scene, &b);
+    float R = 1.0f;
+    if (b.lower_x <= b.upper_x) {
+        glm::vec3 ext(b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z);
+        R = std::max(1e-3f, 0.5f * glm::length(ext));
+        if (!std::isfinite(R)) R = 1.0f;
+    }
+    constexpr float kPi = 3.14159265358979323846f;
+    auto lum = [](const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
+    auto& lights = _snapshot.lights;
+    std::vector<float> power(lights.size());
+    double total = 0.0;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const LightRecord& l = lights[i];
+        float p = 0.0f;
+        switch (l.kind) {
+            case LightRecord::Kind::Distant: p = lum(l.irradiance) * kPi * R * R; break;
+            case LightRecord::Kind::Dome: {
+                glm::vec3 L = l.radiance;
+                if (l.environment && !l.environment->texels.empty()) {
+                    glm::dvec3 sum(0.0);
+                    for (const auto& t : l.environment->texels) sum += glm::dvec3(t);
+                    L = glm::vec3(sum / double(l.environment->texels.size())) * l.environment->scale;
+                }
+                p = lum(L) * kPi * kPi * R * R;
+                break;
+            }
+            default: p = lum(l.radiance) * kPi * l.area;  // one-sided Lambertian emitter
+        }
+        power[i] = std::isfinite(p) && p > 0.0f ? p : 0.0f;
+        total += power[i];
+    }
+    _snapshot.lightCdf.assign(lights.size() + 1, 0.0f);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        float uniform = 1.0f / float(lights.size());
+        float prob = total > 0.0 ? 0.9f * float(power[i] / total) + 0.1f * uniform : uniform;
+        lights[i].pickProbability = prob;
+        _snapshot.lightCdf[i + 1] = _snapshot.lightCdf[i] + prob;
+    }
+    if (!lights.empty()) _snapshot.lightCdf.back() = 1.0f;
 }
 
 void EmbreeRenderDelegate::addInstancerInstances() {
@@ -156,6 +206,13 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Clamp indirect", Token("clampIndirect"), Value(0.0f), "max channel value of an indirect contribution; 0 = off"},
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
+        {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
+        {"Lobe pruning", Token("lobePruning"), Value(1), "skip BSDF lobes whose weight is below the cutoff"},
+        {"VNDF sampling", Token("vndf"), Value(1), "GGX visible-normal sampling (0: classic distribution sampling)"},
+        {"Delta roughness", Token("deltaRoughness"), Value(1e-3f), "below this roughness specular is a perfect mirror"},
+        {"Legacy specular G", Token("legacySpecularG"), Value(0), "Burley 2012 course-notes G remap (0.5 + 0.5 r)^2"},
+        {"Noise threshold", Token("noiseThreshold"), Value(0.0f), "stop sampling a pixel when the relative standard error of its mean is below this; 0 = off"},
+        {"Min samples", Token("minSamples"), Value(16), "adaptive sampling: samples before a pixel may stop"},
         {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome"},
         {"Refine level", Token("refineLevel"), Value(-1), "subdivision level for every mesh; -1 = adaptive from the projected size"},
         {"Dicing rate", Token("dicingRate"), Value(1.5f), "adaptive subdivision: target refined edge length in pixels"},
@@ -221,6 +278,11 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
+    s.mis = intSetting("mis", 1) != 0;
+    s.bsdf.pruneLobes = intSetting("lobePruning", 1) != 0;
+    s.bsdf.vndfSampling = intSetting("vndf", 1) != 0;
+    s.bsdf.deltaRoughness = std::clamp(floatSetting("deltaRoughness", 1e-3f), 0.0f, 1.0f);
+    s.bsdf.legacySpecularG = intSetting("legacySpecularG", 0) != 0;
     auto sampler = getString(renderSetting(Token("sampler")));
     s.sampler = (sampler && *sampler == "independent") ? SamplerKind::Independent : SamplerKind::Sobol;
     return s;

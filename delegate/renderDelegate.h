@@ -54,6 +54,8 @@ public:
     const SceneSnapshot& snapshot() const { return _snapshot; }
     IntegratorSettings integratorSettings() const;
     int samplesPerPixel() const;
+    float noiseThreshold() const { return std::max(0.0f, floatSetting("noiseThreshold", 0.0f)); }
+    int minSamples() const { return intSetting("minSamples", 16); }
     int seed() const;
     void addPassStats(long rays, long samples, long invalidSamples, double seconds);
 
@@ -62,6 +64,7 @@ private:
     float floatSetting(const char* key, float fallback) const;
 
     void updateDicing();
+    void buildLightDistribution();
     void addInstancerInstances();
 
     EmbreeDevice _device;

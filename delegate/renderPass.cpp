@@ -57,6 +57,7 @@ Ray cameraRay(const Camera& cam, const glm::vec4& window, int width, int height,
 struct BoundAov {
     AovInfo info;
     EmbreeRenderBuffer* buffer;
+    int primvarSlot = -1;  ///< index into FirstHit::primvars for "primvars:NAME"
 };
 
 // Camera quantities the geometric AOVs need.
@@ -129,6 +130,9 @@ void writeSample(const BoundAov& a, int x, int y, const PathSample& ps, const Ca
         case AovKind::InstanceId: a.buffer->addSample(x, y, int32_t(f.instanceId)); return;
         case AovKind::ElementId: a.buffer->addSample(x, y, int32_t(f.elementId)); return;
         case AovKind::MaterialId: a.buffer->addSample(x, y, int32_t(f.materialId)); return;
+        case AovKind::Primvar:
+            if (a.primvarSlot >= 0) put3(f.primvars[a.primvarSlot]);
+            return;
         default: return;
     }
 }
@@ -162,6 +166,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _samples = 0;
         _passes = 0;
         _converged = false;
+        _pixelDone.assign(pixels, 0);
+        _active = pixels;
         _lumSum.assign(pixels, 0.0);
         _lumSqSum.assign(pixels, 0.0);
         _pixelSamples.assign(pixels, 0);
@@ -171,7 +177,12 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 buf->clear();
             }
     }
+    int rangeFirst = 0;
     _target = std::max(1, _delegate->samplesPerPixel());
+    if (_rangeEnd > _rangeFirst) {
+        rangeFirst = _rangeFirst;
+        _target = _rangeEnd - _rangeFirst;
+    }
     if (_converged) return;
     auto* cam = static_cast<Camera*>(renderIndex()->sprim(tokens::camera(), state.cameraId));
     if (!cam || pixels == 0) {
@@ -202,6 +213,17 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
 
     const SceneSnapshot& scene = _delegate->snapshot();
     IntegratorSettings settings = _delegate->integratorSettings();
+    settings.recorder = _recorder;
+    for (auto& a : aovs) {
+        if (a.info.kind != AovKind::Primvar) continue;
+        std::string name;
+        for (const auto& b : state.aovBindings)
+            if (b.renderBuffer == a.buffer) name = b.aovName.str().substr(9);
+        if (settings.aovPrimvars.size() < 4) {
+            a.primvarSlot = int(settings.aovPrimvars.size());
+            settings.aovPrimvars.emplace_back(name);
+        }
+    }
     Integrator integrator(scene, settings);
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
     glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));
@@ -209,22 +231,24 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     // The first pass is a single sample so a viewport shows an image at once; later passes
     // double up to kMaxSamplesPerPass.
     int batch = std::min({_target - _samples, 1 << std::min(_passes, 4), kMaxSamplesPerPass});
-    int first = _samples;
-    std::atomic<long> rays{0}, invalid{0};
+    int first = rangeFirst + _samples;
+    std::atomic<long> rays{0}, invalid{0}, taken{0};
     auto start = std::chrono::steady_clock::now();
     tbb::parallel_for(
         tbb::blocked_range2d<int>(0, state.height, kTileSize, 0, state.width, kTileSize),
         [&](const tbb::blocked_range2d<int>& tile) {
-            long tileRays = 0, tileInvalid = 0;
+            long tileRays = 0, tileInvalid = 0, tileSamples = 0;
             for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
                 for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                     uint32_t pixel = uint32_t(y) * uint32_t(state.width) + uint32_t(x);
+                    if (_pixelDone[pixel]) continue;  // adaptive sampling: converged
                     for (int s = first; s < first + batch; ++s) {
                         Sampler sampler(settings.sampler, seed, pixel, uint32_t(s));
                         glm::vec2 j = sampler.next2D();  // box filter: uniform in the pixel
                         Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y);
                         PathSample ps = integrator.trace(r, sampler);
                         tileRays += ps.rays;
+                        ++tileSamples;
                         tileInvalid += ps.invalid;
                         for (const auto& a : aovs) writeSample(a, x, y, ps, cf);
                         double lum = luminance(ps.radiance);
@@ -235,13 +259,31 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 }
             rays += tileRays;
             invalid += tileInvalid;
+            taken += tileSamples;
         });
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    _delegate->addPassStats(rays.load(), long(batch) * long(pixels), invalid.load(), seconds);
+    _delegate->addPassStats(rays.load(), taken.load(), invalid.load(), seconds);
     _samples += batch;
     ++_passes;
-    _converged = _samples >= _target;
+    // Adaptive sampling: a pixel stops once the relative standard error of its mean luminance
+    // is below the threshold (after a minimum number of samples).
+    float threshold = _delegate->noiseThreshold();
+    int minSamples = std::max(2, _delegate->minSamples());
+    if (threshold > 0.0f) {
+        size_t active = 0;
+        for (size_t p = 0; p < pixels; ++p) {
+            if (!_pixelDone[p] && _pixelSamples[p] >= minSamples) {
+                double mean = _lumSum[p] / _pixelSamples[p];
+                // 1e-3: an absolute floor so black pixels converge instead of dividing by ~0.
+                double rel = std::sqrt(meanVariance(p)) / std::max(mean, 1e-3);
+                if (rel < threshold) _pixelDone[p] = 1;
+            }
+            active += !_pixelDone[p];
+        }
+        _active = active;
+    }
+    _converged = _samples >= _target || _active == 0;
     for (const auto& a : aovs) {
         if (a.info.kind == AovKind::SampleCount || a.info.kind == AovKind::Variance) {
             for (int y = 0; y < state.height; ++y)
@@ -264,6 +306,29 @@ double EmbreeRenderPass::meanVariance(size_t p) const {
     double mean = _lumSum[p] / n;
     double var = std::max(0.0, (_lumSqSum[p] - n * mean * mean) / (n - 1));
     return var / n;
+}
+
+}  // namespace principled::embree
+
+namespace principled::embree {
+
+bool EmbreeRenderPass::setPixelStats(const PixelStats& stats, int completedSamples) {
+    if (stats.lumSum.size() != _lumSum.size() || stats.lumSqSum.size() != _lumSqSum.size() ||
+        stats.samples.size() != _pixelSamples.size())
+        return false;
+    _lumSum = stats.lumSum;
+    _lumSqSum = stats.lumSqSum;
+    _pixelSamples = stats.samples;
+    _samples = std::max(0, completedSamples);
+    _passes = 5;  // resumed: full-size batches
+    _converged = _samples >= _target;
+    return true;
+}
+
+void EmbreeRenderPass::setSampleRange(int first, int end) {
+    _rangeFirst = std::max(0, first);
+    _rangeEnd = std::max(0, end);
+    _stateKey.clear();  // restart accumulation
 }
 
 }  // namespace principled::embree

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "delegate/hd/renderPass.h"
+#include "delegate/rayRecorder.h"
 
 namespace principled::embree {
 
@@ -33,6 +34,23 @@ public:
     /// Variance of pixel p's mean luminance (0 with fewer than 2 samples).
     double meanVariance(size_t p) const;
 
+    /// Renders only sample indices [first, end) of the deterministic sequence (for splitting a
+    /// frame across processes); end <= first restores the default [0, samplesPerPixel).
+    void setSampleRange(int first, int end);
+    /// Receives every ray the integrator casts (null: none).
+    void setRayRecorder(RayRecorder* recorder) { _recorder = recorder; }
+    /// Per-pixel luminance statistics (sum, sum of squares, sample count) behind the variance
+    /// AOV and adaptive sampling, for merging partial renders; set them to resume.
+    struct PixelStats {
+        std::vector<double> lumSum, lumSqSum;
+        std::vector<int> samples;
+    };
+    PixelStats pixelStats() const { return {_lumSum, _lumSqSum, _pixelSamples}; }
+    bool setPixelStats(const PixelStats& stats, int completedSamples);
+
+    /// Pixels still being sampled (adaptive sampling stops converged ones).
+    size_t activePixels() const { return _active; }
+
 private:
     bool needsRestart(const hd::RenderPassState& state);
 
@@ -48,6 +66,10 @@ private:
     std::vector<double> _lumSum, _lumSqSum;
     std::vector<int> _pixelSamples;
     std::set<std::string> _reported;
+    std::vector<uint8_t> _pixelDone;
+    size_t _active = 0;
+    int _rangeFirst = 0, _rangeEnd = 0;
+    RayRecorder* _recorder = nullptr;
 };
 
 }  // namespace principled::embree

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "bsdf/bsdf.h"
+#include "delegate/distribution2d.h"
 #include "delegate/hd/token.h"
 #include "delegate/shading/materialProgram.h"
 
@@ -73,14 +74,32 @@ struct InstanceRecord {
 };
 
 /// A light as the integrator samples it.
+/// A lat-long environment (DomeLight texture) with its luminance sampling distribution.
+struct EnvironmentMap {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> texels;  ///< linear RGB, row 0 = top (+Y pole)
+    Distribution2D distribution;    ///< over (u, v) by luminance * sin(theta)
+    glm::mat3 worldToLocal{1.0f};   ///< the dome's rotation (its frame: +Y up)
+    glm::mat3 localToWorld{1.0f};
+    glm::vec3 scale{1.0f};          ///< color * intensity * 2^exposure
+};
+
 struct LightRecord {
-    enum class Kind : uint8_t { Distant, Dome };
+    enum class Kind : uint8_t { Distant, Dome, Sphere, Rect, Disk, Cylinder };
     Kind kind = Kind::Distant;
-    glm::vec3 radiance{1.0f};    ///< color * intensity * 2^exposure
+    glm::vec3 radiance{1.0f};    ///< color * intensity * 2^exposure (/ area when normalized)
     glm::vec3 direction{0, 0, -1};  ///< distant: world direction the light travels
     float cosHalfAngle = 1.0f;   ///< distant: cos of half the angular diameter (1 = delta)
     glm::vec3 irradiance{0.0f};  ///< distant: perpendicular irradiance it delivers
     bool visibleToCamera = true;
+    // Area lights, in world space.
+    glm::vec3 center{0.0f};
+    glm::vec3 axisU{0.0f}, axisV{0.0f};  ///< rect: half extents; disk: radii; cylinder: U = half length along the axis
+    glm::vec3 normal{0, 0, -1};          ///< rect/disk: the side that emits
+    float radius = 0.0f;                 ///< sphere, cylinder
+    float area = 0.0f;
+    std::shared_ptr<const EnvironmentMap> environment;  ///< dome texture (null: constant)
+    float pickProbability = 1.0f;  ///< chance next-event estimation picks this light
 };
 
 /// Everything a render pass reads: the committed top-level scene and the tables the records
@@ -93,6 +112,7 @@ struct SceneSnapshot {
     std::vector<const InstanceRecord*> instanceByInstance;
     std::vector<MaterialRecord> materials;
     std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
+    std::vector<float> lightCdf;                      ///< lights.size() + 1 entries, by power
     bool usingDefaultLight = false;                   ///< the scene had no light
 };
 

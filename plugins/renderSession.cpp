@@ -62,6 +62,34 @@ void RenderSession::setup() {
         throw UserError("sampler must be 'sobol' or 'independent', not '" + _options.sampler + "'");
     _delegate->setRenderSetting(Token("sampler"), Value(Token(_options.sampler)));
     _delegate->setRenderSetting(Token("refineLevel"), Value(std::clamp(_options.refineLevel, -1, 8)));
+    _delegate->setRenderSetting(Token("noiseThreshold"), Value(std::max(0.0f, _options.noiseThreshold)));
+    for (const auto& [key, text] : _options.settings) {
+        auto descriptors = _delegate->renderSettingDescriptors();
+        auto d = std::find_if(descriptors.begin(), descriptors.end(),
+                              [&](const auto& x) { return x.key.str() == key; });
+        if (d == descriptors.end()) {
+            std::string known;
+            for (const auto& x : descriptors) known += (known.empty() ? "" : ", ") + x.key.str();
+            throw UserError("unknown render setting '" + key + "'; settings: " + known);
+        }
+        Value v;
+        char* end = nullptr;
+        long i = std::strtol(text.c_str(), &end, 10);
+        if (!text.empty() && *end == '\0') {
+            v = Value(int(i));
+        } else {
+            float f = std::strtof(text.c_str(), &end);
+            v = (!text.empty() && *end == '\0') ? Value(f) : Value(Token(text));
+        }
+        // Keep the descriptor's type: a float setting given as "1" is still a float.
+        if (std::holds_alternative<float>(d->defaultValue) && std::holds_alternative<int>(v))
+            v = Value(float(std::get<int>(v)));
+        if (std::holds_alternative<Token>(d->defaultValue) != std::holds_alternative<Token>(v))
+            throw UserError("render setting '" + key + "' expects " +
+                            (std::holds_alternative<Token>(d->defaultValue) ? "a word" : "a number") +
+                            ", not '" + text + "'");
+        _delegate->setRenderSetting(Token(key), v);
+    }
     _index = std::make_unique<RenderIndex>(_delegate.get());
     adapter::AdapterOptions ao;
     ao.time = _options.time;
@@ -124,6 +152,8 @@ void RenderSession::setup() {
     _color = _buffers.front().second;
     _index->sync();
     _pass = _delegate->createRenderPass(_index.get());
+    if (_options.sampleRangeEnd > _options.sampleRangeFirst)
+        pass()->setSampleRange(_options.sampleRangeFirst, _options.sampleRangeEnd);
 }
 
 bool RenderSession::step() {
@@ -143,8 +173,16 @@ int RenderSession::completedSamples() const {
     return static_cast<const embree::EmbreeRenderPass*>(_pass.get())->completedSamples();
 }
 
-int RenderSession::targetSamples() const {
-    return std::max(1, _options.samplesPerPixel);
+int RenderSession::targetSamples() const { return pass()->targetSamples(); }
+
+embree::EmbreeRenderPass* RenderSession::pass() const {
+    return static_cast<embree::EmbreeRenderPass*>(_pass.get());
+}
+
+embree::EmbreeRenderBuffer* RenderSession::buffer(const std::string& aov) const {
+    for (const auto& [name, buf] : _buffers)
+        if (name == aov) return buf;
+    return nullptr;
 }
 
 const float* RenderSession::color() const { return static_cast<const float*>(_color->map()); }
@@ -169,6 +207,11 @@ std::vector<std::string> RenderSession::takeWarnings() {
     return out;
 }
 
-std::map<std::string, double> RenderSession::stats() const { return _delegate->renderStats(); }
+std::map<std::string, double> RenderSession::stats() const {
+    auto s = _delegate->renderStats();
+    s["activePixels"] = double(pass()->activePixels());
+    s["converged"] = pass()->isConverged() ? 1.0 : 0.0;
+    return s;
+}
 
 }  // namespace principled::host

@@ -46,6 +46,12 @@ struct SessionOptions {
     std::string shadingModel = "disney";
     std::string sampler = "sobol";  ///< sobol | independent
     int refineLevel = -1;           ///< subdivision level for every mesh; -1 = adaptive
+    float noiseThreshold = 0.0f;    ///< adaptive sampling: relative standard error to stop at
+    /// Any render setting by key ("mis" = "0", "deltaRoughness" = "0.01"...): integers, then
+    /// numbers, else tokens. Unknown keys are a UserError.
+    std::map<std::string, std::string> settings;
+    /// Sample indices [first, end) to render (end <= first: all of [0, samplesPerPixel)).
+    int sampleRangeFirst = 0, sampleRangeEnd = 0;
     /// AOVs to render besides color ("normal", "primId", ... or "all").
     std::vector<std::string> aovs;
     double time = std::numeric_limits<double>::quiet_NaN();
@@ -85,6 +91,10 @@ public:
     /// Scene and delegate problems found so far (each once).
     std::vector<std::string> takeWarnings();
     std::map<std::string, double> stats() const;
+    embree::EmbreeRenderPass* pass() const;
+    embree::EmbreeRenderDelegate* delegate() const { return _delegate.get(); }
+    /// The render buffer of an AOV (nullptr if not bound).
+    embree::EmbreeRenderBuffer* buffer(const std::string& aov) const;
     const std::string& cameraPath() const { return _cameraPath; }
 
 private:

@@ -112,6 +112,10 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     else if (type == "Material") hdType = tokens::material();
     else if (type == "DistantLight") hdType = tokens::distantLight();
     else if (type == "DomeLight" || type == "DomeLight_1") hdType = tokens::domeLight();
+    else if (type == "SphereLight") hdType = tokens::sphereLight();
+    else if (type == "RectLight") hdType = tokens::rectLight();
+    else if (type == "DiskLight") hdType = tokens::diskLight();
+    else if (type == "CylinderLight") hdType = tokens::cylinderLight();
     else if (!ignoredTypes().count(type))
         warn(prim.location().str() + ": " + prim.path(),
              "prim type '" + type + "' is not supported yet; skipped");

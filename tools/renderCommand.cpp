@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <limits>
 #include <regex>
 
 #include <nlohmann/json.hpp>
@@ -35,6 +36,10 @@ struct RenderArgs {
     std::vector<std::string> aovs;
     std::string sampler = "sobol";
     int refineLevel = -1;
+    float noiseThreshold = 0.0f;
+    double timeLimit = 0.0;
+    std::vector<std::string> settings;
+    double time = std::numeric_limits<double>::quiet_NaN();
     bool split = false;
     bool quiet = false;
 };
@@ -59,6 +64,14 @@ int runRender(const RenderArgs& a) {
     o.shadingModel = a.model;
     o.sampler = a.sampler;
     o.refineLevel = a.refineLevel;
+    o.noiseThreshold = a.noiseThreshold;
+    o.time = a.time;
+    for (const auto& kv : a.settings) {
+        auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0)
+            return fail("--set expects KEY=VALUE, not '" + kv + "'");
+        o.settings[kv.substr(0, eq)] = kv.substr(eq + 1);
+    }
     o.aovs = a.aovs;
     for (const auto& out : a.outputs) {
         auto ext = std::filesystem::path(out).extension().string();
@@ -92,10 +105,17 @@ int runRender(const RenderArgs& a) {
 
     ProgressBar bar("render", !a.quiet);
     auto t1 = std::chrono::steady_clock::now();
-    while (!session->step())
+    bool timedOut = false;
+    while (!session->step()) {
+        double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+        if (a.timeLimit > 0.0 && elapsed >= a.timeLimit) {
+            timedOut = true;
+            break;
+        }
         bar.update(session->completedSamples(), session->targetSamples(),
                    std::to_string(session->completedSamples()) + "/" +
                        std::to_string(session->targetSamples()) + " spp");
+    }
     bar.update(1, 1, std::to_string(session->completedSamples()) + "/" +
                          std::to_string(session->targetSamples()) + " spp");
     bar.finish();
@@ -155,6 +175,7 @@ int runRender(const RenderArgs& a) {
         j["height"] = session->height();
         j["samplesPerPixel"] = session->completedSamples();
         j["camera"] = session->cameraPath();
+        j["timedOut"] = timedOut;
         j["loadSeconds"] = loadSeconds;
         j["renderWallSeconds"] = renderSeconds;
         for (const auto& [k, v] : session->stats()) j["delegate"][k] = v;
@@ -189,6 +210,13 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
         ->delimiter(',');
     cmd->add_flag("--split", args->split, "Write one EXR per AOV (NAME.AOV.exr) instead of one multi-layer EXR");
     cmd->add_option("--sampler", args->sampler, "sobol (Owen-scrambled, default) or independent");
+    cmd->add_option("--noise-threshold", args->noiseThreshold,
+                    "Adaptive sampling: stop a pixel when the relative standard error of its mean is below this (e.g. 0.01); 0 = off")
+        ->check(CLI::Range(0.0, 10.0));
+    cmd->add_option("--time-limit", args->timeLimit, "Stop after this many seconds of rendering (the image so far is written)")
+        ->check(CLI::Range(0.0, 1e9));
+    cmd->add_option("--time", args->time, "Time code to render the stage at (default: startTimeCode, else the default values)");
+    cmd->add_option("--set", args->settings, "Render setting KEY=VALUE (repeatable), e.g. --set mis=0 --set maxDepth=3");
     cmd->add_option("--refine-level", args->refineLevel,
                     "Subdivision level for every mesh (0-8); -1 = adaptive from the projected size")
         ->check(CLI::Range(-1, 8));

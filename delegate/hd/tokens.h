@@ -17,6 +17,7 @@ inline const Token& domeLight() { static const Token t("domeLight"); return t; }
 inline const Token& sphereLight() { static const Token t("sphereLight"); return t; }
 inline const Token& rectLight() { static const Token t("rectLight"); return t; }
 inline const Token& diskLight() { static const Token t("diskLight"); return t; }
+inline const Token& cylinderLight() { static const Token t("cylinderLight"); return t; }
 // Bprim types.
 inline const Token& renderBuffer() { static const Token t("renderBuffer"); return t; }
 

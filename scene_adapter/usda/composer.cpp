@@ -17,9 +17,7 @@ namespace principled::usd {
 namespace {
 // Nodes one prim index may hold: far above real assets (tens), low enough that an adversarial
 // diamond of references cannot exhaust memory.
-constexpr std::size_t kMaxNodesPerPrim = 4096;
-// Composed prims one stage may hold (16M).
-constexpr std::size_t kMaxPrims = std::size_t(1) << 24;
+constexpr std::size_t kMaxNodesPerPrim = 1024;
 // Arcs nested inside arcs (a reference of a reference of ...), and composed namespace depth:
 // both bound the composer's recursion so that chained layers cannot overflow the stack.
 constexpr int kMaxArcDepth = 256;
@@ -40,6 +38,13 @@ void composeField(Dictionary& out, const std::string& key, const Value& weaker) 
     Dictionary merged = *strong;
     for (const auto& [k, v] : *weak) composeField(merged, k, v);
     it->second = Value::dictionary(std::move(merged), it->second.location());
+}
+
+// [inner..., outer...]: a mapping through `inner`, then through `outer`.
+std::shared_ptr<const std::vector<MapStep>> chain(std::vector<MapStep> inner,
+                                                  const std::vector<MapStep>& outer) {
+    inner.insert(inner.end(), outer.begin(), outer.end());
+    return std::make_shared<const std::vector<MapStep>>(std::move(inner));
 }
 
 template <class T, class Get>
@@ -156,6 +161,8 @@ void Composer::compose(const Layer* rootLayer) {
             }
     };
     number("metersPerUnit", s._metersPerUnit, nullptr);
+    number("startFrame", s._startTimeCode, &s._hasStart);  // legacy names (SdfLayer fallbacks)
+    number("endFrame", s._endTimeCode, &s._hasEnd);
     number("startTimeCode", s._startTimeCode, &s._hasStart);
     number("endTimeCode", s._endTimeCode, &s._hasEnd);
     number("framesPerSecond", s._framesPerSecond, nullptr);
@@ -215,14 +222,16 @@ bool Composer::reserveNode(const Node& parent, const SourceLocation& where) {
     int depth = 0;
     for (const Node* n = &parent; n; n = n->parent) ++depth;
     if (depth >= kMaxArcDepth) {
-        warn(where, "composition arcs nested more than " + std::to_string(kMaxArcDepth) +
-                        " deep; further arcs are ignored",
+        warn(where,
+             "composition arcs nested more than " + std::to_string(kMaxArcDepth) +
+                 " deep; further arcs are ignored",
              Diagnostic::Severity::Error);
         return false;
     }
     if (++_nodeCount <= kMaxNodesPerPrim) return true;
-    warn(where, "composition too complex: more than " + std::to_string(kMaxNodesPerPrim) +
-                    " arcs contribute to one prim; further arcs are ignored",
+    warn(where,
+         "composition too complex: more than " + std::to_string(kMaxNodesPerPrim) +
+             " arcs contribute to one prim; further arcs are ignored",
          Diagnostic::Severity::Error);
     return false;
 }
@@ -230,11 +239,11 @@ bool Composer::reserveNode(const Node& parent, const SourceLocation& where) {
 void Composer::expandArcs(Node& node) {
     std::vector<const PrimSpec*> specs = specsAt(node);
     if (specs.empty()) return;
-    for (const PathItem& item :
-         composeListOp<PathItem>(specs, [](const PrimSpec& s) -> auto& { return s.inherits; }))
+    for (const PathItem& item : composeListOp<PathItem>(
+             specs, [](const PrimSpec& s) -> auto& { return s.inherits; }))
         addClassArc(node, item, Arc::Inherit);
-    for (const Reference& r :
-         composeListOp<Reference>(specs, [](const PrimSpec& s) -> auto& { return s.references; }))
+    for (const Reference& r : composeListOp<Reference>(
+             specs, [](const PrimSpec& s) -> auto& { return s.references; }))
         addReferenceArc(node, r, Arc::Reference);
     if (_options.loadPayloads)
         for (const Reference& r : composeListOp<Reference>(
@@ -269,12 +278,13 @@ bool Composer::reportCycle(const Node& from, const LayerStack* stack, const std:
 void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
     const char* what = arc == Arc::Payload ? "payload" : "reference";
     const LayerStack* stack = node.stack;
-    std::string label = ref.assetPath.empty() ? "<" + ref.primPath + ">" : "@" + ref.assetPath + "@";
+    std::string label =
+        ref.assetPath.empty() ? "<" + ref.primPath + ">" : "@" + ref.assetPath + "@";
     if (!ref.assetPath.empty()) {
         if (ref.resolvedPath.empty()) {
             warn(ref.location, std::string(what) + " " + label +
-                                   " not found (relative to the directory of " +
-                                   ref.location.file + "); the prim is composed without it");
+                                   " not found (relative to the directory of " + ref.location.file +
+                                   "); the prim is composed without it");
             return;
         }
         try {
@@ -301,23 +311,89 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
         return;
     }
     if (reportCycle(node, stack, target, ref.location, what)) return;
+    for (const auto& [buildingStack, buildingSite] : _building)
+        if (buildingStack == stack &&
+            (path::hasPrefix(buildingSite, target) || path::hasPrefix(target, buildingSite))) {
+            warn(ref.location,
+                 std::string(what) + " cycle: " + describeSite(stack, target) +
+                     " is referenced while composing itself",
+                 Diagnostic::Severity::Error);
+            return;
+        }
     if (!reserveNode(node, ref.location)) return;
-    auto child = std::make_unique<Node>();
+    // A prim below the root brings the arcs authored on its ancestors (ancestral opinions).
+    bool subroot = path::parent(target) != "/";
+    std::unique_ptr<Node> child =
+        subroot ? buildSubrootIndex(stack, target, ref.location) : std::make_unique<Node>();
+    if (!child) return;
     child->stack = stack;
     child->site = target;
     child->arc = arc;
-    child->map.push_back({target, path::stripVariants(node.site), false});
-    child->map.insert(child->map.end(), node.map.begin(), node.map.end());
+    // Maps and time offsets of the whole subtree continue through this arc: first the
+    // reference (target -> the referencing prim), then the referencing node's own mapping.
+    std::vector<MapStep> outer{{target, path::stripVariants(node.site), false}};
+    outer.insert(outer.end(), node.map->begin(), node.map->end());
     // Time mapping: the node's, then the offset of the sublayer that authored the arc, then
     // the arc's own (offset; scale).
     LayerOffset authoring;
     for (std::size_t i = 0; i < node.stack->layers.size(); ++i)
         if (node.stack->layers[i]->file == ref.location.file) authoring = node.stack->offsets[i];
-    child->offset = node.offset.compose(authoring).compose(ref.offset);
+    LayerOffset offset = node.offset.compose(authoring).compose(ref.offset);
+    std::vector<Node*> todo{child.get()};
+    while (!todo.empty()) {
+        Node* n = todo.back();
+        todo.pop_back();
+        n->map = chain(*n->map, outer);
+        n->offset = offset.compose(n->offset);
+        for (const auto& c : n->children) todo.push_back(c.get());
+    }
     child->arcLocation = ref.location;
     Node* raw = child.get();
     node.addChild(std::move(child));
-    expandArcs(*raw);
+    if (!subroot) expandArcs(*raw);
+}
+
+std::unique_ptr<PrimIndexNode> Composer::buildSubrootIndex(const LayerStack* stack,
+                                                           const std::string& target,
+                                                           const SourceLocation& where) {
+    // The prim index of `target` inside its own layer stack, built like the stage's: from the
+    // root prim down, expanding arcs and variants at each level. Implied classes and variant
+    // overrides do not apply inside it, and ancestors' variant selections come from the
+    // referenced layer stack only.
+    if (_building.size() >= 16) {  // 16: nested sub-root references, far beyond real assets
+        warn(where, "references to non-root prims nested too deeply", Diagnostic::Severity::Error);
+        return nullptr;
+    }
+    _building.emplace_back(stack, target);
+    Node* savedRoot = _indexRoot;
+    _indexRoot = nullptr;
+    std::vector<std::string> names;
+    for (std::size_t i = 1; i < target.size();) {
+        std::size_t j = target.find('/', i);
+        if (j == std::string::npos) j = target.size();
+        names.push_back(target.substr(i, j - i));
+        i = j + 1;
+    }
+    auto index = std::make_unique<Node>();
+    index->stack = stack;
+    index->site = "/" + names.front();
+    expandArcs(*index);
+    std::map<std::string, std::string> used;
+    expandVariants(*index, {}, used);
+    for (std::size_t i = 1; i < names.size(); ++i) {
+        auto derived = derive(*index, names[i], nullptr);
+        for (Node* n : strengthOrder(*derived)) expandArcs(*n);
+        // The target's own variant sets are left to the referencing prim's index, where
+        // stronger opinions (the referencing layers) may select them.
+        if (i + 1 < names.size()) {
+            used.clear();
+            expandVariants(*derived, {}, used);
+        }
+        index = std::move(derived);
+    }
+    _indexRoot = savedRoot;
+    _building.pop_back();
+    return index;
 }
 
 void Composer::addImpliedClassArc(const Node& node, const std::string& target, Arc arc,
@@ -330,7 +406,7 @@ void Composer::addImpliedClassArc(const Node& node, const std::string& target, A
     // Map the class into stage namespace; paths outside the referenced prim are global classes
     // and keep their path (Pcp adds the root identity to reference map functions).
     std::string mapped = target;
-    for (const MapStep& step : node.map)
+    for (const MapStep& step : *node.map)
         if (path::hasPrefix(mapped, step.source))
             mapped = path::replacePrefix(mapped, step.source, step.target);
     if (!_rootStack->hasPrim(mapped)) return;
@@ -344,7 +420,7 @@ void Composer::addImpliedClassArc(const Node& node, const std::string& target, A
     child->stack = _rootStack;
     child->site = mapped;
     child->arc = arc;
-    child->map.push_back({mapped, _indexRoot->site, true});
+    child->map = chain({{mapped, _indexRoot->site, true}}, {});
     child->arcLocation = where;
     Node* raw = child.get();
     _indexRoot->addChild(std::move(child));
@@ -364,8 +440,7 @@ void Composer::addClassArc(Node& node, const PathItem& item, Arc arc) {
     child->stack = node.stack;
     child->site = target;
     child->arc = arc;
-    child->map.push_back({target, site, true});
-    child->map.insert(child->map.end(), node.map.begin(), node.map.end());
+    child->map = chain({{target, site, true}}, *node.map);
     child->offset = node.offset;
     child->arcLocation = item.location;
     Node* raw = child.get();
@@ -415,15 +490,13 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
     for (std::size_t pass = 0; pass < kMaxNodesPerPrim; ++pass) {
         bool added = false;
         for (Node* n : strengthOrder(root)) {
+            if (n->variantsDone) continue;
             std::vector<const PrimSpec*> specs = specsAt(*n);
-            if (specs.empty()) continue;
-            auto sets = composeListOp<std::string>(
-                specs, [](const PrimSpec& s) -> auto& { return s.variantSetNames; });
-            for (const std::string& set : sets) {
-                if (std::find(n->expandedVariantSets.begin(), n->expandedVariantSets.end(), set) !=
-                    n->expandedVariantSets.end())
-                    continue;
-                n->expandedVariantSets.push_back(set);
+            if (!n->variantSetNames)
+                n->variantSetNames = composeListOp<std::string>(
+                    specs, [](const PrimSpec& s) -> auto& { return s.variantSetNames; });
+            while (n->nextVariantSet < n->variantSetNames->size()) {
+                const std::string set = (*n->variantSetNames)[n->nextVariantSet++];
                 std::string selection = selectVariant(root, primPath, set);
                 if (selection.empty()) continue;
                 used.emplace(set, selection);
@@ -431,9 +504,8 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
                 if (!n->stack->hasPrim(site)) {
                     auto o = _options.variantOverrides.find(primPath);
                     if (o != _options.variantOverrides.end() && o->second.count(set))
-                        warn(specs.front()->location, "variant set \"" + set + "\" of " +
-                                                          primPath + " has no variant \"" +
-                                                          selection + "\"");
+                        warn(specs.front()->location, "variant set \"" + set + "\" of " + primPath +
+                                                          " has no variant \"" + selection + "\"");
                     continue;
                 }
                 if (!reserveNode(*n, specs.front()->location)) return;
@@ -451,6 +523,7 @@ void Composer::expandVariants(Node& root, const std::string& primPath,
                 break;
             }
             if (added) break;
+            n->variantsDone = true;  // every set of this node is expanded
         }
         if (!added) return;
     }
@@ -483,7 +556,7 @@ std::vector<Composer::SpecRef> Composer::gatherSpecs(const std::vector<Node*>& o
 
 std::optional<std::string> Composer::mapToStage(const Node& node, const std::string& p) const {
     std::string out = p;
-    for (const MapStep& step : node.map) {
+    for (const MapStep& step : *node.map) {
         if (path::hasPrefix(out, step.source)) {
             out = path::replacePrefix(out, step.source, step.target);
         } else if (!step.identityFallback) {
@@ -635,16 +708,20 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
 void Composer::composeChildren(Prim& parent, Node* parentIndex,
                                const std::vector<std::string>& names, int depth) {
     if (!names.empty() && depth > kMaxNamespaceDepth) {
-        warn(parent._location, "namespace deeper than " + std::to_string(kMaxNamespaceDepth) +
-                                   " levels below " + parent._path + "; children are ignored",
+        warn(parent._location,
+             "namespace deeper than " + std::to_string(kMaxNamespaceDepth) + " levels below " +
+                 parent._path + "; children are ignored",
              Diagnostic::Severity::Error);
         return;
     }
     for (const std::string& name : names) {
-        if (_stage._prims.size() >= kMaxPrims) {
-            warn(parent._location, "too many prims (more than " + std::to_string(kMaxPrims) +
-                                       "); the rest of the stage is not composed",
-                 Diagnostic::Severity::Error);
+        if (_stage._prims.size() >= _options.maxPrims) {
+            if (!_primLimitHit)
+                warn(parent._location, "too many prims (StageOptions::maxPrims = " +
+                                           std::to_string(_options.maxPrims) +
+                                           "); the rest of the stage is not composed",
+                     Diagnostic::Severity::Error);
+            _primLimitHit = true;
             return;
         }
         std::string primPath = path::child(parent._path, name);

@@ -7,6 +7,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -38,12 +39,17 @@ struct PrimIndexNode {
     const LayerStack* stack = nullptr;
     std::string site;  ///< prim path in the stack, with variant selections: "/A{v=x}/B"
     Arc arc = Arc::Root;
-    std::vector<MapStep> map;  ///< node namespace -> stage namespace, innermost step first
+    /// Node namespace -> stage namespace, innermost step first. Shared between a node and the
+    /// nodes derived from it for descendant prims (the mapping is prefix-based).
+    std::shared_ptr<const std::vector<MapStep>> map = std::make_shared<std::vector<MapStep>>();
     LayerOffset offset;        ///< node time -> stage time
     SourceLocation arcLocation;
     PrimIndexNode* parent = nullptr;
     std::vector<std::unique_ptr<PrimIndexNode>> children;  ///< sorted by arc (LIVRPS)
-    std::vector<std::string> expandedVariantSets;
+    /// Variant sets listed at this site (composed once), and how many are expanded so far.
+    std::optional<std::vector<std::string>> variantSetNames;
+    std::size_t nextVariantSet = 0;
+    bool variantsDone = false;  ///< all variant sets at this site are expanded
 
     void addChild(std::unique_ptr<PrimIndexNode> child);
 };
@@ -76,6 +82,8 @@ private:
     void expandArcs(Node& node);
     void addReferenceArc(Node& node, const Reference& ref, Arc arc);
     void addClassArc(Node& node, const PathItem& item, Arc arc);
+    std::unique_ptr<Node> buildSubrootIndex(const LayerStack* stack, const std::string& target,
+                                            const SourceLocation& where);
     /// Pcp's implied inherits/specializes: a class arc inside a referenced asset also picks up
     /// the class at the mapped path in the root layer stack (stronger than the asset's class).
     void addImpliedClassArc(const Node& node, const std::string& target, Arc arc,
@@ -109,7 +117,10 @@ private:
     const LayerStack* _rootStack = nullptr;
     Node* _indexRoot = nullptr;
     std::size_t _nodeCount = 0;
+    bool _primLimitHit = false;
     std::set<std::string> _reported;
+    /// Sub-root reference targets whose index is being built (cycle detection across them).
+    std::vector<std::pair<const LayerStack*, std::string>> _building;
 };
 
 }  // namespace principled::usd

@@ -43,8 +43,12 @@ const PrimSpec* lookup(const std::vector<std::unique_ptr<PrimSpec>>& prims,
 }
 }  // namespace
 
-void PrimSpec::indexChildren() { buildIndex(children, childIndex); }
-void Layer::indexRootPrims() { buildIndex(rootPrims, rootIndex); }
+void PrimSpec::indexChildren() {
+    buildIndex(children, childIndex);
+}
+void Layer::indexRootPrims() {
+    buildIndex(rootPrims, rootIndex);
+}
 
 const PrimSpec* PrimSpec::child(std::string_view n) const {
     return lookup(children, childIndex, n);

@@ -10,18 +10,19 @@ bool isIdentStart(char c) {
 bool isIdentChar(char c) {
     return isIdentStart(c) || (c >= '0' && c <= '9') || c == ':';
 }
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
+bool isDigit(char c) {
+    return c >= '0' && c <= '9';
+}
 }  // namespace
 
 Lexer::Lexer(std::string_view text, std::string file) : _text(text), _file(std::move(file)) {
     _next = scan();
 }
 
-std::string Lexer::describe(const Token& t) {
-    if (t.kind == TokenKind::End) return "end of file";
+std::string quoteText(std::string_view text) {
     std::string out = "'";
     std::size_t n = 0;
-    for (char c : t.text) {
+    for (char c : text) {
         if (++n > 40) {
             out += "...";
             break;
@@ -37,6 +38,11 @@ std::string Lexer::describe(const Token& t) {
         }
     }
     return out + "'";
+}
+
+std::string Lexer::describe(const Token& t) {
+    if (t.kind == TokenKind::End) return "end of file";
+    return quoteText(t.text);
 }
 
 void Lexer::fail(const Token& at, std::string_view expected) const {
@@ -105,8 +111,7 @@ void Lexer::scanString(Token& t) {
         }
         if (c == '\n') {
             if (!triple)
-                failHere("'" + closing + "' closing the string opened at " + opened,
-                         "end of line");
+                failHere("'" + closing + "' closing the string opened at " + opened, "end of line");
             ++_pos;
             ++_line;
             _lineStart = _pos;
@@ -144,10 +149,10 @@ Token Lexer::scan() {
     if (isIdentStart(c)) {
         while (_pos < n && isIdentChar(_text[_pos])) ++_pos;
         t.kind = TokenKind::Identifier;
-    } else if (isDigit(c) || ((c == '-' || c == '+' || c == '.') && _pos + 1 < n &&
-                              (isDigit(_text[_pos + 1]) ||
-                               (c != '.' && (_text[_pos + 1] == '.' ||
-                                             isIdentStart(_text[_pos + 1])))))) {
+    } else if (isDigit(c) ||
+               ((c == '-' || c == '+' || c == '.') && _pos + 1 < n &&
+                (isDigit(_text[_pos + 1]) ||
+                 (c != '.' && (_text[_pos + 1] == '.' || isIdentStart(_text[_pos + 1])))))) {
         // A maximal number-like run; the parser validates it with std::from_chars so that
         // "1.2.3" or "4x" is reported as one bad number.
         ++_pos;
@@ -155,7 +160,8 @@ Token Lexer::scan() {
             char d = _text[_pos];
             if (isDigit(d) || d == '.' || isIdentStart(d)) {
                 ++_pos;
-            } else if ((d == '-' || d == '+') && (_text[_pos - 1] == 'e' || _text[_pos - 1] == 'E')) {
+            } else if ((d == '-' || d == '+') &&
+                       (_text[_pos - 1] == 'e' || _text[_pos - 1] == 'E')) {
                 ++_pos;
             } else {
                 break;
@@ -170,8 +176,9 @@ Token Lexer::scan() {
         _pos += triple ? 3 : 1;
         for (;;) {
             if (_pos >= n || (!triple && _text[_pos] == '\n'))
-                failHere(std::string(triple ? "'@@@'" : "'@'") + " closing the asset path opened at " +
-                             std::to_string(t.line) + ":" + std::to_string(t.column),
+                failHere(std::string(triple ? "'@@@'" : "'@'") +
+                             " closing the asset path opened at " + std::to_string(t.line) + ":" +
+                             std::to_string(t.column),
                          _pos >= n ? "end of file" : "end of line");
             if (_text[_pos] == '\n') {
                 ++_line;
@@ -221,14 +228,30 @@ std::string unescapeString(std::string_view raw) {
         }
         char e = body[++i];
         switch (e) {
-            case 'n': out += '\n'; break;
-            case 't': out += '\t'; break;
-            case 'r': out += '\r'; break;
-            case '0': out += '\0'; break;
-            case 'a': out += '\a'; break;
-            case 'b': out += '\b'; break;
-            case 'f': out += '\f'; break;
-            case 'v': out += '\v'; break;
+            case 'n':
+                out += '\n';
+                break;
+            case 't':
+                out += '\t';
+                break;
+            case 'r':
+                out += '\r';
+                break;
+            case '0':
+                out += '\0';
+                break;
+            case 'a':
+                out += '\a';
+                break;
+            case 'b':
+                out += '\b';
+                break;
+            case 'f':
+                out += '\f';
+                break;
+            case 'v':
+                out += '\v';
+                break;
             case 'x': {
                 int v = 0, digits = 0;
                 while (digits < 2 && i + 1 < body.size()) {
@@ -245,7 +268,9 @@ std::string unescapeString(std::string_view raw) {
                 out += static_cast<char>(v);
                 break;
             }
-            default: out += e; break;  // \\ \" \' and unknown escapes keep the character
+            default:
+                out += e;
+                break;  // \\ \" \' and unknown escapes keep the character
         }
     }
     return out;

@@ -60,6 +60,10 @@ private:
     Token _next;
 };
 
+/// `text` in single quotes for an error message: bytes outside printable ASCII as \\xNN, cut
+/// after 40 characters with "...".
+std::string quoteText(std::string_view text);
+
 /// The contents of a string token with escapes decoded (quotes stripped).
 std::string unescapeString(std::string_view raw);
 

@@ -29,17 +29,26 @@ struct ListOp {
                 isExplicit = true;
                 explicitItems = std::move(items);
                 break;
-            case ListOpKind::Add: added = std::move(items); break;
-            case ListOpKind::Prepend: prepended = std::move(items); break;
-            case ListOpKind::Append: appended = std::move(items); break;
-            case ListOpKind::Delete: deleted = std::move(items); break;
-            case ListOpKind::Reorder: ordered = std::move(items); break;
+            case ListOpKind::Add:
+                added = std::move(items);
+                break;
+            case ListOpKind::Prepend:
+                prepended = std::move(items);
+                break;
+            case ListOpKind::Append:
+                appended = std::move(items);
+                break;
+            case ListOpKind::Delete:
+                deleted = std::move(items);
+                break;
+            case ListOpKind::Reorder:
+                ordered = std::move(items);
+                break;
         }
     }
 
-    /// Applies this (stronger) opinion on top of `list`, the result of the weaker ones.
-    /// Reorder moves the named items, in that order, to the front (a simplification of Sdf's
-    /// relative reorder).
+    /// Applies this (stronger) opinion on top of `list`, the result of the weaker ones, in Sdf's
+    /// order: delete, add, prepend, append, reorder.
     void applyTo(std::vector<T>& list) const {
         auto remove = [&list](const T& item) {
             list.erase(std::remove(list.begin(), list.end(), item), list.end());
@@ -69,15 +78,37 @@ struct ListOp {
             remove(item);
             list.push_back(item);
         }
-        if (!ordered.empty()) {
-            std::vector<T> front;
-            for (const T& item : ordered) {
-                if (!contains(item)) continue;
-                remove(item);
-                front.push_back(item);
-            }
-            list.insert(list.begin(), front.begin(), front.end());
+        if (!ordered.empty()) reorder(list);
+    }
+
+private:
+    /// Sdf reorder: each named item moves, in the given order, together with the unnamed items
+    /// that follow it; items before every named one stay in front.
+    void reorder(std::vector<T>& list) const {
+        std::vector<T> order;
+        for (const T& item : ordered)
+            if (std::find(order.begin(), order.end(), item) == order.end()) order.push_back(item);
+        auto named = [&order](const T& item) {
+            return std::find(order.begin(), order.end(), item) != order.end();
+        };
+        std::vector<bool> taken(list.size(), false);
+        std::vector<T> runs;
+        for (const T& item : order) {
+            auto it = std::find(list.begin(), list.end(), item);
+            if (it == list.end()) continue;
+            std::size_t i = static_cast<std::size_t>(it - list.begin());
+            do {
+                runs.push_back(list[i]);
+                taken[i] = true;
+                ++i;
+            } while (i < list.size() && !named(list[i]));
         }
+        std::vector<T> result;
+        result.reserve(list.size());
+        for (std::size_t i = 0; i < list.size(); ++i)
+            if (!taken[i]) result.push_back(list[i]);
+        result.insert(result.end(), runs.begin(), runs.end());
+        list = std::move(result);
     }
 };
 

@@ -20,8 +20,8 @@ std::string_view Parser::checkHeader(std::string_view text, const std::string& f
     std::string_view first = body.substr(0, body.find('\n'));
     while (!first.empty() && (first.back() == '\r' || first.back() == ' ' || first.back() == '\t'))
         first.remove_suffix(1);
-    bool ok = first.substr(0, 5) == "#usda" && first.size() > 5 &&
-              (first[5] == ' ' || first[5] == '\t');
+    bool ok =
+        first.substr(0, 5) == "#usda" && first.size() > 5 && (first[5] == ' ' || first[5] == '\t');
     if (ok) {
         std::string_view version = first.substr(5);
         version.remove_prefix(std::min(version.find_first_not_of(" \t"), version.size()));
@@ -157,11 +157,14 @@ std::unique_ptr<PrimSpec> Parser::parsePrim(const SiblingNames& seen) {
     spec->name = expectString("a quoted prim name");
     if (spec->name.empty() ||
         spec->name.find_first_of("/.{}<>[]:=@\"' \t\r\n") != std::string::npos ||
+        std::any_of(spec->name.begin(), spec->name.end(),
+                    [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }) ||
         (spec->name[0] >= '0' && spec->name[0] <= '9'))
         _lex.fail(nameTok, "a valid prim name (an identifier)");
     // One layer holds one spec per path (Sdf): a second spec of the same name is an error.
     if (auto it = seen.find(spec->name); it != seen.end())
-        _lex.fail(nameTok, "a unique prim name ('" + spec->name + "' is already defined at " +
+        _lex.fail(nameTok, "a unique prim name (" + quoteText(spec->name) +
+                               " is already defined at " +
                                std::to_string(it->second->location.line) + ":" +
                                std::to_string(it->second->location.column) + ")");
     if (peek().is('(')) parsePrimMetadata(*spec);
@@ -471,7 +474,8 @@ Reference Parser::parseReference() {
     } else if (t.kind == TokenKind::Path) {
         r.primPath = pathFromToken(next());
         if (r.primPath.empty() || r.primPath[0] != '/')
-            throw ParseError(r.location, "expected an absolute prim path, found '<" + r.primPath + ">'");
+            throw ParseError(r.location, "expected an absolute prim path, found " +
+                                             quoteText("<" + r.primPath + ">"));
     } else {
         fail("an asset path '@...@' or a prim path '<...>'");
     }

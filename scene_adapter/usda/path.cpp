@@ -50,7 +50,8 @@ bool hasPrefix(std::string_view p, std::string_view prefix) {
     return c == '/' || c == '.';
 }
 
-std::string replacePrefix(std::string_view p, std::string_view prefix, std::string_view replacement) {
+std::string replacePrefix(std::string_view p, std::string_view prefix,
+                          std::string_view replacement) {
     if (prefix == "/") return child(replacement, p.substr(1));
     std::string out(replacement);
     out += p.substr(prefix.size());

@@ -19,7 +19,8 @@ std::string stripVariants(std::string_view p);
 /// True when `p` equals `prefix` or lies below it (prim children "/..." or properties ".x").
 bool hasPrefix(std::string_view p, std::string_view prefix);
 /// Replaces `prefix` of `p` (which must satisfy hasPrefix) with `replacement`.
-std::string replacePrefix(std::string_view p, std::string_view prefix, std::string_view replacement);
+std::string replacePrefix(std::string_view p, std::string_view prefix,
+                          std::string_view replacement);
 /// Makes a possibly relative target path ("../X", "Child", ".prop") absolute against the prim
 /// path `anchor`; absolute paths are returned unchanged.
 std::string makeAbsolute(std::string_view target, std::string_view anchor);

@@ -34,9 +34,15 @@ Value Attribute::get(double time) const {
     return {};
 }
 
-const Value* Attribute::metadata(std::string_view key) const { return findIn(_metadata, key); }
-const Value* Relationship::metadata(std::string_view key) const { return findIn(_metadata, key); }
-const Value* Prim::metadata(std::string_view key) const { return findIn(_metadata, key); }
+const Value* Attribute::metadata(std::string_view key) const {
+    return findIn(_metadata, key);
+}
+const Value* Relationship::metadata(std::string_view key) const {
+    return findIn(_metadata, key);
+}
+const Value* Prim::metadata(std::string_view key) const {
+    return findIn(_metadata, key);
+}
 
 const Attribute* Prim::attribute(std::string_view name) const {
     return findByName(_attributes, name);
@@ -85,7 +91,9 @@ std::vector<const Prim*> Stage::traverse() const {
     return out;
 }
 
-double Stage::defaultTime() const { return _hasStart ? _startTimeCode : kDefaultTime; }
+double Stage::defaultTime() const {
+    return _hasStart ? _startTimeCode : kDefaultTime;
+}
 
 const Value* Stage::layerMetadata(std::string_view key) const {
     return findIn(_layerMetadata, key);

@@ -21,6 +21,9 @@ struct StageOptions {
     std::map<std::string, std::map<std::string, std::string>> variantOverrides;
     /// Most distinct layer files one stage may load.
     std::size_t maxLayers = 4096;
+    /// Most composed prims (about 1-2 KB each): references can multiply a small file into an
+    /// exponential namespace, so composition stops here with an error diagnostic.
+    std::size_t maxPrims = 2'000'000;
     /// Compose payload arcs (false: prims with payloads are composed without them).
     bool loadPayloads = true;
 };
@@ -51,10 +54,10 @@ public:
     std::vector<const Prim*> traverse() const;
 
     std::string defaultPrim() const { return _defaultPrim; }
-    std::string upAxis() const { return _upAxis; }             ///< "Y" fallback
-    double metersPerUnit() const { return _metersPerUnit; }    ///< 0.01 fallback
-    double startTimeCode() const { return _startTimeCode; }    ///< 0 fallback
-    double endTimeCode() const { return _endTimeCode; }        ///< 0 fallback
+    std::string upAxis() const { return _upAxis; }                     ///< "Y" fallback
+    double metersPerUnit() const { return _metersPerUnit; }            ///< 0.01 fallback
+    double startTimeCode() const { return _startTimeCode; }            ///< 0 fallback
+    double endTimeCode() const { return _endTimeCode; }                ///< 0 fallback
     double timeCodesPerSecond() const { return _timeCodesPerSecond; }  ///< 24 fallback
     double framesPerSecond() const { return _framesPerSecond; }        ///< 24 fallback
     /// Both startTimeCode and endTimeCode are authored.

@@ -46,8 +46,8 @@ void blend(const std::vector<double>& a, const std::vector<double>& b, double u,
 
 Value interpolateValues(const Value& a, const Value& b, double u) {
     const ValueType* type = findValueType(a.typeName());
-    if (!type || !type->interpolates() || a.kind() != b.kind() ||
-        a.typeName() != b.typeName() || a.size() != b.size())
+    if (!type || !type->interpolates() || a.kind() != b.kind() || a.typeName() != b.typeName() ||
+        a.size() != b.size())
         return a;
     switch (a.kind()) {
         case Value::Kind::Number: {
@@ -64,13 +64,14 @@ Value interpolateValues(const Value& a, const Value& b, double u) {
             blend(*a.numbers(), *b.numbers(), u, type->quaternion, out);
             return Value::numberArray(a.typeName(), a.components(), std::move(out), a.location());
         }
-        default: return a;
+        default:
+            return a;
     }
 }
 
 Value evaluateTimeSamples(const std::map<double, Value>& samples, double time) {
     if (samples.empty()) return {};
-    auto upper = samples.upper_bound(time);  // first sample strictly after `time`
+    auto upper = samples.upper_bound(time);              // first sample strictly after `time`
     if (upper == samples.begin()) return upper->second;  // before the first: held
     auto lower = std::prev(upper);
     if (upper == samples.end() || lower->first == time) return lower->second;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <sstream>
 
-
 namespace principled::usd {
 
 struct Value::Storage {
@@ -13,7 +12,6 @@ struct Value::Storage {
     std::vector<AssetPath> assets;
     Dictionary dict;
 };
-
 
 Value Value::none(std::string typeName, bool isArray, SourceLocation where) {
     Value v;
@@ -175,12 +173,17 @@ const std::vector<double>* Value::numbers() const {
 std::size_t Value::size() const {
     switch (_kind) {
         case Kind::Empty:
-        case Kind::None: return 0;
-        case Kind::NumberArray: return _data->numbers.size() / static_cast<std::size_t>(_components);
+        case Kind::None:
+            return 0;
+        case Kind::NumberArray:
+            return _data->numbers.size() / static_cast<std::size_t>(_components);
         case Kind::StringArray:
-        case Kind::AssetArray: return _data->strings.size();
-        case Kind::Dictionary: return _data->dict.size();
-        default: return 1;
+        case Kind::AssetArray:
+            return _data->strings.size();
+        case Kind::Dictionary:
+            return _data->dict.size();
+        default:
+            return 1;
     }
 }
 
@@ -210,15 +213,25 @@ std::string Value::toString() const {
         if (n > 1) os << ')';
     };
     switch (_kind) {
-        case Kind::Empty: return "<empty>";
-        case Kind::None: return "None";
-        case Kind::Number: numbersText(&_number, 1); break;
+        case Kind::Empty:
+            return "<empty>";
+        case Kind::None:
+            return "None";
+        case Kind::Number:
+            numbersText(&_number, 1);
+            break;
         case Kind::Tuple:
             numbersText(_data->numbers.data(), static_cast<int>(_data->numbers.size()));
             break;
-        case Kind::String: os << '"' << _data->strings.front() << '"'; break;
-        case Kind::Asset: os << '@' << _data->strings.front() << '@'; break;
-        case Kind::Path: os << '<' << _data->strings.front() << '>'; break;
+        case Kind::String:
+            os << '"' << _data->strings.front() << '"';
+            break;
+        case Kind::Asset:
+            os << '@' << _data->strings.front() << '@';
+            break;
+        case Kind::Path:
+            os << '<' << _data->strings.front() << '>';
+            break;
         case Kind::NumberArray: {
             os << '[';
             std::size_t n = size();

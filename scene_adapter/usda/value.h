@@ -69,9 +69,9 @@ public:
     const std::string& typeName() const { return _typeName; }
     bool isArray() const { return _isArray; }
 
-    std::optional<bool> getBool() const;         ///< bool, or an integer 0/1
-    std::optional<std::int64_t> getInt() const;  ///< integer types and exact-integer floats
-    std::optional<double> getDouble() const;     ///< any numeric scalar
+    std::optional<bool> getBool() const;           ///< bool, or an integer 0/1
+    std::optional<std::int64_t> getInt() const;    ///< integer types and exact-integer floats
+    std::optional<double> getDouble() const;       ///< any numeric scalar
     std::optional<std::string> getString() const;  ///< string or token
     std::optional<AssetPath> getAsset() const;
     std::optional<std::string> getPath() const;

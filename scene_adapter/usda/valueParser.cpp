@@ -10,9 +10,9 @@
 namespace principled::usd::detail {
 
 namespace {
-// A value's text for "found Y" in an error: single-quoted, cut at 40 characters like tokens.
+// A value's text for "found Y" in an error, quoted like a token.
 std::string quoted(const std::string& text) {
-    return "'" + (text.size() > 40 ? text.substr(0, 40) + "..." : text) + "'";
+    return quoteText(text);
 }
 }  // namespace
 
@@ -160,9 +160,12 @@ Value Parser::parseGenericValue() {
     SourceLocation where = here();
     const Token& t = peek();
     switch (t.kind) {
-        case TokenKind::String: return Value::string("string", unescapeString(next().text), where);
-        case TokenKind::Asset: return Value::asset(assetFromToken(next()), where);
-        case TokenKind::Path: return Value::path(pathFromToken(next()), where);
+        case TokenKind::String:
+            return Value::string("string", unescapeString(next().text), where);
+        case TokenKind::Asset:
+            return Value::asset(assetFromToken(next()), where);
+        case TokenKind::Path:
+            return Value::path(pathFromToken(next()), where);
         case TokenKind::Number: {
             bool isInt = t.text.find_first_of(".eEin") == std::string_view::npos;
             double v = parseScalarNumber(t, false, false, false);
@@ -178,7 +181,8 @@ Value Parser::parseGenericValue() {
             if (id.text == "nan") return Value::number("double", std::nan(""), where);
             return Value::string("token", std::string(id.text), where);
         }
-        default: break;
+        default:
+            break;
     }
     if (t.is('{')) return Value::dictionary(parseDictionary(), where);
     if (t.is('(')) {
@@ -216,8 +220,10 @@ Value Parser::parseGenericValue() {
             case Value::Kind::Tuple: {
                 std::vector<double> v;
                 for (const Value& e : items) {
-                    if (auto d = e.getDouble()) v.push_back(*d);
-                    else if (auto tup = e.getTuple()) v.insert(v.end(), tup->begin(), tup->end());
+                    if (auto d = e.getDouble())
+                        v.push_back(*d);
+                    else if (auto tup = e.getTuple())
+                        v.insert(v.end(), tup->begin(), tup->end());
                 }
                 return Value::numberArray(first.typeName(), first.components(), std::move(v),
                                           where);
@@ -225,7 +231,8 @@ Value Parser::parseGenericValue() {
             case Value::Kind::String:
             case Value::Kind::Path: {
                 std::vector<std::string> v;
-                for (const Value& e : items) v.push_back(e.getString() ? *e.getString() : *e.getPath());
+                for (const Value& e : items)
+                    v.push_back(e.getString() ? *e.getString() : *e.getPath());
                 return Value::stringArray(first.typeName(), std::move(v), where);
             }
             case Value::Kind::Asset: {
@@ -250,6 +257,16 @@ Dictionary Parser::parseDictionary() {
         if (accept('}')) return d;
         if (accept(';')) continue;
         if (peek().kind == TokenKind::End) fail("'}'");
+        // Untyped map entries: prefixSubstitutions { "a": "b", ... }, relocates { </a>: </b> }.
+        if (peek().kind == TokenKind::String || peek().kind == TokenKind::Path) {
+            Token keyTok = next();
+            std::string key = keyTok.kind == TokenKind::String ? unescapeString(keyTok.text)
+                                                               : pathFromToken(keyTok);
+            expect(':');
+            d[key] = parseGenericValue();
+            if (!accept(',') && !peek().is('}') && !peek().is(';')) fail("',' or '}'");
+            continue;
+        }
         Token typeTok = expectIdent("a value type name or '}'");
         bool isArray = false;
         if (accept('[')) {

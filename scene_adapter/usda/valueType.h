@@ -9,8 +9,21 @@
 namespace principled::usd {
 
 enum class ScalarType : std::uint8_t {
-    Bool, UChar, Int, UInt, Int64, UInt64, Half, Float, Double, TimeCode,
-    String, Token, Asset, Opaque, PathExpression,
+    Bool,
+    UChar,
+    Int,
+    UInt,
+    Int64,
+    UInt64,
+    Half,
+    Float,
+    Double,
+    TimeCode,
+    String,
+    Token,
+    Asset,
+    Opaque,
+    PathExpression,
 };
 
 struct ValueType {

@@ -189,3 +189,73 @@ TEST(RenderSession, UnknownAovIsAUserError) {
     o.aovs = {"nope"};
     EXPECT_THROW(host::RenderSession::openString("#usda 1.0\n", "x.usda", o), host::UserError);
 }
+
+TEST(RenderSession, PrimvarAovInterpolatesAtTheFirstHit) {
+    host::SessionOptions o;
+    o.width = o.height = 9;
+    o.samplesPerPixel = 1;
+    o.aovs = {"primvars:st"};
+    auto s = host::RenderSession::openString(R"(#usda 1.0
+def Mesh "Quad"
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "vertex")
+}
+def Camera "Cam"
+{
+    token projection = "orthographic"
+    float horizontalAperture = 20
+    float verticalAperture = 20
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)",
+                                             "st.usda", o);
+    while (!s->step()) {
+    }
+    const float* st = nullptr;
+    for (const auto& a : s->aovs())
+        if (a.name == "primvars:st") st = static_cast<const float*>(a.pixels);
+    ASSERT_TRUE(st);
+    const float* centre = st + (4 * 9 + 4) * 3;
+    EXPECT_NEAR(centre[0], 0.5f, 0.07f);
+    EXPECT_NEAR(centre[1], 0.5f, 0.07f);
+    const float* topLeft = st;  // image top-left is st (0, 1)
+    EXPECT_LT(topLeft[0], 0.2f);
+    EXPECT_GT(topLeft[1], 0.8f);
+}
+
+TEST(RenderSession, RendersTheStageAtTheRequestedTimeCode) {
+    const char* scene = R"(#usda 1.0
+(
+    startTimeCode = 0
+    endTimeCode = 10
+)
+def Sphere "Ball"
+{
+    double3 xformOp:translate.timeSamples = { 0: (-100, 0, 0), 10: (0, 0, 0) }
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, 20)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)";
+    auto centreAlpha = [&](double time) {
+        host::SessionOptions o;
+        o.width = o.height = 8;
+        o.samplesPerPixel = 1;
+        o.time = time;
+        auto s = host::RenderSession::openString(scene, "anim.usda", o);
+        while (!s->step()) {
+        }
+        return s->color()[(4 * 8 + 4) * 4 + 3];
+    };
+    EXPECT_EQ(centreAlpha(0.0), 0.0f);   // the ball is far left
+    EXPECT_EQ(centreAlpha(10.0), 1.0f);  // the ball is centred
+    EXPECT_EQ(centreAlpha(NAN), 0.0f);   // default: startTimeCode 0
+}

@@ -29,17 +29,19 @@ TEST(AssetResolver, RefusesBinaryAndUnreadableFiles) {
         readLayerText(crate);
         FAIL();
     } catch (const Error& e) {
-        EXPECT_EQ(std::string(e.what()).rfind(crate + ": binary USD crate file (usdc) is not "
-                                                      "supported: the text format (usda) is required",
-                                              0),
-                  0u)
+        EXPECT_EQ(
+            std::string(e.what()).rfind(crate + ": binary USD crate file (usdc) is not "
+                                                "supported: the text format (usda) is required",
+                                        0),
+            0u)
             << e.what();
     }
     try {
         readLayerText(zip);
         FAIL();
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("USDZ/zip archive is not supported"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("USDZ/zip archive is not supported"),
+                  std::string::npos);
     }
     EXPECT_THROW(readLayerText(dir.path("nope.usda")), Error);
     EXPECT_THROW(readLayerText(dir.path()), Error);

@@ -126,14 +126,29 @@ over "P" { double b = 3 }
 
 TEST(Composer, ReferenceOffsetsComposeWithTheAuthoringSublayer) {
     test::TempDir dir("refoffset");
-    dir.write("anim.usda", "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" { double x.timeSamples = { 0: 0, 1: 1 } }\n");
-    dir.write("sub.usda", "#usda 1.0\ndef \"P\" ( references = @anim.usda@ (offset = 5; scale = 2) ) {}\n");
-    std::string root = dir.write("root.usda", "#usda 1.0\n( subLayers = [@sub.usda@ (offset = 100)] )\n");
+    dir.write("anim.usda",
+              "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" { double x.timeSamples = { 0: 0, 1: 1 "
+              "} }\n");
+    dir.write("sub.usda",
+              "#usda 1.0\ndef \"P\" ( references = @anim.usda@ (offset = 5; scale = 2) ) {}\n");
+    std::string root =
+        dir.write("root.usda", "#usda 1.0\n( subLayers = [@sub.usda@ (offset = 100)] )\n");
     auto stage = Stage::open(root);
     const auto& samples = stage->prim("/P")->attribute("x")->timeSamples();
     ASSERT_EQ(samples.size(), 2u);
     EXPECT_EQ(samples.begin()->first, 105.0);   // 0 * 2 + 5 + 100
     EXPECT_EQ(samples.rbegin()->first, 107.0);  // 1 * 2 + 5 + 100
+}
+
+TEST(Composer, SubLayerCycleIsAnErrorAndTheRestLoads) {
+    test::TempDir dir("subcycle");
+    dir.write("b.usda", "#usda 1.0\n( subLayers = [@root.usda@] )\ndef \"B\" {}\n");
+    std::string root =
+        dir.write("root.usda", "#usda 1.0\n( subLayers = [@b.usda@] )\ndef \"R\" {}\n");
+    auto stage = Stage::open(root);
+    EXPECT_NE(stage->prim("/R"), nullptr);
+    EXPECT_NE(stage->prim("/B"), nullptr);
+    EXPECT_TRUE(hasWarning(*stage, "b.usda:2:16: error: sublayer cycle: "));
 }
 
 TEST(Composer, InheritsFromClass) {
@@ -166,19 +181,30 @@ TEST(Composer, StrengthOrderLIVRPS) {
             return skip.find(who) == std::string::npos ? "string who = \"" + who + "\"" : "";
         };
         return "#usda 1.0\n"
-               "class \"Inh\" { " + opinion("inherits") + " }\n"
-               "def \"Ref\" { " + opinion("references") + " }\n"
-               "def \"Pay\" { " + opinion("payloads") + " }\n"
-               "def \"Spec\" { " + opinion("specializes") + " }\n"
+               "class \"Inh\" { " +
+               opinion("inherits") +
+               " }\n"
+               "def \"Ref\" { " +
+               opinion("references") +
+               " }\n"
+               "def \"Pay\" { " +
+               opinion("payloads") +
+               " }\n"
+               "def \"Spec\" { " +
+               opinion("specializes") +
+               " }\n"
                "def \"P\" (\n"
                "  inherits = </Inh>\n  references = </Ref>\n  payload = </Pay>\n"
                "  specializes = </Spec>\n  variants = { string v = \"x\" }\n"
                "  variantSets = \"v\"\n) {\n"
-               "  " + opinion("local") + "\n"
-               "  variantSet \"v\" = { \"x\" { " + opinion("variants") + " } }\n}\n";
+               "  " +
+               opinion("local") +
+               "\n"
+               "  variantSet \"v\" = { \"x\" { " +
+               opinion("variants") + " } }\n}\n";
     };
-    const char* order[] = {"local", "inherits", "variants", "references", "payloads",
-                           "specializes"};
+    const char* order[] = {"local",      "inherits", "variants",
+                           "references", "payloads", "specializes"};
     std::string skip;
     for (const char* expected : order) {
         auto stage = Stage::openString(build(skip), "livrps.usda");
@@ -295,25 +321,30 @@ over "World" {
 
 TEST(Composer, ReferenceCycleIsReportedWithItsChain) {
     test::TempDir dir("cycle");
-    dir.write("a.usda", "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" ( references = @b.usda@ ) {}\n");
-    dir.write("b.usda", "#usda 1.0\n( defaultPrim = \"B\" )\ndef \"B\" ( references = @a.usda@ ) {}\n");
-    std::string root = dir.write("root.usda", "#usda 1.0\ndef \"R\" ( references = @a.usda@ ) {}\n");
+    dir.write("a.usda",
+              "#usda 1.0\n( defaultPrim = \"A\" )\ndef \"A\" ( references = @b.usda@ ) {}\n");
+    dir.write("b.usda",
+              "#usda 1.0\n( defaultPrim = \"B\" )\ndef \"B\" ( references = @a.usda@ ) {}\n");
+    std::string root =
+        dir.write("root.usda", "#usda 1.0\ndef \"R\" ( references = @a.usda@ ) {}\n");
     auto stage = Stage::open(root);
     ASSERT_NE(stage->prim("/R"), nullptr);
     ASSERT_FALSE(stage->warnings().empty());
     const Diagnostic& d = stage->warnings().front();
     EXPECT_EQ(d.severity, Diagnostic::Severity::Error);
     std::string a = dir.path("a.usda"), b = dir.path("b.usda");
-    EXPECT_EQ(d.str(), b + ":3:24: error: reference cycle: " + a + "</A> -> " + b + "</B> -> " +
-                           a + "</A>");
+    EXPECT_EQ(d.str(),
+              b + ":3:24: error: reference cycle: " + a + "</A> -> " + b + "</B> -> " + a + "</A>");
     // Internal self-reference and inherits of an ancestor.
     stage = Stage::openString(
         "#usda 1.0\ndef \"X\" { def \"Y\" ( references = </X> ) {} }\n"
         "def \"Z\" ( inherits = </Z> ) {}\n",
         "self.usda");
-    EXPECT_TRUE(hasWarning(*stage, "self.usda:2:34: error: reference cycle: self.usda</X/Y> -> "
-                                   "self.usda</X>"));
-    EXPECT_TRUE(hasWarning(*stage, "self.usda:3:22: error: inherits cycle: self.usda</Z> -> self.usda</Z>"));
+    EXPECT_TRUE(hasWarning(*stage,
+                           "self.usda:2:34: error: reference cycle: self.usda</X/Y> -> "
+                           "self.usda</X>"));
+    EXPECT_TRUE(hasWarning(
+        *stage, "self.usda:3:22: error: inherits cycle: self.usda</Z> -> self.usda</Z>"));
 }
 
 TEST(Composer, MissingFilesAreWarningsAndTheRestLoads) {
@@ -356,7 +387,9 @@ def "Looks" {
     def "Deep" ( references = @../other/deep.usda@ ) {}
 }
 )");
-    dir.write("other/deep.usda", "#usda 1.0\n( defaultPrim = \"D\" )\ndef \"D\" { asset f = @../lib/textures/wood.png@ }\n");
+    dir.write(
+        "other/deep.usda",
+        "#usda 1.0\n( defaultPrim = \"D\" )\ndef \"D\" { asset f = @../lib/textures/wood.png@ }\n");
     std::string root = dir.write("scene/root.usda", R"(#usda 1.0
 ( subLayers = [@../lib/looks.usda@] )
 )");
@@ -438,7 +471,7 @@ reorder rootPrims = ["Q", "P"]
     EXPECT_EQ(names, (std::vector<std::string>{"z", "x", "y"}));
     names.clear();
     for (const Prim* c : stage->pseudoRoot()->children()) names.push_back(c->name());
-    EXPECT_EQ(names, (std::vector<std::string>{"Q", "P", "Ref"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"Ref", "Q", "P"}));
 }
 
 TEST(Composer, AncestralReferenceAndArcsInsideReferencedPrims) {
@@ -469,7 +502,7 @@ TEST(Composer, CorpusStageComposition) {
             return (*s->prim(p)->attribute("primvars:displayColor")->get().numbers())[1];
         };
         EXPECT_EQ(color("/World/cubeWithoutSetColor"), 0.8);  // green from the class
-        EXPECT_EQ(color("/World/cubeWithSetColor"), 0.0);    // local red
+        EXPECT_EQ(color("/World/cubeWithSetColor"), 0.0);     // local red
         EXPECT_TRUE(s->prim("/_myClass")->isAbstract());
     }
     {
@@ -486,16 +519,51 @@ TEST(Composer, CorpusStageComposition) {
         EXPECT_TRUE(hasWarning(*s, "reference target </World/Cube_does_not_exist> not found"));
         EXPECT_TRUE(hasWarning(*s, "reference @file_does_not_exist.usda@ not found"));
     }
+    for (const char* dir : {"subLayer/sublayer", "references/reference", "payload/payload"}) {
+        for (const char* where : {"_same_folder", "_child_folder", "_parent_folder"}) {
+            std::string file = base + dir + where + ".usda";
+            SCOPED_TRACE(file);
+            auto s = Stage::open(file);
+            EXPECT_TRUE(s->warnings().empty()) << allWarnings(*s);
+            ASSERT_NE(s->prim("/World/Cube"), nullptr);
+            EXPECT_EQ(s->prim("/World/Cube")->typeName(), "Cube");
+            EXPECT_EQ(s->layerFiles().size(), 2u);
+        }
+        std::string invalid = base + dir + "_invalid.usda";
+        auto s = Stage::open(invalid);
+        ASSERT_EQ(s->warnings().size(), 1u) << allWarnings(*s);
+        EXPECT_EQ(s->warnings()[0].where.file, invalid);
+        EXPECT_NE(s->warnings()[0].message.find("@file_does_not_exist.usda@ not found"),
+                  std::string::npos);
+        EXPECT_EQ(s->prim("/World/cube")->typeName(), "Cube");  // the rest still loads
+    }
     {
-        auto s = Stage::open(base + "subLayer/sublayer_child_folder.usda");
-        EXPECT_EQ(s->prim("/World/Cube")->typeName(), "Cube");
-        s = Stage::open(base + "payload/payload_parent_folder.usda");
-        EXPECT_EQ(s->prim("/World/Cube")->typeName(), "Cube");
+        auto s = Stage::open(base + "active.usda");
+        EXPECT_FALSE(s->prim("/World/CubeInactive")->isActive());
+        EXPECT_TRUE(s->prim("/World/CubeActive")->isActive());
+        std::vector<std::string> paths;
+        for (const Prim* p : s->traverse()) paths.push_back(p->path());
+        EXPECT_EQ(paths, (std::vector<std::string>{"/World", "/World/CubeActive"}));
+    }
+    {
+        auto s = Stage::open(base + "over.usda");
+        EXPECT_TRUE(s->prim("/World")->isDefined());
+        EXPECT_EQ(s->prim("/World")->typeName(), "Scope");
+        EXPECT_EQ((*s->prim("/World/Cube")->attribute("primvars:displayColor")->get().numbers())[2],
+                  0.8);  // blue from the over
+        EXPECT_TRUE(s->prim("/World/definedCube")->isDefined());
+        EXPECT_FALSE(s->prim("/World/undefinedCube")->isDefined());
+        EXPECT_EQ(s->prim("/World/undefinedCube")->typeName(), "Cube");
+    }
+    {
+        auto s = Stage::open(base + "purpose.usda");
+        EXPECT_EQ(s->prim("/World/CubeIsGuide")->attribute("purpose")->get().getString(), "guide");
     }
 }
 
 TEST(Composer, PyramidAssetWithPayloadsReferencesAndNestedVariants) {
-    const std::string file = test::corpusDir() + "/full_assets/SubdivisionSurfaces/Pyramid/Pyramid.usd";
+    const std::string file =
+        test::corpusDir() + "/full_assets/SubdivisionSurfaces/Pyramid/Pyramid.usd";
     auto stage = Stage::open(file);
     EXPECT_TRUE(stage->warnings().empty()) << allWarnings(*stage);
     const Prim* shape = stage->prim("/Pyramid/geo/shape");
@@ -505,9 +573,10 @@ TEST(Composer, PyramidAssetWithPayloadsReferencesAndNestedVariants) {
     EXPECT_EQ(shape->relationship("material:binding")->targets(),
               (std::vector<std::string>{"/Pyramid/mtl/PyramidMaterial"}));
     EXPECT_EQ(shape->appliedSchemas(), (std::vector<std::string>{"MaterialBindingAPI"}));
-    EXPECT_EQ(stage->prim("/Pyramid/mtl/PyramidMaterial")->attribute("outputs:surface")->connections(),
-              (std::vector<std::string>{
-                  "/Pyramid/mtl/PyramidMaterial/usdpreviewsurface1.outputs:surface"}));
+    EXPECT_EQ(
+        stage->prim("/Pyramid/mtl/PyramidMaterial")->attribute("outputs:surface")->connections(),
+        (std::vector<std::string>{
+            "/Pyramid/mtl/PyramidMaterial/usdpreviewsurface1.outputs:surface"}));
     EXPECT_EQ(*stage->prim("/Pyramid")->metadata("kind")->getString(), "component");
     EXPECT_TRUE(stage->prim("/__class__")->isAbstract());
     EXPECT_EQ(stage->layerFiles().size(), 4u);
@@ -574,9 +643,9 @@ class "_class_Asset" { double color = 2  double extra = 7 }
     EXPECT_TRUE(stage->warnings().empty()) << allWarnings(*stage);
     EXPECT_EQ(number(*stage, "/A", "color"), 2.0);  // root class beats the asset's class
     EXPECT_EQ(number(*stage, "/A", "extra"), 7.0);
-    EXPECT_EQ(number(*stage, "/A", "size"), 1.0);   // the asset's own opinion beats both classes
-    EXPECT_EQ(number(*stage, "/B", "color"), 3.0);  // local beats every class
-    EXPECT_EQ(number(*stage, "/A/Part", "q"), 4.0); // a local class mapped to /A/_local
+    EXPECT_EQ(number(*stage, "/A", "size"), 1.0);    // the asset's own opinion beats both classes
+    EXPECT_EQ(number(*stage, "/B", "color"), 3.0);   // local beats every class
+    EXPECT_EQ(number(*stage, "/A/Part", "q"), 4.0);  // a local class mapped to /A/_local
     EXPECT_EQ(number(*stage, "/B/Part", "q"), 1.0);
 }
 
@@ -609,6 +678,74 @@ def "D" ( references = </Tree> ) { }
     EXPECT_NE(stage->prim("/A/m"), nullptr);  // still expanded
 }
 
+TEST(Composer, SubRootReferencesBringAncestralOpinions) {
+    test::TempDir dir("subroot");
+    dir.write("lib.usda", R"(#usda 1.0
+def "Lib" ( variantSets = "look"  variants = { string look = "red" } ) {
+    variantSet "look" = {
+        "red" { over "Chair" { double r = 1  rel mat = </Lib/Chair/Mat> } }
+        "blue" { over "Chair" { double r = 0 } }
+    }
+    def "Chair" { double legs = 4  def "Mat" {} }
+}
+)");
+    std::string root = dir.write("root.usda", R"(#usda 1.0
+def "MyChair" ( references = @lib.usda@</Lib/Chair> ) { }
+def "Loop" { def "A" ( references = </Cycle/B> ) {} }
+def "Cycle" { def "B" ( references = </Loop/A> ) {} }
+)");
+    auto stage = Stage::open(root);
+    EXPECT_EQ(number(*stage, "/MyChair", "legs"), 4.0);
+    EXPECT_EQ(number(*stage, "/MyChair", "r"), 1.0);  // from the ancestor's variant
+    EXPECT_EQ(stage->prim("/MyChair")->relationship("mat")->targets(),
+              (std::vector<std::string>{"/MyChair/Mat"}));
+    EXPECT_TRUE(hasWarning(*stage, "reference cycle")) << allWarnings(*stage);
+    EXPECT_NE(stage->prim("/Loop/A"), nullptr);
+}
+
+TEST(Composer, ManyVariantSetsAndDiamondsStayBounded) {
+    // 2000 variant sets on one prim, and a diamond of internal references 12 levels deep
+    // (4096 paths): both hit the per-prim node budget instead of running away.
+    std::string text = "#usda 1.0\ndef \"V\" ( variantSets = [";
+    for (int i = 0; i < 2000; ++i) text += (i ? ", \"s" : "\"s") + std::to_string(i) + "\"";
+    text += "] variants = {";
+    for (int i = 0; i < 2000; ++i) text += " string s" + std::to_string(i) + " = \"x\"";
+    text += " } ) {\n";
+    for (int i = 0; i < 2000; ++i)
+        text += "variantSet \"s" + std::to_string(i) + "\" = { \"x\" { double a" +
+                std::to_string(i) + " = 1 } }\n";
+    text += "}\n";
+    for (int i = 0; i < 12; ++i)
+        text += "def \"D" + std::to_string(i) + "\" ( references = [</D" + std::to_string(i + 1) +
+                ">, </E" + std::to_string(i + 1) + ">] ) {}\ndef \"E" + std::to_string(i) +
+                "\" ( references = [</D" + std::to_string(i + 1) + ">, </E" +
+                std::to_string(i + 1) + ">] ) {}\n";
+    text += "def \"D12\" { double leaf = 1 }\ndef \"E12\" { double leaf = 2 }\n";
+    auto stage = Stage::openString(text, "big.usda");
+    EXPECT_NE(stage->prim("/V")->attribute("a0"), nullptr);
+    EXPECT_TRUE(hasWarning(*stage, "composition too complex"));
+    EXPECT_EQ(number(*stage, "/D0", "leaf"), 1.0);
+}
+
+TEST(Composer, ExponentialNamespaceHitsThePrimBudget) {
+    // Each level references the next twice: 2^40 prims if nothing stopped it.
+    std::string text = "#usda 1.0\n";
+    for (int i = 0; i < 40; ++i)
+        text += "def \"N" + std::to_string(i) + "\" { def \"a\" ( references = </N" +
+                std::to_string(i + 1) + "> ) {} def \"b\" ( references = </N" +
+                std::to_string(i + 1) + "> ) {} }\n";
+    text += "def \"N40\" {}\n";
+    StageOptions options;
+    options.maxPrims = 5000;
+    auto stage = Stage::openString(text, "exp.usda", options);
+    int errors = 0;
+    for (const Diagnostic& d : stage->warnings())
+        if (d.message.find("too many prims (StageOptions::maxPrims = 5000)") != std::string::npos)
+            ++errors;
+    EXPECT_EQ(errors, 1);
+    EXPECT_NE(stage->prim("/N0"), nullptr);
+}
+
 TEST(Composer, LongReferenceChainsAreBounded) {
     test::TempDir dir("chain");
     const int files = 300;
@@ -617,7 +754,8 @@ TEST(Composer, LongReferenceChainsAreBounded) {
                   "#usda 1.0\n( defaultPrim = \"P\" )\ndef \"P\" ( references = @f" +
                       std::to_string(i + 1) + ".usda@ ) { double d" + std::to_string(i) +
                       " = 1 }\n");
-    dir.write("f" + std::to_string(files) + ".usda", "#usda 1.0\n( defaultPrim = \"P\" )\ndef \"P\" {}\n");
+    dir.write("f" + std::to_string(files) + ".usda",
+              "#usda 1.0\n( defaultPrim = \"P\" )\ndef \"P\" {}\n");
     auto stage = Stage::open(dir.path("f0.usda"));
     EXPECT_NE(stage->prim("/P")->attribute("d200"), nullptr);
     EXPECT_TRUE(hasWarning(*stage, "composition arcs nested more than 256 deep"));
@@ -645,9 +783,23 @@ def "W2" ( inherits = </W> ) { over "x" ( active = false ) {} }
         state = state * 6364136223846793005ULL + 1442695040888963407ULL;
         return static_cast<std::uint32_t>(state >> 33);
     };
-    const std::string pieces[] = {"</W>", "</Base>", "</C>", "</W/child>", "{", "}", "(", ")",
-                                  "\"", "=", "def \"Z\" ", "over ", "class ", "inherits = ",
-                                  "references = ", "variants = ", "active = false "};
+    const std::string pieces[] = {"</W>",
+                                  "</Base>",
+                                  "</C>",
+                                  "</W/child>",
+                                  "{",
+                                  "}",
+                                  "(",
+                                  ")",
+                                  "\"",
+                                  "=",
+                                  "def \"Z\" ",
+                                  "over ",
+                                  "class ",
+                                  "inherits = ",
+                                  "references = ",
+                                  "variants = ",
+                                  "active = false "};
     int composed = 0;
     for (int iter = 0; iter < 1500; ++iter) {
         std::string text = base;

@@ -16,7 +16,9 @@ std::vector<Token> lexAll(std::string_view text) {
 }
 
 TEST(Lexer, TokenKindsAndPositions) {
-    auto t = lexAll("#usda 1.0\ndef Xform \"n\" {\n  float3 xformOp:translate.timeSamples = { -1.5e3: (inf, -inf, nan) }\n  @a.png@ @@@b@c@@@ </A/B.prop> 'q' \"\"\"tri\nple\"\"\" ; }");
+    auto t = lexAll(
+        "#usda 1.0\ndef Xform \"n\" {\n  float3 xformOp:translate.timeSamples = { -1.5e3: (inf, "
+        "-inf, nan) }\n  @a.png@ @@@b@c@@@ </A/B.prop> 'q' \"\"\"tri\nple\"\"\" ; }");
     ASSERT_GE(t.size(), 10u);
     EXPECT_TRUE(t[0].isIdent("def"));
     EXPECT_EQ(t[0].line, 2);
@@ -62,7 +64,8 @@ TEST(Lexer, Describe) {
     EXPECT_EQ(Lexer::describe(lex.peek()), "'x'");
     lex.next();
     EXPECT_EQ(Lexer::describe(lex.peek()), "end of file");
-    Token longToken{TokenKind::Identifier, std::string_view("abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz"), 1, 1};
+    Token longToken{TokenKind::Identifier,
+                    std::string_view("abcdefghijklmnopqrstuvwxyzabcdefghijklmnopqrstuvwxyz"), 1, 1};
     EXPECT_EQ(Lexer::describe(longToken), "'abcdefghijklmnopqrstuvwxyzabcdefghijklmn...'");
 }
 
@@ -77,8 +80,9 @@ TEST(Lexer, Unescape) {
 TEST(Lexer, UnterminatedTokensThrowWithPositions) {
     EXPECT_EQ(test::parseErrorOf([] { lexAll("x \"abc"); }),
               "l.usda:1:7: expected '\"' closing the string opened at 1:3, found end of file");
-    EXPECT_EQ(test::parseErrorOf([] { lexAll("\n  @@@abc@@"); }),
-              "l.usda:2:11: expected '@@@' closing the asset path opened at 2:3, found end of file");
+    EXPECT_EQ(
+        test::parseErrorOf([] { lexAll("\n  @@@abc@@"); }),
+        "l.usda:2:11: expected '@@@' closing the asset path opened at 2:3, found end of file");
     EXPECT_EQ(test::parseErrorOf([] { lexAll("<abc"); }),
               "l.usda:1:5: expected '>' closing the path opened at 1:1, found end of file");
 }

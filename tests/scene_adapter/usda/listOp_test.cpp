@@ -30,7 +30,12 @@ TEST(ListOp, PrependAppendDeleteAddReorder) {
     ListOp<std::string> reorder;
     reorder.set(ListOpKind::Reorder, {"a", "missing", "n"});
     reorder.applyTo(list);
-    EXPECT_EQ(list, (Names{"a", "n", "c", "z"}));
+    EXPECT_EQ(list, (Names{"c", "z", "a", "n"}));
+    Names letters{"a", "b", "c", "d", "e"};
+    ListOp<std::string> dThenB;
+    dThenB.set(ListOpKind::Reorder, {"d", "b"});
+    dThenB.applyTo(letters);
+    EXPECT_EQ(letters, (Names{"a", "d", "e", "b", "c"}));  // runs move with their item
     EXPECT_FALSE(reorder.empty());
     EXPECT_TRUE(ListOp<std::string>{}.empty());
 }

@@ -10,7 +10,9 @@
 namespace principled::usd {
 namespace {
 
-std::unique_ptr<Layer> parse(std::string_view text) { return parseLayer(text, "t.usda", "/tmp"); }
+std::unique_ptr<Layer> parse(std::string_view text) {
+    return parseLayer(text, "t.usda", "/tmp");
+}
 
 std::string errorOf(std::string_view text) {
     return test::parseErrorOf([&] { parse(text); });
@@ -234,7 +236,8 @@ class "C" {}
     EXPECT_EQ(*w->metadata.at("instanceable").getBool(), true);
     EXPECT_EQ(*w->metadata.at("hidden").getBool(), false);
     EXPECT_EQ(*w->metadata.at("active").getBool(), false);
-    EXPECT_EQ(w->apiSchemas.prepended, (std::vector<std::string>{"MaterialBindingAPI", "GeomModelAPI"}));
+    EXPECT_EQ(w->apiSchemas.prepended,
+              (std::vector<std::string>{"MaterialBindingAPI", "GeomModelAPI"}));
     ASSERT_EQ(w->references.prepended.size(), 2u);
     EXPECT_EQ(w->references.prepended[0].assetPath, "./a.usda");
     EXPECT_EQ(w->references.prepended[0].primPath, "/A");
@@ -395,6 +398,18 @@ def "P" (  # trailing comment
     EXPECT_EQ(*defaultOf(*layer, "/P", "s4").getString(), "");
 }
 
+TEST(Parser, UntypedMapMetadata) {
+    auto layer = parse(R"(#usda 1.0
+(
+    relocates = { </A/b>: </A/c>, </X>: </Y> }
+)
+def "P" ( prefixSubstitutions = { "$ROOT": "/assets", "$V": "2" } ) {}
+)");
+    EXPECT_EQ(*layer->field("relocates")->find("/A/b")->getPath(), "/A/c");
+    EXPECT_EQ(*layer->prim("/P")->metadata.at("prefixSubstitutions").find("$ROOT")->getString(),
+              "/assets");
+}
+
 TEST(Parser, HeaderAndBinaryRefusal) {
     EXPECT_NO_THROW(parse("#usda 1.0"));
     EXPECT_NO_THROW(parse("\xEF\xBB\xBF#usda 1.0\r\ndef \"A\" {}\r\n"));
@@ -453,10 +468,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "t.usda:3:12: expected an unsigned integer, found '-1'"},
         BadInput{"UnterminatedString", "#usda 1.0\ndef \"A\" {\n  string x = \"abc\n}\n",
                  "t.usda:3:18: expected '\"' closing the string opened at 3:14, found end of line"},
-        BadInput{"UnterminatedTripleString", "#usda 1.0\ndef \"A\" {\n  string x = \"\"\"abc\n}\n",
-                 "t.usda:5:1: expected '\"\"\"' closing the string opened at 3:14, found end of file"},
-        BadInput{"UnterminatedAsset", "#usda 1.0\ndef \"A\" {\n  asset x = @a.png\n}\n",
-                 "t.usda:3:19: expected '@' closing the asset path opened at 3:13, found end of line"},
+        BadInput{
+            "UnterminatedTripleString", "#usda 1.0\ndef \"A\" {\n  string x = \"\"\"abc\n}\n",
+            "t.usda:5:1: expected '\"\"\"' closing the string opened at 3:14, found end of file"},
+        BadInput{
+            "UnterminatedAsset", "#usda 1.0\ndef \"A\" {\n  asset x = @a.png\n}\n",
+            "t.usda:3:19: expected '@' closing the asset path opened at 3:13, found end of line"},
         BadInput{"UnterminatedPath", "#usda 1.0\ndef \"A\" {\n  rel r = </a/b\n}\n",
                  "t.usda:3:16: expected '>' closing the path opened at 3:11, found end of line"},
         BadInput{"UnterminatedComment", "#usda 1.0\n/* never closed\n",
@@ -492,7 +509,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"BadVariantSet", "#usda 1.0\ndef \"A\" {\n  variantSet \"v\" = { x }\n}\n",
                  "t.usda:3:22: expected a quoted variant name or '}', found 'x'"},
         BadInput{"DuplicatePrim", "#usda 1.0\ndef \"A\" {}\nover \"A\" {}\n",
-                 "t.usda:3:6: expected a unique prim name ('A' is already defined at 2:1), found '\"A\"'"},
+                 "t.usda:3:6: expected a unique prim name ('A' is already defined at 2:1), found "
+                 "'\"A\"'"},
         BadInput{"MixedList", "#usda 1.0\n( customLayerData = { int x = 1 } doc = [1, \"a\"] )\n",
                  "t.usda:2:45: expected array elements of one type, found '\"a\"'"},
         BadInput{"DictInList", "#usda 1.0\n( doc = [{}] )\n",
@@ -539,9 +557,15 @@ def Xform "W" ( kind = "component" prepend references = @r.usda@</X> variants = 
         for (int e = 0; e < edits; ++e) {
             std::size_t pos = rnd() % text.size();
             switch (rnd() % 3) {
-                case 0: text.erase(pos, 1 + rnd() % 8); break;
-                case 1: text.insert(pos, 1, alphabet[rnd() % (sizeof(alphabet) - 1)]); break;
-                default: text.resize(pos); break;
+                case 0:
+                    text.erase(pos, 1 + rnd() % 8);
+                    break;
+                case 1:
+                    text.insert(pos, 1, alphabet[rnd() % (sizeof(alphabet) - 1)]);
+                    break;
+                default:
+                    text.resize(pos);
+                    break;
             }
             if (text.empty()) text.push_back('#');
         }

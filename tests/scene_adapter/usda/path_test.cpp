@@ -22,7 +22,8 @@ TEST(Path, Prefixes) {
     EXPECT_TRUE(path::hasPrefix("/A", "/A"));
     EXPECT_FALSE(path::hasPrefix("/AB", "/A"));
     EXPECT_TRUE(path::hasPrefix("/x", "/"));
-    EXPECT_EQ(path::replacePrefix("/Proto/Mat.outputs:x", "/Proto", "/Inst"), "/Inst/Mat.outputs:x");
+    EXPECT_EQ(path::replacePrefix("/Proto/Mat.outputs:x", "/Proto", "/Inst"),
+              "/Inst/Mat.outputs:x");
     EXPECT_EQ(path::replacePrefix("/A/B", "/", "/Root"), "/Root/A/B");
 }
 

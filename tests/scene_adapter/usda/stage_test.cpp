@@ -109,7 +109,8 @@ TEST(Stage, SingleLayerApi) {
     EXPECT_EQ(surface->defaultValue(), nullptr);
     EXPECT_EQ(surface->connections(),
               (std::vector<std::string>{"/World/Looks/Mat/PBR.outputs:surface"}));
-    auto color = stage->prim("/World/Looks/Mat/PBR")->attribute("inputs:diffuseColor")->get().getTuple();
+    auto color =
+        stage->prim("/World/Looks/Mat/PBR")->attribute("inputs:diffuseColor")->get().getTuple();
     EXPECT_EQ(color->size(), 3u);
     EXPECT_NEAR((*color)[0], 0.8, 1e-12);
 
@@ -123,13 +124,13 @@ TEST(Stage, TimeRule) {
     auto stage = Stage::openString(kScene, "scene.usda");
     const Attribute* t = stage->prim("/World")->attribute("xformOp:translate");
     EXPECT_EQ(t->timeSamples().size(), 2u);
-    EXPECT_EQ((*t->get(6.0).getTuple())[0], 5.0);     // interpolated
-    EXPECT_EQ((*t->get(-3.0).getTuple())[0], 0.0);    // held before
-    EXPECT_EQ((*t->get(100.0).getTuple())[0], 10.0);  // held after
-    EXPECT_EQ((*t->get(kDefaultTime).getTuple())[0], 5.0);  // the default value
+    EXPECT_EQ((*t->get(6.0).getTuple())[0], 5.0);                   // interpolated
+    EXPECT_EQ((*t->get(-3.0).getTuple())[0], 0.0);                  // held before
+    EXPECT_EQ((*t->get(100.0).getTuple())[0], 10.0);                // held after
+    EXPECT_EQ((*t->get(kDefaultTime).getTuple())[0], 5.0);          // the default value
     EXPECT_EQ((*t->get(stage->defaultTime()).getTuple())[0], 0.0);  // startTimeCode = 1
     const Attribute* held = stage->prim("/World/mesh")->attribute("visibleFrom");
-    EXPECT_EQ(*held->get(9.9).getInt(), 1);  // ints are held, never interpolated
+    EXPECT_EQ(*held->get(9.9).getInt(), 1);           // ints are held, never interpolated
     EXPECT_EQ(*held->get(kDefaultTime).getInt(), 1);  // no default: the earliest sample
 
     auto noTime = Stage::openString("#usda 1.0\n", "empty.usda");
@@ -139,6 +140,11 @@ TEST(Stage, TimeRule) {
     EXPECT_EQ(noTime->metersPerUnit(), 0.01);
     EXPECT_EQ(noTime->timeCodesPerSecond(), 24.0);
     EXPECT_TRUE(noTime->pseudoRoot()->children().empty());
+    auto legacy = Stage::openString("#usda 1.0\n( startFrame = 3 endFrame = 9 framesPerSecond = 30 )\n",
+                                    "legacy.usda");
+    EXPECT_EQ(legacy->defaultTime(), 3.0);
+    EXPECT_EQ(legacy->endTimeCode(), 9.0);
+    EXPECT_EQ(legacy->timeCodesPerSecond(), 30.0);  // falls back to framesPerSecond
 }
 
 TEST(Stage, OpenErrors) {

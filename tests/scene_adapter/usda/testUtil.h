@@ -2,12 +2,12 @@
 // Helpers shared by the usda tests: temporary directories with layer files, error capture.
 #pragma once
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
-
-#include <unistd.h>
 
 #include "scene_adapter/usda/error.h"
 
@@ -52,6 +52,8 @@ std::string parseErrorOf(F&& f) {
     return {};
 }
 
-inline std::string corpusDir() { return PRINCIPLED_SOURCE_DIR "/../shared/usd-wg"; }
+inline std::string corpusDir() {
+    return PRINCIPLED_SOURCE_DIR "/../shared/usd-wg";
+}
 
 }  // namespace principled::usd::test

@@ -19,7 +19,8 @@ TEST(TimeSamples, LinearInterpolationAndHolding) {
 }
 
 TEST(TimeSamples, NonInterpolableTypesAreHeld) {
-    std::map<double, Value> ints{{0, Value::number("int", 0, {})}, {10, Value::number("int", 10, {})}};
+    std::map<double, Value> ints{{0, Value::number("int", 0, {})},
+                                 {10, Value::number("int", 10, {})}};
     EXPECT_EQ(*evaluateTimeSamples(ints, 9.9).getDouble(), 0.0);
     std::map<double, Value> bools{{0, Value::number("bool", 0, {})},
                                   {1, Value::number("bool", 1, {})}};
@@ -35,7 +36,8 @@ TEST(TimeSamples, VectorsMatricesArrays) {
                               {2, Value::tuple("double3", {2, 4, 6}, {})}};
     EXPECT_EQ(*evaluateTimeSamples(v, 1).getTuple(), (std::vector<double>{1, 2, 3}));
     std::vector<double> a(16, 0.0), b(16, 2.0);
-    std::map<double, Value> m{{0, Value::tuple("matrix4d", a, {})}, {1, Value::tuple("matrix4d", b, {})}};
+    std::map<double, Value> m{{0, Value::tuple("matrix4d", a, {})},
+                              {1, Value::tuple("matrix4d", b, {})}};
     EXPECT_EQ((*evaluateTimeSamples(m, 0.25).getTuple())[5], 0.5);
     std::map<double, Value> arr{{0, Value::numberArray("point3f", 3, {0, 0, 0, 1, 1, 1}, {})},
                                 {1, Value::numberArray("point3f", 3, {2, 2, 2, 3, 3, 3}, {})}};

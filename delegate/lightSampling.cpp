@@ -1,0 +1,284 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/lightSampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace principled::embree {
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+constexpr float kInf = 1e30f;
+
+void basis(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
+    // Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1), listing 3.
+    float sign = std::copysign(1.0f, n.z);
+    float a = -1.0f / (sign + n.z);
+    float c = n.x * n.y * a;
+    *t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    *b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+}
+
+// Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square": concentric mapping.
+glm::vec2 concentricDisk(const glm::vec2& u) {
+    glm::vec2 o = 2.0f * u - 1.0f;
+    if (o.x == 0.0f && o.y == 0.0f) return glm::vec2(0.0f);
+    float r, theta;
+    if (std::abs(o.x) > std::abs(o.y)) {
+        r = o.x;
+        theta = (kPi / 4.0f) * (o.y / o.x);
+    } else {
+        r = o.y;
+        theta = kPi / 2.0f - (kPi / 4.0f) * (o.x / o.y);
+    }
+    return r * glm::vec2(std::cos(theta), std::sin(theta));
+}
+
+// Area-measure pdf of a point on a surface converted to solid angle at distance dist.
+float toSolidAngle(float areaPdf, float dist, float cosLight) {
+    return cosLight > 1e-7f ? areaPdf * dist * dist / cosLight : 0.0f;
+}
+
+glm::vec3 envLookup(const EnvironmentMap& env, const glm::vec3& dWorld) {
+    glm::vec2 uv = directionToLatLong(env.worldToLocal * dWorld);
+    int x = std::clamp(int(uv.x * env.width), 0, env.width - 1);
+    int y = std::clamp(int(uv.y * env.height), 0, env.height - 1);
+    return env.texels[size_t(y) * env.width + x] * env.scale;
+}
+
+float envPdf(const EnvironmentMap& env, const glm::vec3& dWorld) {
+    glm::vec3 d = env.worldToLocal * dWorld;
+    glm::vec2 uv = directionToLatLong(d);
+    float sinTheta = std::sqrt(std::max(0.0f, 1.0f - d.y * d.y));
+    if (sinTheta <= 1e-6f) return 0.0f;
+    // Pharr et al. 2023, PBR 4th ed. §12.5.2: p(w) = p(u,v) / (2 pi^2 sin theta).
+    return env.distribution.pdf(uv) / (2.0f * kPi * kPi * sinTheta);
+}
+
+// Ray-sphere, nearest t > 1e-4 (Pharr et al. 2023, §6.2.2, the numerically careful quadratic).
+bool raySphere(const glm::vec3& o, const glm::vec3& d, const glm::vec3& c, float r, float* t) {
+    glm::vec3 oc = o - c;
+    float b = glm::dot(oc, d);
+    glm::vec3 perp = oc - b * d;
+    float disc = r * r - glm::dot(perp, perp);
+    if (disc < 0.0f) return false;
+    float sq = std::sqrt(disc);
+    float q = -b + (b < 0.0f ? sq : -sq);
+    float t0 = glm::dot(oc, oc) - r * r;  // c in the quadratic
+    float ta = q, tb = q != 0.0f ? t0 / q : ta;
+    float t1 = std::min(ta, tb), t2 = std::max(ta, tb);
+    float eps = 1e-4f * std::max(1.0f, r);
+    if (t1 > eps) *t = t1;
+    else if (t2 > eps) *t = t2;
+    else return false;
+    return true;
+}
+
+}  // namespace
+
+bool isAreaLight(const LightRecord& l) {
+    return l.kind == LightRecord::Kind::Sphere || l.kind == LightRecord::Kind::Rect ||
+           l.kind == LightRecord::Kind::Disk || l.kind == LightRecord::Kind::Cylinder;
+}
+
+glm::vec2 directionToLatLong(const glm::vec3& d) {
+    float u = 0.5f - std::atan2(d.x, d.z) / (2.0f * kPi);
+    float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+    u -= std::floor(u);
+    return {u, std::clamp(v, 0.0f, 1.0f)};
+}
+
+glm::vec3 latLongToDirection(const glm::vec2& uv) {
+    float phi = (0.5f - uv.x) * 2.0f * kPi;  // atan2(x, z)
+    float theta = uv.y * kPi;
+    float s = std::sin(theta);
+    return {s * std::sin(phi), std::cos(theta), s * std::cos(phi)};
+}
+
+bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
+                 LightSample* out) {
+    *out = LightSample();
+    switch (l.kind) {
+        case LightRecord::Kind::Distant: {
+            if (l.cosHalfAngle >= 1.0f) {
+                out->wi = -l.direction;
+                out->Li = l.irradiance;
+                out->pdf = 1.0f;
+                out->delta = true;
+                return true;
+            }
+            // Uniform in the disc's cone: pdf = 1 / (2 pi (1 - cos)).
+            glm::vec3 t, b, n = -l.direction;
+            basis(n, &t, &b);
+            float c = 1.0f - u.x * (1.0f - l.cosHalfAngle);
+            float s = std::sqrt(std::max(0.0f, 1.0f - c * c)), phi = 2.0f * kPi * u.y;
+            out->wi = s * std::cos(phi) * t + s * std::sin(phi) * b + c * n;
+            out->Li = l.radiance;
+            out->pdf = 1.0f / (2.0f * kPi * (1.0f - l.cosHalfAngle));
+            return true;
+        }
+        case LightRecord::Kind::Dome: {
+            if (l.environment && !l.environment->distribution.empty()) {
+                const EnvironmentMap& env = *l.environment;
+                float mapPdf = 0.0f;
+                glm::vec2 uv = env.distribution.sample(u, &mapPdf);
+                glm::vec3 dLocal = latLongToDirection(uv);
+                float sinTheta = std::sqrt(std::max(0.0f, 1.0f - dLocal.y * dLocal.y));
+                if (sinTheta <= 1e-6f || mapPdf <= 0.0f) return false;
+                out->wi = glm::normalize(env.localToWorld * dLocal);
+                out->Li = envLookup(env, out->wi);
+                out->pdf = mapPdf / (2.0f * kPi * kPi * sinTheta);
+                return out->pdf > 0.0f;
+            }
+            // Constant dome: cosine-weighted about the geometric normal (pdf cos/pi).
+            glm::vec3 t, b;
+            basis(ng, &t, &b);
+            float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
+            float z = std::sqrt(std::max(0.0f, 1.0f - u.x));
+            out->wi = r * std::cos(phi) * t + r * std::sin(phi) * b + z * ng;
+            out->Li = l.radiance;
+            out->pdf = z / kPi;
+            return out->pdf > 0.0f;
+        }
+        case LightRecord::Kind::Sphere: {
+            glm::vec3 toC = l.center - p;
+            float d2 = glm::dot(toC, toC);
+            if (d2 <= l.radius * l.radius) return false;  // inside the light
+            float dist = std::sqrt(d2);
+            // Uniform in the cone the sphere subtends (Pharr et al. 2023, §6.2.4).
+            float sinMax2 = l.radius * l.radius / d2;
+            float cosMax = std::sqrt(std::max(0.0f, 1.0f - sinMax2));
+            glm::vec3 n = toC / dist, t, b;
+            basis(n, &t, &b);
+            float c = 1.0f - u.x * (1.0f - cosMax);
+            float s = std::sqrt(std::max(0.0f, 1.0f - c * c)), phi = 2.0f * kPi * u.y;
+            out->wi = s * std::cos(phi) * t + s * std::sin(phi) * b + c * n;
+            float th = 0.0f;
+            if (!raySphere(p, out->wi, l.center, l.radius, &th)) th = dist - l.radius;
+            out->distance = th;
+            out->Li = l.radiance;
+            out->pdf = 1.0f / (2.0f * kPi * std::max(1.0f - cosMax, 1e-9f));
+            return true;
+        }
+        case LightRecord::Kind::Rect:
+        case LightRecord::Kind::Disk: {
+            glm::vec3 q;
+            if (l.kind == LightRecord::Kind::Rect) {
+                q = l.center + (2.0f * u.x - 1.0f) * l.axisU + (2.0f * u.y - 1.0f) * l.axisV;
+            } else {
+                glm::vec2 dsk = concentricDisk(u);
+                q = l.center + dsk.x * l.axisU + dsk.y * l.axisV;
+            }
+            glm::vec3 toQ = q - p;
+            float dist = glm::length(toQ);
+            if (!(dist > 0.0f)) return false;
+            out->wi = toQ / dist;
+            float cosL = -glm::dot(out->wi, l.normal);
+            if (cosL <= 0.0f) return false;  // one-sided: p is behind the emitter
+            out->pdf = toSolidAngle(1.0f / l.area, dist, cosL);
+            out->distance = dist;
+            out->Li = l.radiance;
+            return out->pdf > 0.0f;
+        }
+        case LightRecord::Kind::Cylinder: {
+            // Uniform on the side surface: axisU is half the length along the axis; the
+            // circle is spanned by two radius vectors perpendicular to it.
+            glm::vec3 axis = glm::normalize(l.axisU), t, b;
+            basis(axis, &t, &b);
+            float phi = 2.0f * kPi * u.y;
+            glm::vec3 radial = std::cos(phi) * t + std::sin(phi) * b;
+            glm::vec3 q = l.center + (2.0f * u.x - 1.0f) * l.axisU + l.radius * radial;
+            glm::vec3 toQ = q - p;
+            float dist = glm::length(toQ);
+            if (!(dist > 0.0f)) return false;
+            out->wi = toQ / dist;
+            float cosL = -glm::dot(out->wi, radial);
+            if (cosL <= 0.0f) return false;
+            out->pdf = toSolidAngle(1.0f / l.area, dist, cosL);
+            out->distance = dist;
+            out->Li = l.radiance;
+            return out->pdf > 0.0f;
+        }
+    }
+    return false;
+}
+
+bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec3& d, float tmax,
+                        glm::vec3* Le, float* pdf) {
+    switch (l.kind) {
+        case LightRecord::Kind::Sphere: {
+            float t;
+            if (!raySphere(o, d, l.center, l.radius, &t) || t >= tmax) return false;
+            glm::vec3 toC = l.center - o;
+            float d2 = glm::dot(toC, toC);
+            if (d2 <= l.radius * l.radius) return false;
+            float cosMax = std::sqrt(std::max(0.0f, 1.0f - l.radius * l.radius / d2));
+            *Le = l.radiance;
+            *pdf = 1.0f / (2.0f * kPi * std::max(1.0f - cosMax, 1e-9f));
+            return true;
+        }
+        case LightRecord::Kind::Rect:
+        case LightRecord::Kind::Disk: {
+            float denom = glm::dot(d, l.normal);
+            if (denom >= 0.0f) return false;  // seen from behind (or edge-on): no emission
+            float t = glm::dot(l.center - o, l.normal) / denom;
+            if (!(t > 1e-6f) || t >= tmax) return false;
+            glm::vec3 q = o + t * d - l.center;
+            float a = glm::dot(q, l.axisU) / glm::dot(l.axisU, l.axisU);
+            float b = glm::dot(q, l.axisV) / glm::dot(l.axisV, l.axisV);
+            bool inside = l.kind == LightRecord::Kind::Rect ? (std::abs(a) <= 1.0f && std::abs(b) <= 1.0f)
+                                                            : (a * a + b * b <= 1.0f);
+            if (!inside) return false;
+            *Le = l.radiance;
+            *pdf = toSolidAngle(1.0f / l.area, t, -denom);
+            return true;
+        }
+        case LightRecord::Kind::Cylinder: {
+            glm::vec3 axis = glm::normalize(l.axisU);
+            float halfLen = glm::length(l.axisU);
+            glm::vec3 oc = o - l.center;
+            glm::vec3 dp = d - glm::dot(d, axis) * axis, op = oc - glm::dot(oc, axis) * axis;
+            float A = glm::dot(dp, dp), B = 2.0f * glm::dot(dp, op), C = glm::dot(op, op) - l.radius * l.radius;
+            float disc = B * B - 4.0f * A * C;
+            if (A <= 0.0f || disc < 0.0f) return false;
+            float sq = std::sqrt(disc);
+            for (float t : {(-B - sq) / (2.0f * A), (-B + sq) / (2.0f * A)}) {
+                if (!(t > 1e-4f) || t >= tmax) continue;
+                glm::vec3 q = oc + t * d;
+                float h = glm::dot(q, axis);
+                if (std::abs(h) > halfLen) continue;
+                glm::vec3 radial = glm::normalize(q - h * axis);
+                float cosL = -glm::dot(d, radial);
+                if (cosL <= 0.0f) return false;  // the inside does not emit
+                *Le = l.radiance;
+                *pdf = toSolidAngle(1.0f / l.area, t, cosL);
+                return true;
+            }
+            return false;
+        }
+        default: return false;
+    }
+}
+
+bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::vec3& ng,
+                         glm::vec3* Le, float* pdf) {
+    if (l.kind == LightRecord::Kind::Dome) {
+        if (l.environment && !l.environment->distribution.empty()) {
+            *Le = envLookup(*l.environment, d);
+            *pdf = envPdf(*l.environment, d);
+        } else {
+            *Le = l.radiance;
+            *pdf = std::max(0.0f, glm::dot(ng, d)) / kPi;
+        }
+        return true;
+    }
+    if (l.kind == LightRecord::Kind::Distant && l.cosHalfAngle < 1.0f &&
+        glm::dot(d, -l.direction) >= l.cosHalfAngle) {
+        *Le = l.radiance;
+        *pdf = 1.0f / (2.0f * kPi * (1.0f - l.cosHalfAngle));
+        return true;
+    }
+    return false;
+}
+
+}  // namespace principled::embree

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: Apache-2.0
+// Sampling and intersecting the lights of a scene snapshot: next-event estimation picks a point
+// or direction on a light; rays that reach a light find it here (lights are not Embree geometry).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "delegate/sceneData.h"
+
+namespace principled::embree {
+
+struct LightSample {
+    glm::vec3 wi{0.0f};      ///< unit direction from the shading point toward the light
+    glm::vec3 Li{0.0f};      ///< radiance arriving (irradiance for a delta light)
+    float pdf = 0.0f;        ///< solid-angle pdf (1 for delta lights)
+    float distance = 1e30f;  ///< to the sampled point (1e30 for distant and dome lights)
+    bool delta = false;
+};
+
+/// Samples light `l` as seen from point p with geometric normal ng (used by the dome's cosine
+/// fallback). Returns false when the light cannot contribute (behind a one-sided emitter, p inside
+/// a sphere light...).
+bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
+                 LightSample* out);
+
+/// For a ray from o along unit d whose nearest geometry is at tmax: if it reaches the emitting
+/// surface of area light l first, returns its radiance and the solid-angle pdf sampleLight()
+/// would have produced this direction with (prevNg: normal at o, for the dome fallback).
+bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec3& d, float tmax,
+                        glm::vec3* Le, float* pdf);
+
+/// Radiance of an escaped ray along d from environment light l (dome or distant disc), and the
+/// pdf sampleLight() gives that direction from a point with normal ng.
+bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::vec3& ng,
+                         glm::vec3* Le, float* pdf);
+
+bool isAreaLight(const LightRecord& l);
+
+/// Lat-long mapping of a direction in the dome's frame (USD/OpenEXR convention: u = 0.5 -
+/// atan2(x, z) / 2pi, v measured from the +Y pole).
+glm::vec2 directionToLatLong(const glm::vec3& d);
+glm::vec3 latLongToDirection(const glm::vec2& uv);
+
+}  // namespace principled::embree

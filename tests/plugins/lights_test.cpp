@@ -1,0 +1,177 @@
+// UsdLux lights against closed-form irradiance on a Lambertian plane (radiance = albedo E / pi),
+// rendered through the whole slice from USDA text.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "delegate/colorTemperature.h"
+#include "plugins/renderSession.h"
+
+using namespace principled;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A Lambert plane (y = 0, facing +Y) seen by a tiny orthographic camera aimed at the origin,
+// tilted by `tilt` degrees from straight down (so it can look past a light in the way), plus
+// the given light prims. Render with the UE4 model so the diffuse is exactly Lambertian at
+// any view angle.
+std::string planeScene(double albedo, const std::string& lights, double tilt = 0.0) {
+    double rad = tilt * kPi / 180.0;
+    char head[2048];
+    std::snprintf(head, sizeof head, R"(#usda 1.0
+def Mesh "Plane" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
+    rel material:binding = </Mat>
+}
+def Material "Mat"
+{
+    token outputs:surface.connect = </Mat/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (%g, %g, %g)
+        float inputs:ior = 1
+        float inputs:roughness = 1
+        token outputs:surface
+    }
+}
+def Camera "Cam"
+{
+    token projection = "orthographic"
+    float horizontalAperture = 0.01
+    float verticalAperture = 0.01
+    float2 clippingRange = (0.001, 1000)
+    double3 xformOp:translate = (0, %g, %g)
+    float xformOp:rotateX = %g
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)",
+                  albedo, albedo, albedo, 50.0 * std::cos(rad), 50.0 * std::sin(rad), -90.0 + tilt);
+    return std::string(head) + lights;
+}
+
+double render(const std::string& usda, int spp, std::map<std::string, std::string> settings = {}) {
+    host::SessionOptions o;
+    o.width = o.height = 4;
+    o.samplesPerPixel = spp;
+    o.settings = std::move(settings);
+    o.settings["shadingModel"] = "ue4";
+    auto s = host::RenderSession::openString(usda, "lights.usda", o);
+    while (!s->step()) {
+    }
+    const float* c = s->color();
+    double sum = 0.0;
+    for (int i = 0; i < 16; ++i) sum += c[4 * i];
+    return sum / 16.0;
+}
+
+}  // namespace
+
+TEST(Lights, DiskLightOnAxisIrradiance) {
+    // A disk of radius R and radiance L at height h: on-axis E = pi L R^2 / (h^2 + R^2).
+    double R = 1.0, h = 2.0, L = 10.0, a = 0.5;
+    std::string light = R"(
+def DiskLight "Disk"
+{
+    float inputs:radius = 1
+    float inputs:intensity = 10
+    double3 xformOp:translate = (0, 2, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+    double E = kPi * L * R * R / (h * h + R * R);
+    double expected = a * E / kPi;
+    EXPECT_NEAR(render(planeScene(a, light), 1024), expected, 0.02 * expected);
+}
+
+TEST(Lights, SphereLightIrradianceAndNormalize) {
+    // A sphere of radius R, radiance L, centre at distance d along the normal: E = pi L (R/d)^2.
+    double R = 0.5, d = 3.0, L = 20.0, a = 0.5;
+    std::string light = R"(
+def SphereLight "Bulb"
+{
+    float inputs:radius = 0.5
+    float inputs:intensity = 20
+    double3 xformOp:translate = (0, 3, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)";
+    double expected = a * L * (R / d) * (R / d);
+    EXPECT_NEAR(render(planeScene(a, light, 45.0), 512), expected, 0.02 * expected);
+    // normalize = 1 divides the radiance by the area (4 pi R^2).
+    std::string normalized = light;
+    normalized.insert(normalized.find("float inputs:radius"), "bool inputs:normalize = 1\n    ");
+    double area = 4.0 * kPi * R * R;
+    EXPECT_NEAR(render(planeScene(a, normalized, 45.0), 512), expected / area, 0.02 * expected / area);
+}
+
+TEST(Lights, RectLightMatchesTheDiskOfEqualAreaFarAway) {
+    // Far from the light, any small emitter of area A delivers E ~= L A cos / d^2.
+    double a = 0.5, L = 100.0, A = 0.04, dist = 10.0;
+    std::string light = R"(
+def RectLight "Panel"
+{
+    float inputs:width = 0.2
+    float inputs:height = 0.2
+    float inputs:intensity = 100
+    double3 xformOp:translate = (0, 10, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+    double expected = a * (L * A / (dist * dist)) / kPi;
+    EXPECT_NEAR(render(planeScene(a, light), 256), expected, 0.01 * expected);
+    // The back of the panel does not emit: flipped, it lights nothing below (the tilted camera
+    // does not see the panel itself).
+    std::string flipped = light;
+    flipped.replace(flipped.find("rotateX = -90"), 13, "rotateX = 90");
+    EXPECT_EQ(render(planeScene(a, flipped, 45.0), 16), 0.0);
+}
+
+TEST(Lights, DomeTextureIsImportanceSampledAndMatchesTheConstantDome) {
+    // A lat-long texture that is 2 in the upper half and 0 below: the upward-facing plane sees
+    // radiance 2 over its whole hemisphere, so E = 2 pi and the plane's radiance is 2a.
+    auto dir = std::filesystem::temp_directory_path() / "principled_lights_test";
+    std::filesystem::create_directories(dir);
+    std::string path = (dir / "half.exr").string();
+    {
+        const int w = 64, h = 32;
+        std::vector<float> px(w * h * 3);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 3; ++c) px[(y * w + x) * 3 + c] = y < h / 2 ? 2.0f : 0.0f;
+        auto out = OIIO::ImageOutput::create(path);
+        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+        ASSERT_TRUE(out->open(path, spec));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+        out->close();
+    }
+    double a = 0.5;
+    std::string light = "def DomeLight \"Sky\"\n{\n    asset inputs:texture:file = @" + path + "@\n}\n";
+    double mis = render(planeScene(a, light), 512);
+    double nee = render(planeScene(a, light), 512, {{"mis", "0"}});
+    EXPECT_NEAR(mis, 2.0 * a, 0.02 * 2.0 * a);
+    EXPECT_NEAR(nee, 2.0 * a, 0.02 * 2.0 * a);
+}
+
+TEST(Lights, BlackbodyHasUnitLuminanceAndTheRightHue) {
+    for (float k : {2000.0f, 3000.0f, 6500.0f, 10000.0f}) {
+        glm::vec3 c = embree::blackbodyColor(k);
+        EXPECT_NEAR(0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z, 1.0f, 0.02f) << k;
+    }
+    glm::vec3 warm = embree::blackbodyColor(3000.0f), d65 = embree::blackbodyColor(6500.0f),
+              cool = embree::blackbodyColor(12000.0f);
+    EXPECT_GT(warm.x, warm.z * 2.0f);
+    EXPECT_NEAR(d65.x / d65.z, 1.0f, 0.1f);  // 6500 K is close to the D65 white
+    EXPECT_GT(cool.z, cool.x);
+}

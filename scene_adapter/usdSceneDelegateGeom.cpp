@@ -4,6 +4,7 @@
 // their instancer, Hydra-style: getInstancerId / getInstanceIndices / instancer arrays).
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <unordered_set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -129,11 +130,24 @@ std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
     return out;
 }
 
+// True when a subtree holds only what a prototype can draw (gprims, their materials and
+// grouping prims): instances holding lights, cameras or PointInstancers are expanded instead.
+static bool onlyPrototypeGeometry(const usd::Prim& prim) {
+    static const std::set<std::string> ok{"", "Xform", "Scope", "Mesh", "Sphere", "Cube", "Cylinder",
+                                          "Cone", "Capsule", "Material", "Shader", "NodeGraph",
+                                          "GeomSubset"};
+    if (!ok.count(prim.typeName())) return false;
+    for (const usd::Prim* child : prim.children())
+        if (child->isActive() && !onlyPrototypeGeometry(*child)) return false;
+    return true;
+}
+
 bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& world, bool visible,
                                      RenderIndex* index) {
     const std::string& type = prim.typeName();
     if (type == "Mesh" || type == "Sphere" || type == "PointInstancer" || isImplicitShape(type))
         return false;  // an instanceable gprim is simply drawn
+    if (!onlyPrototypeGeometry(prim)) return false;
     // Instances of one prototype share its BLAS unless an inherited binding differs.
     std::string key = prim.instanceKey() + "|" + resolveMaterialBinding(prim).str();
     auto it = _instanceGroups.find(key);

@@ -263,3 +263,30 @@ TEST(Geometry, UsdWgPrimitivesRender) {
         EXPECT_GT(hits, 20);
     }
 }
+
+TEST(Geometry, InstanceablePrimsWithLightsAreExpanded) {
+    // A prototype holding a light is not shared (its lights must stay lights): two BLAS.
+    Rendered r = render(R"(
+class Xform "_Lamp"
+{
+    def Sphere "Ball" { double radius = 0.4 }
+    def DistantLight "Sun" { float inputs:intensity = 1 }
+}
+def Xform "A" (instanceable = true
+    prepend references = </_Lamp>)
+{
+    double3 xformOp:translate = (-1.2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "B" (instanceable = true
+    prepend references = </_Lamp>)
+{
+    double3 xformOp:translate = (1.2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)");
+    auto stats = r.session->stats();
+    EXPECT_EQ(stats["blasBuilds"], 2.0);
+    EXPECT_EQ(stats["lights"], 2.0);
+    EXPECT_EQ(stats["instances"], 0.0);
+}

@@ -64,8 +64,12 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
     glm::mat4 instancer(delegate->getTransform(instancerId));
     std::vector<InstanceRecord> out;
     out.reserve(indices.size());
+    size_t outOfRange = 0;
     for (int i : indices) {
-        if (i < 0 || size_t(i) >= count) continue;
+        if (i < 0 || size_t(i) >= count) {
+            ++outOfRange;
+            continue;
+        }
         InstanceRecord rec;
         rec.instanceIndex = i;
         glm::mat4 local = x ? glm::mat4((*x)[size_t(i)]) * prototypeTransform : prototypeTransform;
@@ -78,6 +82,9 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
             for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(m[c][k]);
         if (finite) out.push_back(rec);
     }
+    if (outOfRange > 0 && count > 0)
+        warnings->push_back(std::to_string(outOfRange) + " instance(s) of " + prototypeId.str() +
+                            " have no position (protoIndices is longer than positions); not drawn");
     return out;
 }
 

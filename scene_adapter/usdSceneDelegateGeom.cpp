@@ -51,7 +51,11 @@ bool UsdSceneDelegate::prepareShape(const usd::Prim& prim, Entry* e) {
     params.radius = number("radius", params.radius);
     params.height = number("height", params.height);
     std::string axis = tokenOf(prim, "axis", _time, "Z");
-    params.axis = axis.empty() ? 'Z' : axis[0];
+    if (axis != "X" && axis != "Y" && axis != "Z") {
+        warn(prim.location().str() + ": " + prim.path(), "axis '" + axis + "' is not X, Y or Z; using Z");
+        axis = "Z";
+    }
+    params.axis = axis[0];
     auto mesh = std::make_shared<ShapeMesh>();
     std::string error;
     if (!buildImplicitShape(prim.typeName(), params, mesh.get(), &error)) {

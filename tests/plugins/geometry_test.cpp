@@ -290,3 +290,29 @@ def Xform "B" (instanceable = true
     EXPECT_EQ(stats["lights"], 2.0);
     EXPECT_EQ(stats["instances"], 0.0);
 }
+
+TEST(Geometry, BadInstancerAndShapeInputWarnsAndRendersTheRest) {
+    Rendered r = render(R"(
+def PointInstancer "Inst"
+{
+    rel prototypes = [</Inst/P/Ball>, </Nope>]
+    int[] protoIndices = [0, 5, -1, 0, 1]
+    point3f[] positions = [(0, 0, 0), (1, 0, 0), (2, 0, 0)]
+    quath[] orientations = [(1, 0, 0, 0)]
+    float3[] scales = [(1, 1, 1), (1, 1, 1), (1, 1, 1), (1, 1, 1), (1, 1, 1)]
+    def Scope "P" { def Sphere "Ball" { double radius = 0.3 } }
+}
+def PointInstancer "Empty" { }
+def Cone "K" { double radius = inf }
+def Capsule "Cap" { uniform token axis = "Q" }
+)");
+    std::string all;
+    for (const auto& w : r.session->takeWarnings()) all += w + "\n";
+    for (const char* expected : {"'/Nope' does not exist", "has no prototypes", "Cone not rendered",
+                                 "axis 'Q'", "orientations has 1 values", "scales has 5 values",
+                                 "protoIndices is longer than positions"})
+        EXPECT_NE(all.find(expected), std::string::npos) << expected << "\n" << all;
+    EXPECT_EQ(r.session->stats()["instances"], 1.0);
+    EXPECT_EQ(r.id("primId", r.px(0.0), r.py(0.0)), r.id("primId", r.px(-0.1), r.py(0.0)));
+    EXPECT_GE(r.id("primId", r.px(0.0), r.py(0.0)), 0);
+}

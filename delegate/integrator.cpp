@@ -226,7 +226,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // (weight 0 here), except after a delta bounce, which NEE cannot follow; directions
         // NEE cannot produce (pdf 0, e.g. below the surface) always count fully.
         auto addEmitter = [&](const glm::vec3& Le, float lightPdf) {
-            float w = (prevDelta || lightPdf <= 0.0f)
+            float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f
                           : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
             glm::vec3 c = beta * Le * w;
@@ -318,7 +318,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (depth >= _settings.maxDepth) break;
 
         // Next-event estimation: one light picked uniformly.
-        if (!lights.empty() && !bsdf.isDeltaOnly()) {
+        if (_settings.nee && !lights.empty() && !bsdf.isDeltaOnly()) {
             float ul = sampler.next1D();
             glm::vec2 u = sampler.next2D();
             const auto& cdf = _scene.lightCdf;

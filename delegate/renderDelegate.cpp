@@ -191,6 +191,42 @@ void EmbreeRenderDelegate::addInstancerInstances() {
     _instances = count;
 }
 
+EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
+    Summary out;
+    for (GeometrySource* g : _param->geometry()) {
+        const GeometryRecord* r = g->record();
+        const auto* ids = g->instanceGeomIds();
+        size_t copies = ids && !ids->empty() ? ids->size() : 1;
+        if (ids && !ids->empty()) ++out.instancers;
+        if (g->instanceId() == RTC_INVALID_GEOMETRY_ID && (!ids || ids->empty())) continue;
+        if (r->kind == GeometryRecord::Kind::Sphere) {
+            ++out.spheres;
+        } else {
+            ++out.meshes;
+            out.triangles += r->triangles.size();
+        }
+        out.instances += copies;
+    }
+    static const char* kinds[] = {"distant", "dome", "sphere", "rect", "disk", "cylinder"};
+    for (const auto& l : _snapshot.lights)
+        if (!_snapshot.usingDefaultLight) ++out.lightsByKind[kinds[int(l.kind)]];
+    static const char* lobeNames[] = {"diffuse", "sheen", "specular", "clearcoat", "transmission"};
+    IntegratorSettings settings = integratorSettings();
+    for (MaterialSource* m : _param->materials()) {
+        const MaterialRecord& rec = m->record();
+        if (rec.program) {
+            out.materialLobes[m->materialId().str()] = "textured";
+            continue;
+        }
+        bsdf::Bsdf b(rec.constant.params, settings.bsdf);
+        std::string lobes;
+        for (int i = 0; i < bsdf::kLobeCount; ++i)
+            if (b.lobes() & (1u << i)) lobes += (lobes.empty() ? "" : "+") + std::string(lobeNames[i]);
+        out.materialLobes[m->materialId().str()] = lobes.empty() ? "none" : lobes;
+    }
+    return out;
+}
+
 AovDescriptor EmbreeRenderDelegate::defaultAovDescriptor(const Token& aovName) const {
     auto info = findAov(aovName.str());
     if (!info) return {};
@@ -207,10 +243,12 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
+        {"NEE", Token("nee"), Value(1), "next-event estimation (shadow rays to lights); 0: lights found by BSDF sampling only"},
         {"Lobe pruning", Token("lobePruning"), Value(1), "skip BSDF lobes whose weight is below the cutoff"},
         {"VNDF sampling", Token("vndf"), Value(1), "GGX visible-normal sampling (0: classic distribution sampling)"},
         {"Delta roughness", Token("deltaRoughness"), Value(1e-3f), "below this roughness specular is a perfect mirror"},
         {"Legacy specular G", Token("legacySpecularG"), Value(0), "Burley 2012 course-notes G remap (0.5 + 0.5 r)^2"},
+        {"Lobe mask", Token("lobeMask"), Value(31), "diagnostics: BSDF lobes allowed (bits: 1 diffuse, 2 sheen, 4 specular, 8 clearcoat, 16 transmission)"},
         {"Noise threshold", Token("noiseThreshold"), Value(0.0f), "stop sampling a pixel when the relative standard error of its mean is below this; 0 = off"},
         {"Min samples", Token("minSamples"), Value(16), "adaptive sampling: samples before a pixel may stop"},
         {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome"},
@@ -279,10 +317,12 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
     s.mis = intSetting("mis", 1) != 0;
+    s.nee = intSetting("nee", 1) != 0;
     s.bsdf.pruneLobes = intSetting("lobePruning", 1) != 0;
     s.bsdf.vndfSampling = intSetting("vndf", 1) != 0;
     s.bsdf.deltaRoughness = std::clamp(floatSetting("deltaRoughness", 1e-3f), 0.0f, 1.0f);
     s.bsdf.legacySpecularG = intSetting("legacySpecularG", 0) != 0;
+    s.bsdf.lobeMask = bsdf::LobeMask(intSetting("lobeMask", 31)) & ((1u << bsdf::kLobeCount) - 1u);
     auto sampler = getString(renderSetting(Token("sampler")));
     s.sampler = (sampler && *sampler == "independent") ? SamplerKind::Independent : SamplerKind::Sobol;
     return s;

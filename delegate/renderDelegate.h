@@ -41,6 +41,16 @@ public:
 
     std::map<std::string, double> renderStats() const override;
 
+    /// What the committed scene holds, for `principled info` and hosts' scene statistics.
+    struct Summary {
+        size_t meshes = 0, spheres = 0, triangles = 0, instances = 0, instancers = 0;
+        std::map<std::string, size_t> lightsByKind;
+        /// Material path -> the lobes its (constant) parameters use, e.g. "diffuse+specular";
+        /// "textured" when they vary over the surface.
+        std::map<std::string, std::string> materialLobes;
+    };
+    Summary summary() const;
+
     /// Problems found in user data since the last call (one line each, prim path first).
     std::vector<std::string> takeWarnings() { return _param->takeWarnings(); }
     void warn(const hd::Path& id, const std::string& message) { _param->warn(id, message); }

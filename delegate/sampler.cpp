@@ -41,19 +41,32 @@ struct Directions {
     }
 };
 
-const Directions& directions() {
-    static const Directions d;
-    return d;
-}
+// Sobol points are XORs of direction numbers selected by the index bits, so each byte of the
+// index contributes independently: four 256-entry tables per dimension replace the 32-step
+// bit loop (scrambled indices use all 32 bits). 16 KiB in all.
+struct ByteTables {
+    std::array<std::array<std::array<uint32_t, 256>, 4>, 4> t{};
+    ByteTables() {
+        Directions d;
+        for (int dim = 0; dim < 4; ++dim)
+            for (int byte = 0; byte < 4; ++byte)
+                for (uint32_t b = 0; b < 256; ++b) {
+                    uint32_t x = 0;
+                    for (int k = 0; k < 8; ++k)
+                        if (b & (1u << k)) x ^= d.v[dim][byte * 8 + k];
+                    t[dim][byte][b] = x;
+                }
+    }
+};
+
+const ByteTables kTables;  // built at load time: no guard on the hot path
 
 }  // namespace
 
 uint32_t sobol4(uint32_t index, int dimension) {
-    const auto& v = directions().v[dimension & 3];
-    uint32_t x = 0;
-    for (int k = 0; index; index >>= 1, ++k)
-        if (index & 1u) x ^= v[k];
-    return x;
+    const auto& t = kTables.t[dimension & 3];
+    return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
+           t[3][index >> 24];
 }
 
 uint32_t owenScramble(uint32_t x, uint32_t seed) {

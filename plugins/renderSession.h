@@ -92,6 +92,8 @@ public:
     std::vector<std::string> takeWarnings();
     std::map<std::string, double> stats() const;
     embree::EmbreeRenderPass* pass() const;
+    hd::RenderIndex* index() const { return _index.get(); }
+    const usd::Stage& stage() const { return *_stage; }
     embree::EmbreeRenderDelegate* delegate() const { return _delegate.get(); }
     /// The render buffer of an AOV (nullptr if not bound).
     embree::EmbreeRenderBuffer* buffer(const std::string& aov) const;

@@ -7,6 +7,7 @@
 
 #include "plugins/registry/pluginRegistry.h"
 #include "tools/bsdfCommand.h"
+#include "tools/infoCommand.h"
 #include "tools/renderCommand.h"
 
 int main(int argc, char** argv) {
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
     int exitCode = 0;
     principled::tools::addRenderCommand(app, &exitCode);
     principled::tools::addBsdfCommands(app, &exitCode);
+    principled::tools::addInfoCommand(app, &exitCode);
     app.add_subcommand("plugins", "List the render-delegate plugins found and where they were searched")
         ->callback([] {
             std::fputs(principled::plugins::describePlugins(principled::plugins::PluginRegistry::instance()).c_str(),

@@ -116,3 +116,41 @@ TEST(Cli, RendersTheDefaultSceneWithStats) {
     EXPECT_NE(json.find("\"rays\""), std::string::npos);
     EXPECT_NE(json.find("\"samplesPerPixel\": 2"), std::string::npos) << json;
 }
+
+TEST(Cli, AovAllWritesEveryAovAndThreadCountsGiveIdenticalPixels) {
+    fs::path one = tempDir() / "t1.exr", two = tempDir() / "t2.exr";
+    std::string common = " --aov all --spp 3 --res 64x36 --seed 5 --quiet -o ";
+    ASSERT_EQ(run("render --threads 1" + common + one.string()).status, 0);
+    ASSERT_EQ(run("render --threads 2" + common + two.string()).status, 0);
+    auto read = [](const fs::path& p, std::vector<std::string>* names) {
+        auto in = OIIO::ImageInput::open(p.string());
+        const auto& spec = in->spec();
+        if (names) *names = spec.channelnames;
+        std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+        in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data());
+        return px;
+    };
+    std::vector<std::string> names;
+    auto a = read(one, &names), b = read(two, nullptr);
+    EXPECT_TRUE(a == b);
+    std::string list;
+    for (const auto& n : names) list += n + " ";
+    for (const char* aov : {"R", "A", "alpha.", "depth.", "cameraDepth.", "position.", "normal.", "Neye.",
+                            "albedo.", "diffuse.", "specular.", "sheen.", "clearcoat.", "transmission.",
+                            "emission.", "primId.", "instanceId.", "elementId.", "materialId.",
+                            "sampleCount.", "variance."})
+        EXPECT_NE(list.find(aov), std::string::npos) << aov << " missing from " << list;
+}
+
+TEST(Cli, InfoDescribesTheStageAndFailsOnBadInput) {
+    Result r = run("info");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("7 spheres"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("/World/Looks/Metallic1: specular"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("1 distant 1 dome"), std::string::npos) << r.output;
+    fs::path f = tempDir() / "broken.usda";
+    std::ofstream(f) << "#usda 1.0\ndef Sphere \"A\" {\n";
+    Result bad = run("info " + f.string());
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.output.find("broken.usda:"), std::string::npos) << bad.output;
+}

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "delegate/aovs.h"
 #include "delegate/hd/camera.h"
@@ -193,11 +194,12 @@ void EmbreeRenderDelegate::addInstancerInstances() {
 
 EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
     Summary out;
+    std::set<Path> instancers;  // several prototype rprims share one instancer
     for (GeometrySource* g : _param->geometry()) {
         const GeometryRecord* r = g->record();
         const auto* ids = g->instanceGeomIds();
         size_t copies = ids && !ids->empty() ? ids->size() : 1;
-        if (ids && !ids->empty()) ++out.instancers;
+        if (ids && !ids->empty()) instancers.insert(g->instancerId());
         if (g->instanceId() == RTC_INVALID_GEOMETRY_ID && (!ids || ids->empty())) continue;
         if (r->kind == GeometryRecord::Kind::Sphere) {
             ++out.spheres;
@@ -207,6 +209,7 @@ EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
         }
         out.instances += copies;
     }
+    out.instancers = instancers.size();
     static const char* kinds[] = {"distant", "dome", "sphere", "rect", "disk", "cylinder"};
     for (const auto& l : _snapshot.lights)
         if (!_snapshot.usingDefaultLight) ++out.lightsByKind[kinds[int(l.kind)]];

@@ -282,7 +282,21 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             }
         }
         const shading::ShadedMaterial* mat = &shaded;
-        if (mat->emission != glm::vec3(0.0f)) credit(beta * mat->emission);
+        if (mat->emission != glm::vec3(0.0f)) {
+            // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
+            float lightPdf = 0.0f;
+            if (rec.emissiveLight >= 0 && rec.emissiveLight < int(lights.size())) {
+                const LightRecord& ml = lights[rec.emissiveLight];
+                lightPdf = ml.pickProbability * meshLightPdf(ml, hit.t, glm::dot(ray.direction, hit.ng));
+            }
+            float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
+                          ? 1.0f
+                          : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
+            glm::vec3 c = beta * mat->emission * w;
+            if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
+                c *= _settings.clampIndirect / maxComponent(c);
+            credit(c);
+        }
         if (depth == 0) {
             out.alpha = 1.0f;
             FirstHit& f = out.first;

@@ -76,6 +76,10 @@ bool raySphere(const glm::vec3& o, const glm::vec3& d, const glm::vec3& c, float
 
 }  // namespace
 
+float meshLightPdf(const LightRecord& l, float distance, float cosLight) {
+    return toSolidAngle(1.0f / l.area, distance, std::abs(cosLight));
+}
+
 bool isAreaLight(const LightRecord& l) {
     return l.kind == LightRecord::Kind::Sphere || l.kind == LightRecord::Kind::Rect ||
            l.kind == LightRecord::Kind::Disk || l.kind == LightRecord::Kind::Cylinder;
@@ -175,6 +179,35 @@ bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, 
             out->wi = toQ / dist;
             float cosL = -glm::dot(out->wi, l.normal);
             if (cosL <= 0.0f) return false;  // one-sided: p is behind the emitter
+            out->pdf = toSolidAngle(1.0f / l.area, dist, cosL);
+            out->distance = dist;
+            out->Li = l.radiance;
+            return out->pdf > 0.0f;
+        }
+        case LightRecord::Kind::Mesh: {
+            // Pick a triangle by area (u.x reused inside the chosen cell), then a uniform point
+            // on it (Pharr et al. 2023, §6.5.4: b0 = 1 - sqrt(u0), b1 = v sqrt(u0)).
+            const auto& cdf = *l.meshAreaCdf;
+            size_t n = l.meshTriangles->size();
+            size_t i = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, u.x) - (cdf.begin() + 1));
+            i = std::min(i, n - 1);
+            float cell = cdf[i + 1] - cdf[i];
+            float ux = cell > 0.0f ? std::clamp((u.x - cdf[i]) / cell, 0.0f, 1.0f) : 0.5f;
+            const GeometryRecord& g = *l.mesh;
+            const glm::uvec3& t = g.triangles[(*l.meshTriangles)[i]];
+            glm::vec3 a = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.x], 1.0f));
+            glm::vec3 b = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.y], 1.0f));
+            glm::vec3 c = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.z], 1.0f));
+            float su = std::sqrt(ux);
+            glm::vec3 q = (1.0f - su) * a + (u.y * su) * b + ((1.0f - u.y) * su) * c;
+            glm::vec3 n3 = glm::cross(b - a, c - a);
+            float len = glm::length(n3);
+            if (!(len > 0.0f)) return false;
+            glm::vec3 toQ = q - p;
+            float dist = glm::length(toQ);
+            if (!(dist > 0.0f)) return false;
+            out->wi = toQ / dist;
+            float cosL = std::abs(glm::dot(out->wi, n3 / len));
             out->pdf = toSolidAngle(1.0f / l.area, dist, cosL);
             out->distance = dist;
             out->Li = l.radiance;

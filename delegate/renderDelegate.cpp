@@ -95,8 +95,13 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
         for (LightSource* l : _param->lights())
             if (l->enabled()) lights.push_back(l);
         std::sort(lights.begin(), lights.end(), [](auto* a, auto* b) { return a->lightId() < b->lightId(); });
-        _snapshot.lights.clear();
-        for (LightSource* l : lights) _snapshot.lights.push_back(l->record());
+        _sceneLights.clear();
+        for (LightSource* l : lights) _sceneLights.push_back(l->record());
+    }
+    if (sceneDirty || tablesDirty) {
+        // Mesh lights depend on geometry (transforms, points) and materials: rebuild the list.
+        _snapshot.lights = _sceneLights;
+        addMeshLights();
         _snapshot.usingDefaultLight = false;
         if (_snapshot.lights.empty() && intSetting("defaultLighting", 1) != 0) {
             // A scene without lights would render black; light it like an overcast sky
@@ -107,8 +112,8 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.lights.push_back(dome);
             _snapshot.usingDefaultLight = true;
         }
+        buildLightDistribution();
     }
-    if (sceneDirty || tablesDirty) buildLightDistribution();
     if (sceneDirty || tablesDirty) {
         _snapshot.geometryByInstance.clear();
         _snapshot.instanceByInstance.clear();
@@ -120,6 +125,55 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.geometryByInstance[id] = g->record();
         }
         addInstancerInstances();
+    }
+}
+
+void EmbreeRenderDelegate::addMeshLights() {
+    // Triangle meshes whose material has a constant, non-zero emission become lights NEE can
+    // sample (PointInstancer copies and textured emission are still found by BSDF sampling
+    // only). Ordered by prim id, so the light list does not depend on pointer order.
+    std::vector<GeometrySource*> sources(_param->geometry().begin(), _param->geometry().end());
+    std::sort(sources.begin(), sources.end(),
+              [](GeometrySource* a, GeometrySource* b) { return a->record()->primId < b->record()->primId; });
+    for (GeometrySource* g : sources) {
+        GeometryRecord* r = g->record();
+        r->emissiveLight = -1;
+        if (r->kind != GeometryRecord::Kind::Triangles || g->instanceId() == RTC_INVALID_GEOMETRY_ID) continue;
+        if (g->instanceGeomIds()) continue;  // an instancer prototype: its record is not placed
+        auto tris = std::make_shared<std::vector<uint32_t>>();
+        auto cdf = std::make_shared<std::vector<float>>(1, 0.0f);
+        glm::vec3 emission(0.0f);
+        double area = 0.0;
+        for (uint32_t t = 0; t < r->triangles.size(); ++t) {
+            int mi = r->materialFor(t);
+            if (mi < 0 || mi >= int(_snapshot.materials.size())) continue;
+            const MaterialRecord& m = _snapshot.materials[mi];
+            if (m.program || m.constant.emission == glm::vec3(0.0f)) continue;
+            if (!tris->empty() && m.constant.emission != emission) continue;  // one radiance per light
+            emission = m.constant.emission;
+            const glm::uvec3& tri = r->triangles[t];
+            glm::vec3 a = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.x], 1.0f));
+            glm::vec3 b = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.y], 1.0f));
+            glm::vec3 c = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.z], 1.0f));
+            double ta = 0.5 * glm::length(glm::cross(b - a, c - a));
+            if (!(ta > 0.0) || !std::isfinite(ta)) continue;
+            area += ta;
+            tris->push_back(t);
+            cdf->push_back(float(area));
+        }
+        if (tris->empty() || !(area > 0.0)) continue;
+        for (auto& v : *cdf) v = float(v / area);
+        cdf->back() = 1.0f;
+        LightRecord l;
+        l.kind = LightRecord::Kind::Mesh;
+        l.radiance = emission;
+        l.area = float(area);
+        l.mesh = r;
+        l.meshTriangles = std::move(tris);
+        l.meshAreaCdf = std::move(cdf);
+        l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
+        r->emissiveLight = int(_snapshot.lights.size());
+        _snapshot.lights.push_back(std::move(l));
     }
 }
 
@@ -210,7 +264,7 @@ EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
         out.instances += copies;
     }
     out.instancers = instancers.size();
-    static const char* kinds[] = {"distant", "dome", "sphere", "rect", "disk", "cylinder"};
+    static const char* kinds[] = {"distant", "dome", "sphere", "rect", "disk", "cylinder", "mesh"};
     for (const auto& l : _snapshot.lights)
         if (!_snapshot.usingDefaultLight) ++out.lightsByKind[kinds[int(l.kind)]];
     static const char* lobeNames[] = {"diffuse", "sheen", "specular", "clearcoat", "transmission"};

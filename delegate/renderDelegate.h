@@ -75,6 +75,7 @@ private:
 
     void updateDicing();
     void buildLightDistribution();
+    void addMeshLights();
     void addInstancerInstances();
 
     EmbreeDevice _device;
@@ -82,6 +83,7 @@ private:
     RTCScene _scene = nullptr;
     std::unique_ptr<EmbreeRenderParam> _param;
     SceneSnapshot _snapshot;
+    std::vector<LightRecord> _sceneLights;  ///< the UsdLux lights, sorted by path
     mutable std::mutex _settingsMutex;
     hd::RenderSettingsMap _settings;
     std::atomic<unsigned> _settingsVersion{1};

@@ -38,6 +38,7 @@ struct GeometryRecord {
     Kind kind = Kind::Triangles;
     int primId = -1;
     int materialIndex = -1;  ///< into SceneSnapshot::materials; -1 = use displayColor
+    int emissiveLight = -1;  ///< index of the mesh light made from this prim's emission, or -1
     glm::vec3 displayColor{0.18f};
     bool doubleSided = false;
     glm::mat4 objectToWorld{1.0f};
@@ -85,7 +86,7 @@ struct EnvironmentMap {
 };
 
 struct LightRecord {
-    enum class Kind : uint8_t { Distant, Dome, Sphere, Rect, Disk, Cylinder };
+    enum class Kind : uint8_t { Distant, Dome, Sphere, Rect, Disk, Cylinder, Mesh };
     Kind kind = Kind::Distant;
     glm::vec3 radiance{1.0f};    ///< color * intensity * 2^exposure (/ area when normalized)
     glm::vec3 direction{0, 0, -1};  ///< distant: world direction the light travels
@@ -100,6 +101,11 @@ struct LightRecord {
     float area = 0.0f;
     std::shared_ptr<const EnvironmentMap> environment;  ///< dome texture (null: constant)
     float pickProbability = 1.0f;  ///< chance next-event estimation picks this light
+    // Mesh lights (emissive geometry with a constant emission): the triangles that emit, with
+    // a CDF over their world-space areas. Emission is two-sided, as it is shaded.
+    const GeometryRecord* mesh = nullptr;
+    std::shared_ptr<const std::vector<uint32_t>> meshTriangles;
+    std::shared_ptr<const std::vector<float>> meshAreaCdf;  ///< meshTriangles.size() + 1
 };
 
 /// Everything a render pass reads: the committed top-level scene and the tables the records

@@ -8,8 +8,8 @@
 
 namespace principled::tools {
 
-ProgressBar::ProgressBar(std::string label, bool enabled)
-    : _label(std::move(label)), _enabled(enabled && isatty(STDERR_FILENO)) {
+ProgressBar::ProgressBar(std::string label, bool enabled, bool checkTerminal)
+    : _label(std::move(label)), _enabled(enabled && (!checkTerminal || isatty(STDERR_FILENO))) {
     _start = _lastDraw = std::chrono::steady_clock::now();
 }
 

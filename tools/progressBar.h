@@ -9,8 +9,9 @@ namespace principled::tools {
 
 class ProgressBar {
 public:
-    /// enabled=false (or stderr not a terminal) makes every call a no-op.
-    ProgressBar(std::string label, bool enabled);
+    /// enabled=false (or stderr not a terminal) makes every call a no-op. checkTerminal=false
+    /// skips the terminal test (MPI rank 0, whose stderr is a pipe to mpirun's terminal).
+    ProgressBar(std::string label, bool enabled, bool checkTerminal = true);
     ~ProgressBar();
     /// done of total units; redraws at most ~10 times a second.
     void update(double done, double total, const std::string& detail = "");

@@ -16,6 +16,7 @@
 #include "plugins/renderSession.h"
 #include "scene_adapter/usda/error.h"
 #include "tools/defaultScene.h"
+#include "tools/distributed/distributedRender.h"
 #include "tools/progressBar.h"
 
 namespace principled::tools {
@@ -42,6 +43,7 @@ struct RenderArgs {
     double time = std::numeric_limits<double>::quiet_NaN();
     bool split = false;
     bool quiet = false;
+    distributed::Options distributed;  // mpirun, --frames, checkpoints: tools/distributed/
 };
 
 int fail(const std::string& message) {
@@ -82,6 +84,9 @@ int runRender(const RenderArgs& a) {
     if (a.threads > 0)
         threadLimit = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, size_t(a.threads));
+
+    if (distributed::wanted(a.distributed))
+        return distributed::run(o, a.scene, a.outputs, a.split, a.quiet, a.distributed);
 
     auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<host::RenderSession> session;
@@ -221,6 +226,7 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
                     "Subdivision level for every mesh (0-8); -1 = adaptive from the projected size")
         ->check(CLI::Range(-1, 8));
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar, warnings or summary");
+    distributed::addOptions(cmd, &args->distributed);
     cmd->callback([args, exitCode] { *exitCode = runRender(*args); });
 }
 

@@ -717,9 +717,10 @@ void Composer::composeChildren(Prim& parent, Node* parentIndex,
     for (const std::string& name : names) {
         if (_stage._prims.size() >= _options.maxPrims) {
             if (!_primLimitHit)
-                warn(parent._location, "too many prims (StageOptions::maxPrims = " +
-                                           std::to_string(_options.maxPrims) +
-                                           "); the rest of the stage is not composed",
+                warn(parent._location,
+                     "too many prims (StageOptions::maxPrims = " +
+                         std::to_string(_options.maxPrims) +
+                         "); the rest of the stage is not composed",
                      Diagnostic::Severity::Error);
             _primLimitHit = true;
             return;

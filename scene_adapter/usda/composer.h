@@ -42,7 +42,7 @@ struct PrimIndexNode {
     /// Node namespace -> stage namespace, innermost step first. Shared between a node and the
     /// nodes derived from it for descendant prims (the mapping is prefix-based).
     std::shared_ptr<const std::vector<MapStep>> map = std::make_shared<std::vector<MapStep>>();
-    LayerOffset offset;        ///< node time -> stage time
+    LayerOffset offset;  ///< node time -> stage time
     SourceLocation arcLocation;
     PrimIndexNode* parent = nullptr;
     std::vector<std::unique_ptr<PrimIndexNode>> children;  ///< sorted by arc (LIVRPS)

@@ -40,6 +40,8 @@ public:
     /// The value at `time`. Finite time: time samples if they win, else the default. NaN
     /// (kDefaultTime): the default if authored, else the earliest sample. Empty Value if none.
     Value get(double time = kDefaultTime) const;
+    /// More than one time sample wins: the value may change over time.
+    bool isTimeVarying() const { return _samples.size() > 1; }
     /// Absolute connection targets "/Prim/Path.inputs:name" in stage namespace.
     const std::vector<std::string>& connections() const { return _connections; }
     /// Attribute metadata (interpolation, elementSize, customData, colorSpace, ...).
@@ -98,6 +100,9 @@ public:
     const Value* metadata(std::string_view key) const;
     const Dictionary& allMetadata() const { return _metadata; }
     const std::vector<std::string>& appliedSchemas() const { return _appliedSchemas; }
+    /// `schema` is applied ("MaterialBindingAPI"); for multiple-apply schemas give the instance
+    /// ("CollectionAPI:lightLink") or just the schema name to match any instance.
+    bool hasAPI(std::string_view schema) const;
     /// Variant set -> the selection used for composition.
     std::map<std::string, std::string> variantSelections() const { return _variantSelections; }
     /// For `instanceable = true` prims: equal keys mean the same composition arcs and variant

@@ -44,6 +44,16 @@ const Value* Prim::metadata(std::string_view key) const {
     return findIn(_metadata, key);
 }
 
+bool Prim::hasAPI(std::string_view schema) const {
+    for (const std::string& applied : _appliedSchemas) {
+        if (applied == schema) return true;
+        if (applied.size() > schema.size() && applied.compare(0, schema.size(), schema) == 0 &&
+            applied[schema.size()] == ':')
+            return true;
+    }
+    return false;
+}
+
 const Attribute* Prim::attribute(std::string_view name) const {
     return findByName(_attributes, name);
 }

@@ -205,6 +205,18 @@ const Value* Value::find(std::string_view key) const {
     return it == _data->dict.end() ? nullptr : &it->second;
 }
 
+bool Value::operator==(const Value& o) const {
+    if (_kind != o._kind || _isArray != o._isArray || _components != o._components ||
+        _typeName != o._typeName)
+        return false;
+    if (_kind == Kind::Number)
+        return _number == o._number || (_number != _number && o._number != o._number);
+    if (_data == o._data) return true;
+    if (!_data || !o._data) return false;
+    return _data->numbers == o._data->numbers && _data->strings == o._data->strings &&
+           _data->assets == o._data->assets && _data->dict == o._data->dict;
+}
+
 std::string Value::toString() const {
     std::ostringstream os;
     auto numbersText = [&](const double* p, int n) {

@@ -97,6 +97,9 @@ public:
     const SourceLocation& location() const { return _where; }
     void setLocation(SourceLocation where) { _where = std::move(where); }
 
+    /// Same type and contents (locations are ignored). Shared array payloads compare in O(1).
+    bool operator==(const Value& other) const;
+
     /// Debug text, e.g. "(1, 2, 3)"; arrays longer than 8 elements are abbreviated.
     std::string toString() const;
 

@@ -175,3 +175,48 @@ TEST(Lights, BlackbodyHasUnitLuminanceAndTheRightHue) {
     EXPECT_NEAR(d65.x / d65.z, 1.0f, 0.1f);  // 6500 K is close to the D65 white
     EXPECT_GT(cool.z, cool.x);
 }
+
+TEST(Lights, EmissiveQuadMatchesTheRectLightUnderEveryStrategy) {
+    // A 1x1 emissive quad of radiance 5, 1 unit above the plane, delivers the same irradiance
+    // as a RectLight of the same size and radiance (emission is found by NEE as a mesh light
+    // and by BSDF sampling, MIS-weighted).
+    double a = 0.5;
+    std::string rect = R"(
+def RectLight "Panel"
+{
+    float inputs:width = 1
+    float inputs:height = 1
+    float inputs:intensity = 5
+    double3 xformOp:translate = (0, 1, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+    std::string quad = R"(
+def Mesh "Emitter" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-0.5, 1, -0.5), (0.5, 1, -0.5), (0.5, 1, 0.5), (-0.5, 1, 0.5)]
+    rel material:binding = </Glow>
+}
+def Material "Glow"
+{
+    token outputs:surface.connect = </Glow/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0, 0, 0)
+        color3f inputs:emissiveColor = (5, 5, 5)
+        token outputs:surface
+    }
+}
+)";
+    double reference = render(planeScene(a, rect, 45.0), 1024);
+    ASSERT_GT(reference, 0.0);
+    for (auto [nee, mis] : {std::pair{"1", "1"}, {"1", "0"}, {"0", "1"}}) {
+        double v = render(planeScene(a, quad, 45.0), nee[0] == '0' ? 4096 : 1024, {{"nee", nee}, {"mis", mis}});
+        EXPECT_NEAR(v, reference, 0.03 * reference) << "nee " << nee << " mis " << mis;
+    }
+}

@@ -26,7 +26,7 @@ def Xform "World" ( kind = "assembly" ) {
     double3 xformOp:translate.timeSamples = { 1: (0, 0, 0), 11: (10, 0, 0) }
     double3 xformOp:translate = (5, 5, 5)
     uniform token[] xformOpOrder = ["xformOp:translate"]
-    def Mesh "mesh" ( prepend apiSchemas = ["MaterialBindingAPI"] ) {
+    def Mesh "mesh" ( prepend apiSchemas = ["MaterialBindingAPI", "CollectionAPI:lightLink"] ) {
         int[] faceVertexCounts = [3]
         int[] faceVertexIndices = [0, 1, 2]
         point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
@@ -78,7 +78,13 @@ TEST(Stage, SingleLayerApi) {
 
     const Prim* mesh = stage->prim("/World/mesh");
     ASSERT_NE(mesh, nullptr);
-    EXPECT_EQ(mesh->appliedSchemas(), (std::vector<std::string>{"MaterialBindingAPI"}));
+    EXPECT_EQ(mesh->appliedSchemas(),
+              (std::vector<std::string>{"MaterialBindingAPI", "CollectionAPI:lightLink"}));
+    EXPECT_TRUE(mesh->hasAPI("MaterialBindingAPI"));
+    EXPECT_TRUE(mesh->hasAPI("CollectionAPI"));
+    EXPECT_TRUE(mesh->hasAPI("CollectionAPI:lightLink"));
+    EXPECT_FALSE(mesh->hasAPI("CollectionAPI:shadowLink"));
+    EXPECT_FALSE(mesh->hasAPI("Material"));
     const Attribute* pts = mesh->attribute("points");
     ASSERT_NE(pts, nullptr);
     EXPECT_EQ(pts->typeName(), "point3f");
@@ -124,6 +130,8 @@ TEST(Stage, TimeRule) {
     auto stage = Stage::openString(kScene, "scene.usda");
     const Attribute* t = stage->prim("/World")->attribute("xformOp:translate");
     EXPECT_EQ(t->timeSamples().size(), 2u);
+    EXPECT_TRUE(t->isTimeVarying());
+    EXPECT_FALSE(stage->prim("/World/mesh")->attribute("points")->isTimeVarying());
     EXPECT_EQ((*t->get(6.0).getTuple())[0], 5.0);                   // interpolated
     EXPECT_EQ((*t->get(-3.0).getTuple())[0], 0.0);                  // held before
     EXPECT_EQ((*t->get(100.0).getTuple())[0], 10.0);                // held after
@@ -140,8 +148,8 @@ TEST(Stage, TimeRule) {
     EXPECT_EQ(noTime->metersPerUnit(), 0.01);
     EXPECT_EQ(noTime->timeCodesPerSecond(), 24.0);
     EXPECT_TRUE(noTime->pseudoRoot()->children().empty());
-    auto legacy = Stage::openString("#usda 1.0\n( startFrame = 3 endFrame = 9 framesPerSecond = 30 )\n",
-                                    "legacy.usda");
+    auto legacy = Stage::openString(
+        "#usda 1.0\n( startFrame = 3 endFrame = 9 framesPerSecond = 30 )\n", "legacy.usda");
     EXPECT_EQ(legacy->defaultTime(), 3.0);
     EXPECT_EQ(legacy->endTimeCode(), 9.0);
     EXPECT_EQ(legacy->timeCodesPerSecond(), 30.0);  // falls back to framesPerSecond

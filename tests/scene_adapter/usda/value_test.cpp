@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace principled::usd {
 namespace {
 
@@ -68,6 +70,23 @@ TEST(Value, TuplesArraysStrings) {
     Value p = Value::path("/A/B", {});
     EXPECT_EQ(p.getPath(), "/A/B");
     EXPECT_FALSE(p.getString());
+}
+
+TEST(Value, Equality) {
+    EXPECT_EQ(Value::number("float", 1, {"a", 1, 1}), Value::number("float", 1, {"b", 2, 2}));
+    EXPECT_NE(Value::number("float", 1, {}), Value::number("double", 1, {}));
+    EXPECT_NE(Value::number("float", 1, {}), Value::number("float", 2, {}));
+    EXPECT_EQ(Value::number("float", std::nan(""), {}), Value::number("float", std::nan(""), {}));
+    Value a = Value::numberArray("point3f", 3, {1, 2, 3}, {});
+    EXPECT_EQ(a, Value(a));
+    EXPECT_EQ(a, Value::numberArray("point3f", 3, {1, 2, 3}, {}));
+    EXPECT_NE(a, Value::numberArray("point3f", 3, {1, 2, 4}, {}));
+    EXPECT_NE(a, Value::none("point3f", true, {}));
+    EXPECT_EQ(Value::string("token", "x", {}), Value::string("token", "x", {}));
+    EXPECT_NE(Value::string("token", "x", {}), Value::string("string", "x", {}));
+    EXPECT_EQ(Value(), Value());
+    Dictionary d{{"k", Value::number("int", 1, {})}};
+    EXPECT_EQ(Value::dictionary(d, {}), Value::dictionary(d, {}));
 }
 
 TEST(Value, Dictionaries) {

@@ -1,0 +1,349 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/distributed/accumulation.h"
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "delegate/renderBuffer.h"
+#include "delegate/renderPass.h"
+#include "plugins/renderSession.h"
+
+namespace principled::tools::distributed {
+
+namespace {
+
+template <class T>
+void append(std::vector<char>& out, const std::vector<T>& v) {
+    const char* p = reinterpret_cast<const char*>(v.data());
+    out.insert(out.end(), p, p + v.size() * sizeof(T));
+}
+
+template <class T>
+bool take(const std::vector<char>& in, size_t& at, std::vector<T>& v) {
+    size_t n = v.size() * sizeof(T);
+    if (at + n > in.size()) return false;
+    if (n) std::memcpy(v.data(), in.data() + at, n);
+    at += n;
+    return true;
+}
+
+}  // namespace
+
+Accumulation Accumulation::capture(const host::RenderSession& session) {
+    Accumulation acc;
+    acc.width = session.width();
+    acc.height = session.height();
+    size_t n = size_t(acc.width) * acc.height;
+    acc.completedSamples = session.completedSamples();
+    for (const auto& img : session.aovs()) {
+        const auto* buf = session.buffer(img.name);
+        AovAccumulation a;
+        a.name = img.name;
+        a.components = img.components;
+        a.isInt = img.isInt;
+        a.multiSampled = buf->isMultiSampled();
+        a.sums = buf->sums();
+        a.ints = buf->ints();
+        a.counts = buf->counts();
+        acc.aovs.push_back(std::move(a));
+    }
+    auto stats = session.pass()->pixelStats();
+    acc.lumSum = stats.lumSum.size() == n ? stats.lumSum : std::vector<double>(n, 0.0);
+    acc.lumSqSum = stats.lumSqSum.size() == n ? stats.lumSqSum : std::vector<double>(n, 0.0);
+    acc.pixelSamples = stats.samples.size() == n ? stats.samples : std::vector<int>(n, 0);
+    return acc;
+}
+
+bool Accumulation::applyTo(host::RenderSession& session) const {
+    // Same shape as the session's buffers, checked without copying them.
+    size_t n = size_t(width) * height;
+    if (width != session.width() || height != session.height() || aovs.size() != session.aovs().size() ||
+        lumSum.size() != n || lumSqSum.size() != n || pixelSamples.size() != n)
+        return false;
+    for (const auto& a : aovs) {
+        const auto* buf = session.buffer(a.name);
+        if (!buf || buf->isMultiSampled() != a.multiSampled || buf->sums().size() != a.sums.size() ||
+            buf->ints().size() != a.ints.size() || buf->counts().size() != a.counts.size())
+            return false;
+    }
+    embree::EmbreeRenderPass::PixelStats stats{lumSum, lumSqSum, pixelSamples};
+    if (!session.pass()->setPixelStats(stats, completedSamples)) return false;
+    for (const auto& a : aovs) {
+        auto* buf = session.buffer(a.name);
+        if (!buf->setAccumulation(a.sums, a.ints, a.counts)) return false;
+        // Statistics AOVs are derived from the merged luminance statistics.
+        if (a.name == "sampleCount" || a.name == "variance") {
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) {
+                    size_t p = size_t(y) * width + x;
+                    float v = a.name == "variance" ? float(session.pass()->meanVariance(p))
+                                                   : float(pixelSamples[p]);
+                    buf->setPixel(x, y, &v);
+                }
+        }
+        buf->resolve();
+    }
+    return true;
+}
+
+bool Accumulation::sameShape(const Accumulation& o) const {
+    if (width != o.width || height != o.height || aovs.size() != o.aovs.size() ||
+        lumSum.size() != o.lumSum.size() || lumSqSum.size() != o.lumSqSum.size() ||
+        pixelSamples.size() != o.pixelSamples.size())
+        return false;
+    for (size_t i = 0; i < aovs.size(); ++i) {
+        const auto &a = aovs[i], &b = o.aovs[i];
+        if (a.name != b.name || a.components != b.components || a.isInt != b.isInt ||
+            a.multiSampled != b.multiSampled || a.sums.size() != b.sums.size() ||
+            a.ints.size() != b.ints.size() || a.counts.size() != b.counts.size())
+            return false;
+    }
+    return true;
+}
+
+bool Accumulation::merge(const Accumulation& next) {
+    if (!sameShape(next)) return false;
+    size_t n = size_t(width) * height;
+    for (size_t i = 0; i < aovs.size(); ++i) {
+        auto& a = aovs[i];
+        const auto& b = next.aovs[i];
+        int c = a.components;
+        for (size_t p = 0; p < n; ++p) {
+            if (a.isInt) {
+                if (a.counts[p] == 0) a.ints[p] = b.ints[p];
+            } else if (a.multiSampled) {
+                for (int k = 0; k < c; ++k) a.sums[p * c + k] += b.sums[p * c + k];
+            } else if (a.counts[p] == 0) {
+                for (int k = 0; k < c; ++k) a.sums[p * c + k] = b.sums[p * c + k];
+            }
+            a.counts[p] += b.counts[p];
+        }
+    }
+    for (size_t p = 0; p < lumSum.size(); ++p) {
+        lumSum[p] += next.lumSum[p];
+        lumSqSum[p] += next.lumSqSum[p];
+        pixelSamples[p] += next.pixelSamples[p];
+    }
+    completedSamples += next.completedSamples;
+    return true;
+}
+
+size_t Accumulation::packedSize() const {
+    size_t bytes = sizeof(int);
+    for (const auto& a : aovs)
+        bytes += a.sums.size() * 8 + a.ints.size() * 4 + a.counts.size() * 4;
+    return bytes + lumSum.size() * 8 + lumSqSum.size() * 8 + pixelSamples.size() * sizeof(int);
+}
+
+std::vector<char> Accumulation::pack() const {
+    std::vector<char> out;
+    out.reserve(packedSize());
+    append(out, std::vector<int>{completedSamples});
+    for (const auto& a : aovs) {
+        append(out, a.sums);
+        append(out, a.ints);
+        append(out, a.counts);
+    }
+    append(out, lumSum);
+    append(out, lumSqSum);
+    append(out, pixelSamples);
+    return out;
+}
+
+bool Accumulation::unpack(const std::vector<char>& in) {
+    size_t at = 0;
+    std::vector<int> completed(1);
+    bool ok = take(in, at, completed);
+    completedSamples = completed[0];
+    for (auto& a : aovs) ok = ok && take(in, at, a.sums) && take(in, at, a.ints) && take(in, at, a.counts);
+    ok = ok && take(in, at, lumSum) && take(in, at, lumSqSum) && take(in, at, pixelSamples);
+    return ok && at == in.size();
+}
+
+// ---- checkpoints ---------------------------------------------------------------------------
+
+bool writeCheckpoint(const std::string& path, const Accumulation& acc, const CheckpointInfo& info,
+                     std::string* error) {
+    namespace fs = std::filesystem;
+    size_t n = size_t(acc.width) * acc.height;
+    std::vector<std::string> names;
+    std::vector<std::vector<uint32_t>> planes;
+    auto addDouble = [&](const std::string& name, const std::vector<double>& v, int stride, int k) {
+        std::vector<uint32_t> lo(n), hi(n);
+        for (size_t p = 0; p < n; ++p) {
+            uint64_t bits;
+            std::memcpy(&bits, &v[p * stride + k], 8);
+            lo[p] = uint32_t(bits);
+            hi[p] = uint32_t(bits >> 32);
+        }
+        names.push_back(name + ".lo");
+        planes.push_back(std::move(lo));
+        names.push_back(name + ".hi");
+        planes.push_back(std::move(hi));
+    };
+    auto addInt = [&](const std::string& name, const std::vector<int32_t>& v) {
+        std::vector<uint32_t> w(n);
+        for (size_t p = 0; p < n; ++p) w[p] = uint32_t(v[p]);
+        names.push_back(name);
+        planes.push_back(std::move(w));
+    };
+    for (const auto& a : acc.aovs) {
+        if (a.isInt) {
+            addInt(a.name + ".id", a.ints);
+        } else {
+            for (int k = 0; k < a.components; ++k)
+                addDouble(a.name + ".sum" + std::to_string(k), a.sums, a.components, k);
+        }
+        addInt(a.name + ".count", a.counts);
+    }
+    addDouble("stats.lumSum", acc.lumSum, 1, 0);
+    addDouble("stats.lumSqSum", acc.lumSqSum, 1, 0);
+    addInt("stats.samples", std::vector<int32_t>(acc.pixelSamples.begin(), acc.pixelSamples.end()));
+
+    OIIO::ImageSpec spec(acc.width, acc.height, int(names.size()), OIIO::TypeDesc::UINT);
+    spec.channelnames = names;
+    spec.attribute("compression", "zip");
+    spec.attribute("principled:checkpoint", "1");
+    spec.attribute("principled:sceneHash", info.sceneHash);
+    spec.attribute("principled:settings", info.settings);
+    spec.attribute("principled:sampleRange", std::to_string(info.rangeFirst) + ":" + std::to_string(info.rangeEnd));
+    spec.attribute("principled:completedSamples", acc.completedSamples);
+    std::string order;
+    for (const auto& a : acc.aovs) order += (order.empty() ? "" : ",") + a.name;
+    spec.attribute("principled:aovs", order);
+    for (const auto& a : acc.aovs)
+        if (!a.isInt) spec.attribute("principled:multiSampled:" + a.name, a.multiSampled ? 1 : 0);
+    spec.attribute("principled:rank", std::to_string(info.rank) + "/" + std::to_string(info.ranks));
+    std::vector<uint32_t> pixels(n * names.size());
+    for (size_t p = 0; p < n; ++p)
+        for (size_t c = 0; c < names.size(); ++c) pixels[p * names.size() + c] = planes[c][p];
+
+    fs::path final(path);
+    std::error_code ec;
+    if (!final.parent_path().empty()) fs::create_directories(final.parent_path(), ec);
+    fs::path tmp = final.parent_path() / ("." + final.stem().string() + ".tmp" + std::to_string(getpid()) + ".exr");
+    auto out = OIIO::ImageOutput::create(final.string());
+    if (!out || !out->open(tmp.string(), spec) ||
+        !out->write_image(OIIO::TypeDesc::UINT, pixels.data()) || !out->close()) {
+        *error = path + ": cannot write the checkpoint" + (out ? ": " + out->geterror() : std::string());
+        fs::remove(tmp, ec);
+        return false;
+    }
+    fs::rename(tmp, final, ec);
+    if (ec) {
+        *error = path + ": cannot rename the checkpoint into place: " + ec.message();
+        fs::remove(tmp, ec);
+        return false;
+    }
+    return true;
+}
+
+bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* info,
+                    std::string* error) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        *error = path + ": cannot read the checkpoint: " + OIIO::geterror();
+        return false;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.get_string_attribute("principled:checkpoint") != "1") {
+        *error = path + ": not a principled checkpoint (no principled:checkpoint metadata)";
+        return false;
+    }
+    info->sceneHash = spec.get_string_attribute("principled:sceneHash");
+    info->settings = spec.get_string_attribute("principled:settings");
+    std::string range = spec.get_string_attribute("principled:sampleRange");
+    if (std::sscanf(range.c_str(), "%d:%d", &info->rangeFirst, &info->rangeEnd) != 2) {
+        *error = path + ": checkpoint has no valid principled:sampleRange";
+        return false;
+    }
+    int nch = spec.nchannels;
+    size_t n = size_t(spec.width) * spec.height;
+    std::vector<uint32_t> pixels(n * nch);
+    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT, pixels.data())) {
+        *error = path + ": cannot read the checkpoint pixels: " + in->geterror();
+        return false;
+    }
+    std::map<std::string, int> index;
+    for (int c = 0; c < nch; ++c) index[spec.channelnames[c]] = c;
+    auto plane = [&](const std::string& name, bool* ok) {
+        std::vector<uint32_t> v(n);
+        auto it = index.find(name);
+        if (it == index.end()) {
+            *ok = false;
+            return v;
+        }
+        for (size_t p = 0; p < n; ++p) v[p] = pixels[p * nch + it->second];
+        return v;
+    };
+    bool ok = true;
+    auto readDouble = [&](const std::string& name, std::vector<double>& v, int stride, int k) {
+        auto lo = plane(name + ".lo", &ok), hi = plane(name + ".hi", &ok);
+        for (size_t p = 0; p < n; ++p) {
+            uint64_t bits = uint64_t(lo[p]) | (uint64_t(hi[p]) << 32);
+            std::memcpy(&v[p * stride + k], &bits, 8);
+        }
+    };
+    acc->width = spec.width;
+    acc->height = spec.height;
+    acc->completedSamples = spec.get_int_attribute("principled:completedSamples", 0);
+    // EXR sorts channels by name: the AOV order comes from principled:aovs.
+    acc->aovs.clear();
+    std::stringstream order(spec.get_string_attribute("principled:aovs"));
+    for (std::string name; std::getline(order, name, ',');) {
+        if (!index.count(name + ".count")) {
+            ok = false;
+            break;
+        }
+        const std::string ch = name + ".count";
+        AovAccumulation a;
+        a.name = name;
+        a.isInt = index.count(a.name + ".id") > 0;
+        a.counts.resize(n);
+        auto counts = plane(ch, &ok);
+        for (size_t p = 0; p < n; ++p) a.counts[p] = int32_t(counts[p]);
+        if (a.isInt) {
+            a.components = 1;
+            auto ids = plane(a.name + ".id", &ok);
+            a.ints.resize(n);
+            for (size_t p = 0; p < n; ++p) a.ints[p] = int32_t(ids[p]);
+            a.multiSampled = false;
+        } else {
+            while (index.count(a.name + ".sum" + std::to_string(a.components) + ".lo")) ++a.components;
+            a.sums.resize(n * a.components);
+            for (int k = 0; k < a.components; ++k)
+                readDouble(a.name + ".sum" + std::to_string(k), a.sums, a.components, k);
+            a.multiSampled = spec.get_int_attribute("principled:multiSampled:" + a.name, 1) != 0;
+        }
+        acc->aovs.push_back(std::move(a));
+    }
+    acc->lumSum.resize(n);
+    acc->lumSqSum.resize(n);
+    readDouble("stats.lumSum", acc->lumSum, 1, 0);
+    readDouble("stats.lumSqSum", acc->lumSqSum, 1, 0);
+    auto samples = plane("stats.samples", &ok);
+    acc->pixelSamples.assign(samples.begin(), samples.end());
+    if (!ok) {
+        *error = path + ": checkpoint is missing channels";
+        return false;
+    }
+    return true;
+}
+
+std::string hashBytes(const std::string& bytes) {
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : bytes) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+}  // namespace principled::tools::distributed

@@ -1,0 +1,481 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/distributed/distributedRender.h"
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include <time.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+
+#include "delegate/imageWriter.h"
+#include "plugins/renderSession.h"
+#include "scene_adapter/usda/error.h"
+#include "tools/defaultScene.h"
+#include "tools/distributed/accumulation.h"
+#include "tools/distributed/comm.h"
+#include "tools/progressBar.h"
+
+namespace principled::tools::distributed {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Anything that stops this rank; the job ends with it, naming the rank.
+struct RankError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+std::vector<double> parseFrames(const std::string& text) {
+    if (text.empty()) return {std::numeric_limits<double>::quiet_NaN()};
+    double a = 0, b = 0, step = 1;
+    char tail = 0;
+    int n = std::sscanf(text.c_str(), "%lf:%lf:%lf%c", &a, &b, &step, &tail);
+    if (n == 1 && text.find(':') == std::string::npos) b = a;
+    if ((n != 1 && n != 2 && n != 3) || (n == 1 && text.find(':') != std::string::npos) ||
+        !(step > 0) || b < a || (b - a) / step > 1e6)
+        throw RankError("--frames expects A:B or A:B:STEP time codes with A <= B and STEP > 0, not '" + text + "'");
+    std::vector<double> frames;
+    for (long i = 0; a + i * step <= b + 1e-9; ++i) frames.push_back(a + i * step);
+    return frames;
+}
+
+std::string frameTag(double t) {
+    char buf[64];
+    if (t == std::floor(t)) std::snprintf(buf, sizeof buf, "%04lld", static_cast<long long>(t));
+    else std::snprintf(buf, sizeof buf, "%g", t);
+    return buf;
+}
+
+/// OUT.exr -> OUT.0007.exr, or "####" in the name replaced by the frame.
+std::string framePath(const std::string& out, double t, bool animated) {
+    if (!animated) return out;
+    std::string tag = frameTag(t);
+    auto hashes = out.find("####");
+    if (hashes != std::string::npos) return out.substr(0, hashes) + tag + out.substr(hashes + 4);
+    fs::path p(out);
+    return (p.parent_path() / (p.stem().string() + "." + tag + p.extension().string())).string();
+}
+
+/// Everything that changes the accumulated samples, in a fixed order.
+std::string canonicalSettings(const host::SessionOptions& o) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "res=" << o.width << 'x' << o.height << ";spp=" << o.samplesPerPixel << ";seed=" << o.seed
+      << ";maxDepth=" << o.maxDepth << ";camera=" << o.camera << ";model=" << o.shadingModel
+      << ";sampler=" << o.sampler << ";refineLevel=" << o.refineLevel << ";aovs=";
+    for (size_t i = 0; i < o.aovs.size(); ++i) s << (i ? "," : "") << o.aovs[i];
+    for (const auto& [k, v] : o.settings) s << ";set:" << k << '=' << v;
+    s << ";time=";
+    if (std::isnan(o.time)) s << "default";
+    else s << o.time;
+    return s.str();
+}
+
+/// "seed: 1 in the checkpoint, 2 now; ..." for the keys that differ.
+std::string settingsDiff(const std::string& was, const std::string& now) {
+    auto parse = [](const std::string& text) {
+        std::map<std::string, std::string> m;
+        std::stringstream ss(text);
+        std::string item;
+        while (std::getline(ss, item, ';')) {
+            auto eq = item.find('=');
+            m[item.substr(0, eq)] = eq == std::string::npos ? "" : item.substr(eq + 1);
+        }
+        return m;
+    };
+    auto a = parse(was), b = parse(now);
+    std::map<std::string, int> keys;
+    for (const auto& [k, v] : a) keys[k];
+    for (const auto& [k, v] : b) keys[k];
+    std::string out;
+    for (const auto& [k, unused] : keys) {
+        std::string va = a.count(k) ? a[k] : "(unset)", vb = b.count(k) ? b[k] : "(unset)";
+        if (va != vb) out += (out.empty() ? "" : "; ") + k + ": " + va + " there, " + vb + " here";
+    }
+    return out;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw RankError(path + ": cannot read the scene file");
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+/// Writes the session's AOVs like `principled render` does, each file through a temporary
+/// name renamed into place, so an output is either complete or absent.
+void writeOutputs(host::RenderSession& session, const std::vector<std::string>& outputs, bool split) {
+    std::vector<std::vector<float>> storage;
+    std::vector<embree::ImageLayer> layers;
+    size_t n = size_t(session.width()) * session.height();
+    for (const auto& img : session.aovs()) {
+        embree::ImageLayer l;
+        l.name = img.name == "color" ? "" : img.name;
+        static const char* rgba[] = {"R", "G", "B", "A"};
+        if (img.components == 1) l.channels = {img.isInt ? "id" : "Z"};
+        else
+            for (int c = 0; c < img.components; ++c) l.channels.push_back(rgba[c]);
+        if (img.name == "depth" || img.name == "cameraDepth") l.channels = {"Z"};
+        if (img.name == "alpha") l.channels = {"A"};
+        if (img.name == "sampleCount" || img.name == "variance") l.channels = {"V"};
+        if (img.isInt) {
+            storage.emplace_back(n);
+            const int32_t* ids = static_cast<const int32_t*>(img.pixels);
+            for (size_t i = 0; i < n; ++i) storage.back()[i] = float(ids[i]);
+            l.pixels = storage.back().data();
+        } else {
+            l.pixels = static_cast<const float*>(img.pixels);
+        }
+        layers.push_back(l);
+    }
+    auto atomicWrite = [&](const fs::path& path, const std::vector<embree::ImageLayer>& ls) {
+        std::error_code ec;
+        if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), ec);
+        fs::path tmp = path.parent_path() /
+                       ("." + path.stem().string() + ".tmp" + std::to_string(getpid()) + path.extension().string());
+        std::string error;
+        if (!embree::writeImage(tmp.string(), session.width(), session.height(), ls, &error)) {
+            fs::remove(tmp, ec);
+            throw RankError(path.string() + ": " + error);
+        }
+        fs::rename(tmp, path, ec);
+        if (ec) throw RankError(path.string() + ": cannot rename into place: " + ec.message());
+    };
+    for (const auto& out : outputs) {
+        fs::path path(out);
+        bool exr = path.extension() == ".exr";
+        if (split && exr) {
+            for (const auto& l : layers) {
+                fs::path p = path;
+                p.replace_filename(path.stem().string() + "." + (l.name.empty() ? "color" : l.name) + ".exr");
+                embree::ImageLayer single = l;
+                single.name.clear();
+                atomicWrite(p, {single});
+            }
+        } else {
+            atomicWrite(path, exr ? layers : std::vector<embree::ImageLayer>{layers[0]});
+        }
+    }
+}
+
+/// Under mpirun a rank's stderr is a pipe to the launcher; rank 0 usually runs on the node
+/// mpirun was started on, as its child: draw the bar when mpirun's own stderr is a terminal.
+bool launcherOnTerminal() {
+    std::error_code ec;
+    std::string target = fs::read_symlink("/proc/" + std::to_string(getppid()) + "/fd/2", ec).string();
+    return !ec && (target.rfind("/dev/pts/", 0) == 0 || target.rfind("/dev/tty", 0) == 0);
+}
+
+/// CPU time of the calling thread: the reduction's cost without other processes' load.
+double threadCpuSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+class Job {
+public:
+    Job(Comm& comm, const host::SessionOptions& base, std::string scene, std::vector<std::string> outputs,
+        bool split, bool quiet, Options options)
+        : _comm(comm), _base(base), _scene(std::move(scene)), _outputs(std::move(outputs)),
+          _split(split), _quiet(quiet), _opt(std::move(options)),
+          _bar("render", !quiet && comm.rank() == 0 && (!comm.distributed() || launcherOnTerminal()),
+               !comm.distributed()) {}
+
+    void run();
+
+private:
+    std::unique_ptr<host::RenderSession> open(double time, int first, int end);
+    void checkSameEverywhere(const std::string& settings);
+    /// Renders [first, end) into the session, resuming from / writing checkpoints.
+    void render(host::RenderSession& session, int first, int end, const std::string& checkpoint,
+                const std::string& settings);
+    void progress(long long localDone);
+    void serveProgress();
+    void waitFor(int src, int tag);
+    std::string checkpointPath(double time, bool wholeFrame) const;
+    void note(const std::string& text) const {
+        if (!_quiet) std::fprintf(stderr, "principled: %s\n", text.c_str());
+    }
+
+    Comm& _comm;
+    host::SessionOptions _base;
+    std::string _scene, _sceneText, _hash;
+    std::vector<std::string> _outputs;
+    bool _split, _quiet;
+    Options _opt;
+    ProgressBar _bar;
+    bool _checked = false;
+    long long _doneBefore = 0, _totalWork = 0, _shown = -1;
+    std::vector<long long> _done;  // rank 0: samples per pixel finished by each rank
+    std::vector<std::string> _written;  // checkpoints this rank wrote (removed at the end)
+    int _checkpointsWritten = 0;
+};
+
+std::unique_ptr<host::RenderSession> Job::open(double time, int first, int end) {
+    host::SessionOptions o = _base;
+    o.time = time;
+    o.sampleRangeFirst = first;
+    o.sampleRangeEnd = end;
+    try {
+        return _scene.empty() ? host::RenderSession::openString(_sceneText, "<default scene>", o)
+                              : host::RenderSession::openFile(_scene, o);
+    } catch (const usd::Error& e) {
+        throw RankError(e.what());
+    } catch (const host::UserError& e) {
+        throw RankError(e.what());
+    }
+}
+
+void Job::checkSameEverywhere(const std::string& settings) {
+    if (_checked) return;
+    _checked = true;
+    std::string mine = _hash + "|" + settings, root = mine;
+    _comm.broadcast(root);
+    if (root != mine) {
+        if (root.substr(0, 16) != _hash)
+            throw RankError("the scene differs from rank 0's (hash " + _hash + " here, " + root.substr(0, 16) +
+                            " on rank 0): every rank must read the same scene, e.g. from a shared filesystem");
+        throw RankError("the render settings differ from rank 0's: " + settingsDiff(root.substr(17), settings));
+    }
+}
+
+std::string Job::checkpointPath(double time, bool wholeFrame) const {
+    fs::path dir = _opt.checkpointDir.empty() ? fs::path(_outputs.front() + ".ckpt") : fs::path(_opt.checkpointDir);
+    // Whole frames of an animation are independent of the rank layout; sample ranges are not.
+    std::string name = _opt.frames.empty() ? "" : "frame" + frameTag(time) + ".";
+    name += wholeFrame && !_opt.frames.empty() ? "whole" : "rank" + std::to_string(_comm.rank());
+    return (dir / (name + ".exr")).string();
+}
+
+void Job::serveProgress() {
+    for (int src; (src = _comm.probe(-1, Comm::kProgress)) >= 0;)
+        _done[size_t(src)] = _comm.recvInt64(src, Comm::kProgress);
+    long long sum = 0;
+    for (long long d : _done) sum += d;
+    if (sum == _shown) return;
+    _shown = sum;
+    _bar.update(double(sum), double(_totalWork),
+                std::to_string(sum) + "/" + std::to_string(_totalWork) + " spp" +
+                    (_comm.distributed() ? " over " + std::to_string(_comm.size()) + " ranks" : ""));
+}
+
+void Job::progress(long long localDone) {
+    if (_comm.rank() == 0) {
+        _done[0] = localDone;
+        serveProgress();
+    } else {
+        _comm.sendInt64(0, Comm::kProgress, localDone);
+    }
+}
+
+void Job::waitFor(int src, int tag) {
+    while (_comm.probe(src, tag) < 0) {
+        serveProgress();
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    serveProgress();
+}
+
+void Job::render(host::RenderSession& session, int first, int end, const std::string& checkpoint,
+                 const std::string& settings) {
+    if (end <= first) return;  // more ranks than samples: nothing to do here
+    int lastCheckpoint = 0;
+    if (_opt.resume && fs::exists(checkpoint)) {
+        Accumulation acc;
+        CheckpointInfo info;
+        std::string error;
+        if (!readCheckpoint(checkpoint, &acc, &info, &error)) throw RankError(error);
+        if (info.sceneHash != _hash)
+            throw RankError("refusing to resume from " + checkpoint + ": it was rendered from another scene (hash " +
+                            info.sceneHash + ", this scene " + _hash + "); delete it or render without --resume");
+        if (info.settings != settings)
+            throw RankError("refusing to resume from " + checkpoint + ": it was rendered with other settings (" +
+                            settingsDiff(info.settings, settings) + "); delete it or render without --resume");
+        if (info.rangeFirst != first || info.rangeEnd != end)
+            throw RankError("refusing to resume from " + checkpoint + ": it holds sample range " +
+                            std::to_string(info.rangeFirst) + ":" + std::to_string(info.rangeEnd) + " but this rank renders " +
+                            std::to_string(first) + ":" + std::to_string(end) +
+                            " (another number of ranks); resume with the same -np or delete it");
+        session.step();  // sizes the accumulation; the checkpoint replaces what it rendered
+        if (!acc.applyTo(session))
+            throw RankError("refusing to resume from " + checkpoint + ": its AOVs or resolution differ");
+        lastCheckpoint = acc.completedSamples;
+        note((_comm.distributed() ? "rank " + std::to_string(_comm.rank()) + ": " : std::string()) + "resumed " +
+             std::to_string(acc.completedSamples) + " of samples " + std::to_string(first) + ":" +
+             std::to_string(end) + " from " + checkpoint);
+    }
+    progress(_doneBefore + session.completedSamples());
+    while (!session.converged()) {
+        session.step();
+        int done = session.completedSamples();
+        progress(_doneBefore + done);
+        // Every checkpointEvery samples, and once the range is done (a later failure elsewhere
+        // then costs this rank nothing on --resume).
+        if (_opt.checkpointEvery > 0 &&
+            (done - lastCheckpoint >= _opt.checkpointEvery || (session.converged() && done > lastCheckpoint))) {
+            CheckpointInfo info{_hash, settings, first, end, _comm.rank(), _comm.size()};
+            std::string error;
+            if (!writeCheckpoint(checkpoint, Accumulation::capture(session), info, &error)) throw RankError(error);
+            if (_written.empty() || _written.back() != checkpoint) _written.push_back(checkpoint);
+            lastCheckpoint = done;
+            ++_checkpointsWritten;
+            // Test hook: die like a killed node right after the Nth checkpoint.
+            if (const char* k = std::getenv("PRINCIPLED_TEST_KILL_AFTER_CHECKPOINT"))
+                if (std::atoi(k) == _checkpointsWritten) std::raise(SIGKILL);
+        }
+    }
+    _doneBefore += end - first;
+}
+
+void Job::run() {
+    if (_base.noiseThreshold > 0.0f)
+        throw RankError("--noise-threshold (adaptive sampling) cannot be combined with MPI ranks, --frames or "
+                        "checkpoints: which pixels stopped is not part of the merged accumulation");
+    if (_opt.checkpointEvery < 0) throw RankError("--checkpoint-every must be at least 0");
+    std::vector<double> frames = parseFrames(_opt.frames);
+    bool animated = !_opt.frames.empty();
+    _sceneText = _scene.empty() ? std::string(kDefaultSceneUsda) : readFile(_scene);
+    _hash = hashBytes(_sceneText);
+    int spp = _base.samplesPerPixel;
+    int ranks = _comm.size(), rank = _comm.rank();
+    _totalWork = (long long)frames.size() * spp;
+    _done.assign(size_t(ranks), 0);
+    auto t0 = std::chrono::steady_clock::now();
+
+    // More frames than ranks: each rank renders whole frames (round robin) and writes them.
+    // Otherwise every frame's samples are split into one contiguous range per rank.
+    bool wholeFrames = ranks == 1 || frames.size() >= size_t(ranks);
+    size_t reducedBytes = 0;
+    double reduceSeconds = 0.0, reduceCpuSeconds = 0.0;
+    for (size_t f = 0; f < frames.size(); ++f) {
+        if (wholeFrames && int(f % size_t(ranks)) != rank) continue;
+        double time = frames[f];
+        int chunk = (spp + ranks - 1) / ranks;
+        int first = wholeFrames ? 0 : std::min(spp, rank * chunk);
+        int end = wholeFrames ? spp : std::min(spp, (rank + 1) * chunk);
+        auto session = open(time, first, end);
+        host::SessionOptions o = _base;
+        o.time = time;
+        std::string settings = canonicalSettings(o);
+        checkSameEverywhere(canonicalSettings(_base));
+        if (rank == 0 && f == 0) {
+            for (const auto& w : session->takeWarnings())
+                if (!_quiet) std::fprintf(stderr, "principled: warning: %s\n", w.c_str());
+        }
+        render(*session, first, end, checkpointPath(time, wholeFrames), settings);
+        if (wholeFrames) {
+            writeOutputs(*session, [&] {
+                std::vector<std::string> outs;
+                for (const auto& out : _outputs) outs.push_back(framePath(out, time, animated));
+                return outs;
+            }(), _split);
+            continue;
+        }
+        // Fixed-order reduction: rank 0 adds rank 1's range, then rank 2's... so the sums are
+        // the same whatever order the ranks finish in.
+        Accumulation acc = Accumulation::capture(*session);
+        if (rank != 0) {
+            _comm.send(0, Comm::kData, acc.pack());
+            continue;
+        }
+        for (int r = 1; r < ranks; ++r) {
+            waitFor(r, Comm::kData);
+            auto tr = std::chrono::steady_clock::now();
+            double cr = threadCpuSeconds();
+            std::vector<char> bytes(acc.packedSize());
+            _comm.recv(r, Comm::kData, bytes);
+            Accumulation part = acc;
+            if (!part.unpack(bytes) || !acc.merge(part))
+                throw RankError("rank " + std::to_string(r) + " sent an accumulation of another shape");
+            reducedBytes += bytes.size();
+            reduceSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
+            reduceCpuSeconds += threadCpuSeconds() - cr;
+        }
+        if (!acc.applyTo(*session)) throw RankError("cannot apply the merged accumulation");
+        std::vector<std::string> outs;
+        for (const auto& out : _outputs) outs.push_back(framePath(out, time, animated));
+        writeOutputs(*session, outs, _split);
+    }
+    // Everyone is done (and every output is written) before checkpoints are removed.
+    if (rank != 0) {
+        _comm.sendInt64(0, Comm::kDone, 1);
+    } else {
+        for (int r = 1; r < ranks; ++r) {
+            waitFor(r, Comm::kDone);
+            _comm.recvInt64(r, Comm::kDone);
+        }
+        serveProgress();
+        _bar.finish();
+    }
+    _comm.barrier();
+    std::error_code ec;
+    for (const auto& c : _written) fs::remove(c, ec);
+    _comm.barrier();
+    if (rank == 0) {
+        fs::path dir = _opt.checkpointDir.empty() ? fs::path(_outputs.front() + ".ckpt") : fs::path(_opt.checkpointDir);
+        if (fs::is_directory(dir, ec) && fs::is_empty(dir, ec)) fs::remove(dir, ec);
+        double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::string how = ranks > 1 ? (wholeFrames ? " (whole frames per rank)" : " (sample ranges per rank)") : "";
+        note("rendered " + std::to_string(_base.width) + "x" + std::to_string(_base.height) + " at " +
+             std::to_string(spp) + " spp, " + std::to_string(frames.size()) + " frame(s) on " + std::to_string(ranks) +
+             " rank(s)" + how + " in " + std::to_string(seconds).substr(0, 6) + "s");
+        if (std::getenv("PRINCIPLED_MPI_TIMING"))
+            std::fprintf(stderr, "principled: timing: total %.4f s, reduce %.4f s (cpu %.4f s), %zu bytes received\n",
+                         seconds, reduceSeconds, reduceCpuSeconds, reducedBytes);
+    }
+}
+
+}  // namespace
+
+void addOptions(CLI::App* render, Options* o) {
+    render->add_option("--frames", o->frames,
+                       "Render time codes A:B (or A:B:STEP), one image per frame: OUT.0001.exr or #### in the name");
+    render->add_option("--checkpoint-every", o->checkpointEvery,
+                       "Write a resumable checkpoint every N samples per pixel (0 = never)")
+        ->check(CLI::Range(0, 1 << 20));
+    render->add_option("--checkpoint-dir", o->checkpointDir, "Where checkpoints go (default: OUTPUT.ckpt/)");
+    render->add_flag("--resume", o->resume, "Continue from the checkpoints of an interrupted render of the same scene and settings");
+}
+
+bool wanted(const Options& o) {
+    return Comm::launcherSize() > 0 || !o.frames.empty() || o.checkpointEvery > 0 || o.resume;
+}
+
+int run(const host::SessionOptions& session, const std::string& scene, const std::vector<std::string>& outputs,
+        bool split, bool quiet, const Options& options) {
+    Comm comm;
+    if (comm.launchedWithoutSupport()) {
+        std::fprintf(stderr, "principled: error: started by an MPI launcher with several ranks, but this principled "
+                             "was built without MPI (install libopenmpi-dev and rebuild)\n");
+        return 1;
+    }
+    try {
+        Job(comm, session, scene, outputs, split, quiet, options).run();
+    } catch (const std::exception& e) {
+        if (!comm.distributed()) {
+            std::fprintf(stderr, "principled: error: %s\n", e.what());
+            return 1;
+        }
+        std::fprintf(stderr, "principled: error: rank %d of %d (%s): %s\n", comm.rank(), comm.size(),
+                     comm.host().c_str(), e.what());
+        comm.abort(1);
+    }
+    return 0;
+}
+
+}  // namespace principled::tools::distributed

@@ -24,6 +24,7 @@ public:
     const std::vector<unsigned>* instanceGeomIds() const override {
         return _instancer.empty() ? nullptr : &_instances.geomIds();
     }
+    hd::Path instancerId() const override { return _instancer; }
     const std::vector<InstanceRecord>* instanceRecords() const override {
         return _instancer.empty() ? nullptr : &_instances.records();
     }

@@ -40,8 +40,16 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
     const auto* t = getIf<std::vector<glm::vec3>>(tv);
     const auto* r = getIf<std::vector<glm::vec4>>(rv);
     const auto* s = getIf<std::vector<glm::vec3>>(sv);
-    size_t count = t ? t->size() : 0;
-    if (!t && !indices.empty())
+    // Whole matrices per instance (native USD instancing), applied before scale.
+    Value xv = delegate->get(instancerId, tokens::instanceTransforms());
+    const auto* x = getIf<std::vector<glm::dmat4>>(xv);
+    size_t count = t ? t->size() : x ? x->size() : 0;
+    if (x && x->size() != count) {
+        warnings->push_back("instanceTransforms has the wrong length; ignored");
+        x = nullptr;
+    }
+    if (t && t->size() != count) t = nullptr;
+    if (!t && !x && !indices.empty())
         warnings->push_back("instancer has no positions; its instances are not drawn");
     if (r && r->size() != count) {
         warnings->push_back("orientations has " + std::to_string(r->size()) + " values for " +
@@ -56,19 +64,27 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
     glm::mat4 instancer(delegate->getTransform(instancerId));
     std::vector<InstanceRecord> out;
     out.reserve(indices.size());
+    size_t outOfRange = 0;
     for (int i : indices) {
-        if (i < 0 || size_t(i) >= count) continue;
+        if (i < 0 || size_t(i) >= count) {
+            ++outOfRange;
+            continue;
+        }
         InstanceRecord rec;
         rec.instanceIndex = i;
-        rec.objectToWorld = instanceTransform(instancer, (*t)[size_t(i)],
+        glm::mat4 local = x ? glm::mat4((*x)[size_t(i)]) * prototypeTransform : prototypeTransform;
+        rec.objectToWorld = instanceTransform(instancer, t ? (*t)[size_t(i)] : glm::vec3(0.0f),
                                               r ? (*r)[size_t(i)] : glm::vec4(1, 0, 0, 0),
-                                              s ? (*s)[size_t(i)] : glm::vec3(1.0f), prototypeTransform);
+                                              s ? (*s)[size_t(i)] : glm::vec3(1.0f), local);
         const glm::mat4& m = rec.objectToWorld;
         bool finite = true;
         for (int c = 0; c < 4; ++c)
             for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(m[c][k]);
         if (finite) out.push_back(rec);
     }
+    if (outOfRange > 0 && count > 0)
+        warnings->push_back(std::to_string(outOfRange) + " instance(s) of " + prototypeId.str() +
+                            " have no position (protoIndices is longer than positions); not drawn");
     return out;
 }
 
@@ -99,13 +115,6 @@ void InstanceSet::rebuild(RTCDevice device, RTCScene top, RTCScene blas, void* u
             _geoms[i] = g;
         }
     });
-}
-
-void InstanceSet::setScene(RTCScene blas) {
-    for (RTCGeometry g : _geoms) {
-        rtcSetGeometryInstancedScene(g, blas);
-        rtcCommitGeometry(g);
-    }
 }
 
 void InstanceSet::release() {

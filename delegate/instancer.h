@@ -46,8 +46,6 @@ public:
     /// Replaces the instances: one Embree instance of `blas` per record.
     void rebuild(RTCDevice device, RTCScene top, RTCScene blas, void* userData,
                  std::vector<InstanceRecord> records);
-    /// Points every instance at a new BLAS (the prototype was rebuilt).
-    void setScene(RTCScene blas);
     void release();
 
     const std::vector<InstanceRecord>& records() const { return _records; }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "delegate/aovs.h"
 #include "delegate/hd/camera.h"
@@ -138,6 +139,7 @@ void EmbreeRenderDelegate::addMeshLights() {
         GeometryRecord* r = g->record();
         r->emissiveLight = -1;
         if (r->kind != GeometryRecord::Kind::Triangles || g->instanceId() == RTC_INVALID_GEOMETRY_ID) continue;
+        if (g->instanceGeomIds()) continue;  // an instancer prototype: its record is not placed
         auto tris = std::make_shared<std::vector<uint32_t>>();
         auto cdf = std::make_shared<std::vector<float>>(1, 0.0f);
         glm::vec3 emission(0.0f);
@@ -223,9 +225,11 @@ void EmbreeRenderDelegate::buildLightDistribution() {
 
 void EmbreeRenderDelegate::addInstancerInstances() {
     // PointInstancer instances: their geomIDs map to the prototype's record plus a placement.
+    long count = 0;
     for (GeometrySource* g : _param->geometry()) {
         const std::vector<unsigned>* ids = g->instanceGeomIds();
         if (!ids || ids->empty()) continue;
+        count += long(ids->size());
         const std::vector<InstanceRecord>& recs = *g->instanceRecords();
         unsigned top = *std::max_element(ids->begin(), ids->end());
         if (top >= _snapshot.geometryByInstance.size())
@@ -239,15 +243,17 @@ void EmbreeRenderDelegate::addInstancerInstances() {
     }
     if (!_snapshot.instanceByInstance.empty())
         _snapshot.instanceByInstance.resize(_snapshot.geometryByInstance.size(), nullptr);
+    _instances = count;
 }
 
 EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
     Summary out;
+    std::set<Path> instancers;  // several prototype rprims share one instancer
     for (GeometrySource* g : _param->geometry()) {
         const GeometryRecord* r = g->record();
         const auto* ids = g->instanceGeomIds();
         size_t copies = ids && !ids->empty() ? ids->size() : 1;
-        if (ids && !ids->empty()) ++out.instancers;
+        if (ids && !ids->empty()) instancers.insert(g->instancerId());
         if (g->instanceId() == RTC_INVALID_GEOMETRY_ID && (!ids || ids->empty())) continue;
         if (r->kind == GeometryRecord::Kind::Sphere) {
             ++out.spheres;
@@ -257,6 +263,7 @@ EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
         }
         out.instances += copies;
     }
+    out.instancers = instancers.size();
     static const char* kinds[] = {"distant", "dome", "sphere", "rect", "disk", "cylinder", "mesh"};
     for (const auto& l : _snapshot.lights)
         if (!_snapshot.usingDefaultLight) ++out.lightsByKind[kinds[int(l.kind)]];
@@ -403,6 +410,7 @@ std::map<std::string, double> EmbreeRenderDelegate::renderStats() const {
         {"defaultLight", _snapshot.usingDefaultLight ? 1.0 : 0.0},
         {"lights", double(_snapshot.lights.size())},
         {"materials", double(_snapshot.materials.size())},
+        {"instances", double(_instances.load())},  // PointInstancer / instanceable instances
     };
 }
 

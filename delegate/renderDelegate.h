@@ -90,6 +90,7 @@ private:
     // Stats.
     std::atomic<long> _rays{0}, _samples{0}, _invalidSamples{0}, _topCommits{0};
     std::atomic<double> _renderSeconds{0.0};
+    std::atomic<long> _instances{0};  ///< instancer instances in the last commit
 };
 
 }  // namespace principled::embree

@@ -34,6 +34,8 @@ public:
     /// their placements (parallel arrays); nullptr for a prim drawn on its own.
     virtual const std::vector<unsigned>* instanceGeomIds() const { return nullptr; }
     virtual const std::vector<InstanceRecord>* instanceRecords() const { return nullptr; }
+    /// The instancer drawing this prim (empty: drawn on its own).
+    virtual hd::Path instancerId() const { return hd::Path(); }
 };
 
 /// Implemented by light sprims.

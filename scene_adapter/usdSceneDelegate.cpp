@@ -95,6 +95,8 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     bool visible = parentVisible && tokenAttr(prim, "visibility", _time, "inherited") != "invisible";
 
     const std::string& type = prim.typeName();
+    // Instanceable prims with the same prototype share its BLAS (usdSceneDelegateGeom.cpp).
+    if (prim.isInstance() && prim.isDefined() && visitInstance(prim, world, visible, index)) return;
     Path id(prim.path());
     Token hdType;
     bool isRprim = false;

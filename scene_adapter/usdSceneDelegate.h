@@ -82,6 +82,8 @@ private:
         // (getTransform is then relative to the instancer).
         hd::Path instancer;
         int protoIndex = -1;
+        // Instanceable prims: the synthetic instancer's per-instance world matrices.
+        std::shared_ptr<std::vector<glm::dmat4>> instanceXforms;
     };
 
     void visit(const usd::Prim& prim, const glm::dmat4& parentWorld, bool parentVisible,
@@ -93,6 +95,8 @@ private:
     void visitPrototype(const usd::Prim& prim, const hd::Path& id, const glm::dmat4& parentRel,
                         bool parentVisible, const hd::Path& instancer, int protoIndex,
                         hd::RenderIndex* index);
+    bool visitInstance(const usd::Prim& prim, const glm::dmat4& world, bool visible,
+                       hd::RenderIndex* index);
     hd::Value shapeOrInstancerValue(const Entry& e, const hd::Token& key) const;
     void growInstancedBounds(const hd::Path& id, const Entry& e,
                              const std::function<void(const glm::dmat4&, const glm::dvec3&)>& grow) const;
@@ -107,6 +111,7 @@ private:
     AdapterOptions _options;
     double _time;
     std::unordered_map<hd::Path, Entry> _entries;
+    std::unordered_map<std::string, hd::Path> _instanceGroups;  ///< instance key -> instancer
     std::vector<hd::Path> _cameras;
     std::vector<std::string> _warnings;
     hd::Path _defaultCamera;

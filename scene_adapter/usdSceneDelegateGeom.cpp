@@ -4,6 +4,7 @@
 // their instancer, Hydra-style: getInstancerId / getInstanceIndices / instancer arrays).
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <unordered_set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -50,7 +51,11 @@ bool UsdSceneDelegate::prepareShape(const usd::Prim& prim, Entry* e) {
     params.radius = number("radius", params.radius);
     params.height = number("height", params.height);
     std::string axis = tokenOf(prim, "axis", _time, "Z");
-    params.axis = axis.empty() ? 'Z' : axis[0];
+    if (axis != "X" && axis != "Y" && axis != "Z") {
+        warn(prim.location().str() + ": " + prim.path(), "axis '" + axis + "' is not X, Y or Z; using Z");
+        axis = "Z";
+    }
+    params.axis = axis[0];
     auto mesh = std::make_shared<ShapeMesh>();
     std::string error;
     if (!buildImplicitShape(prim.typeName(), params, mesh.get(), &error)) {
@@ -65,6 +70,10 @@ Value UsdSceneDelegate::shapeOrInstancerValue(const Entry& e, const Token& key) 
     if (e.shape) {
         if (key == tokens::points()) return Value(e.shape->points);
         if (key == tokens::normals()) return Value(e.shape->normals);
+        return {};
+    }
+    if (e.type == instancerType() && e.instanceXforms) {
+        if (key == tokens::instanceTransforms()) return Value(*e.instanceXforms);
         return {};
     }
     if (e.type == instancerType()) {
@@ -107,6 +116,11 @@ std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
     const Entry* inst = entry(instancerId);
     const Entry* proto = entry(prototypeId);
     if (!inst || !proto || proto->instancer != instancerId || !inst->prim) return out;
+    if (inst->instanceXforms) {  // instanceable prims: every (visible) instance
+        out.resize(inst->instanceXforms->size());
+        for (size_t i = 0; i < out.size(); ++i) out[i] = int(i);
+        return out;
+    }
     std::vector<int> protoIndices = intArray(attributeValue(*inst->prim, "protoIndices"));
     std::vector<int> ids = intArray(attributeValue(*inst->prim, "ids"));
     std::vector<int> invisible = intArray(attributeValue(*inst->prim, "invisibleIds"));
@@ -118,6 +132,44 @@ std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
         out.push_back(int(i));
     }
     return out;
+}
+
+// True when a subtree holds only what a prototype can draw (gprims, their materials and
+// grouping prims): instances holding lights, cameras or PointInstancers are expanded instead.
+static bool onlyPrototypeGeometry(const usd::Prim& prim) {
+    static const std::set<std::string> ok{"", "Xform", "Scope", "Mesh", "Sphere", "Cube", "Cylinder",
+                                          "Cone", "Capsule", "Material", "Shader", "NodeGraph",
+                                          "GeomSubset"};
+    if (!ok.count(prim.typeName())) return false;
+    for (const usd::Prim* child : prim.children())
+        if (child->isActive() && !onlyPrototypeGeometry(*child)) return false;
+    return true;
+}
+
+bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& world, bool visible,
+                                     RenderIndex* index) {
+    const std::string& type = prim.typeName();
+    if (type == "Mesh" || type == "Sphere" || type == "PointInstancer" || isImplicitShape(type))
+        return false;  // an instanceable gprim is simply drawn
+    if (!onlyPrototypeGeometry(prim)) return false;
+    // Instances of one prototype share its BLAS unless an inherited binding differs.
+    std::string key = prim.instanceKey() + "|" + resolveMaterialBinding(prim).str();
+    auto it = _instanceGroups.find(key);
+    if (it == _instanceGroups.end()) {
+        // The first instance's subtree is the prototype; its rprims keep their own paths and
+        // are drawn only through a synthetic instancer placing every instance.
+        Path instancer = Path("/__principled/instancers").appendChild("i" + std::to_string(_instanceGroups.size()));
+        Entry e;
+        e.prim = &prim;
+        e.type = instancerType();
+        e.instanceXforms = std::make_shared<std::vector<glm::dmat4>>();
+        _entries[instancer] = e;
+        it = _instanceGroups.emplace(key, instancer).first;
+        for (const usd::Prim* child : prim.children())
+            visitPrototype(*child, Path(child->path()), glm::dmat4(1.0), true, instancer, 0, index);
+    }
+    if (visible) _entries[it->second].instanceXforms->push_back(world);
+    return true;
 }
 
 void UsdSceneDelegate::visitPointInstancer(const usd::Prim& prim, const glm::dmat4& world,
@@ -200,6 +252,12 @@ void UsdSceneDelegate::growInstancedBounds(
     if (lo.x > hi.x) return;
     const Entry* inst = entry(e.instancer);
     if (!inst) return;
+    if (inst->instanceXforms) {
+        for (const glm::dmat4& x : *inst->instanceXforms)
+            for (int c = 0; c < 8; ++c)
+                grow(x * e.world, glm::dvec3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z));
+        return;
+    }
     Value tv = get(e.instancer, tokens::instanceTranslations());
     Value rv = get(e.instancer, tokens::instanceRotations());
     Value sv = get(e.instancer, tokens::instanceScales());

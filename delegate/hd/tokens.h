@@ -31,6 +31,7 @@ inline const Token& displayColor() { static const Token t("displayColor"); retur
 inline const Token& instanceTranslations() { static const Token t("instanceTranslations"); return t; }  ///< vec3[]
 inline const Token& instanceRotations() { static const Token t("instanceRotations"); return t; }  ///< vec4[] (real, i, j, k)
 inline const Token& instanceScales() { static const Token t("instanceScales"); return t; }  ///< vec3[]
+inline const Token& instanceTransforms() { static const Token t("instanceTransforms"); return t; }  ///< dmat4[], applied first
 
 // AOV names.
 inline const Token& color() { static const Token t("color"); return t; }

@@ -468,6 +468,8 @@ SubdivTags EditableSceneDelegate::getSubdivTags(const Path& id) const {
 }
 
 glm::dmat4 EditableSceneDelegate::getTransform(const Path& id) const {
+    // Instanced prototypes are placed relative to their instancer: not a world transform.
+    if (!_base.getInstancerId(id).empty()) return _base.getTransform(id);
     for (const auto& [path, m] : _localOverrides)
         if (isAtOrBelow(id.str(), path)) return worldTransform(id.str());
     return _base.getTransform(id);

@@ -170,6 +170,7 @@ def PointInstancer "Inst"
     EXPECT_EQ(r.id("primId", r.px(0.3), r.py(1.2)), -1);
     auto stats = r.session->stats();
     EXPECT_EQ(stats["blasBuilds"], 2.0);  // one per prototype rprim
+    EXPECT_EQ(stats["instances"], 3.0);   // 4 minus the invisible one
 }
 
 TEST(Geometry, HundredThousandInstancesShareOneBlas) {
@@ -203,4 +204,115 @@ TEST(Geometry, HundredThousandInstancesShareOneBlas) {
     EXPECT_EQ(r.session->stats()["blasBuilds"], 1.0);
     EXPECT_LT(seconds, 5.0);
     std::printf("100k instances: parse + sync + 16x16x1 render in %.3f s\n", seconds);
+}
+
+TEST(Geometry, InstanceablePrimsShareOnePrototypeBlas) {
+    Rendered r = render(R"(
+class Xform "_Ball"
+{
+    def Sphere "Ball" { double radius = 0.4 }
+}
+def Xform "A" (instanceable = true
+    prepend references = </_Ball>)
+{
+    double3 xformOp:translate = (-1.2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "B" (instanceable = true
+    prepend references = </_Ball>)
+{
+    double3 xformOp:translate = (1.2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "C" (instanceable = true
+    prepend references = </_Ball>)
+{
+    token visibility = "invisible"
+    double3 xformOp:translate = (0, 1.2, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)",
+                        64);
+    int y = r.py(0.0);
+    int a = r.id("primId", r.px(-1.2), y);
+    EXPECT_GE(a, 0);
+    EXPECT_EQ(r.id("primId", r.px(1.2), y), a);  // B's hits report the prototype rprim (A's)
+    EXPECT_EQ(r.id("instanceId", r.px(-1.2), y), 0);
+    EXPECT_EQ(r.id("instanceId", r.px(1.2), y), 1);
+    EXPECT_EQ(r.id("primId", r.px(0.0), r.py(1.2)), -1);  // invisible instance
+    EXPECT_EQ(r.id("primId", r.px(0.0), y), -1);          // nothing at the prototype's origin
+    EXPECT_EQ(r.session->stats()["blasBuilds"], 1.0);
+}
+
+TEST(Geometry, UsdWgPrimitivesRender) {
+    std::string dir = std::string(PRINCIPLED_SOURCE_DIR) +
+                      "/../shared/usd-wg/test_assets/schemaTests/usdGeom/primitives";
+    for (const char* name : {"cube", "cylinder", "cone", "capsule", "sphere", "all_primitives"}) {
+        SCOPED_TRACE(name);
+        host::SessionOptions o;
+        o.width = o.height = 32;
+        o.samplesPerPixel = 2;
+        auto s = host::RenderSession::openFile(dir + "/" + name + ".usda", o);
+        while (!s->step()) {
+        }
+        int hits = 0;
+        for (int i = 0; i < 32 * 32; ++i) {
+            for (int k = 0; k < 4; ++k) ASSERT_TRUE(std::isfinite(s->color()[4 * i + k]));
+            hits += s->color()[4 * i + 3] > 0.0f;
+        }
+        EXPECT_GT(hits, 20);
+    }
+}
+
+TEST(Geometry, InstanceablePrimsWithLightsAreExpanded) {
+    // A prototype holding a light is not shared (its lights must stay lights): two BLAS.
+    Rendered r = render(R"(
+class Xform "_Lamp"
+{
+    def Sphere "Ball" { double radius = 0.4 }
+    def DistantLight "Sun" { float inputs:intensity = 1 }
+}
+def Xform "A" (instanceable = true
+    prepend references = </_Lamp>)
+{
+    double3 xformOp:translate = (-1.2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "B" (instanceable = true
+    prepend references = </_Lamp>)
+{
+    double3 xformOp:translate = (1.2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)");
+    auto stats = r.session->stats();
+    EXPECT_EQ(stats["blasBuilds"], 2.0);
+    EXPECT_EQ(stats["lights"], 2.0);
+    EXPECT_EQ(stats["instances"], 0.0);
+}
+
+TEST(Geometry, BadInstancerAndShapeInputWarnsAndRendersTheRest) {
+    Rendered r = render(R"(
+def PointInstancer "Inst"
+{
+    rel prototypes = [</Inst/P/Ball>, </Nope>]
+    int[] protoIndices = [0, 5, -1, 0, 1]
+    point3f[] positions = [(0, 0, 0), (1, 0, 0), (2, 0, 0)]
+    quath[] orientations = [(1, 0, 0, 0)]
+    float3[] scales = [(1, 1, 1), (1, 1, 1), (1, 1, 1), (1, 1, 1), (1, 1, 1)]
+    def Scope "P" { def Sphere "Ball" { double radius = 0.3 } }
+}
+def PointInstancer "Empty" { }
+def Cone "K" { double radius = inf }
+def Capsule "Cap" { uniform token axis = "Q" }
+)");
+    std::string all;
+    for (const auto& w : r.session->takeWarnings()) all += w + "\n";
+    for (const char* expected : {"'/Nope' does not exist", "has no prototypes", "Cone not rendered",
+                                 "axis 'Q'", "orientations has 1 values", "scales has 5 values",
+                                 "protoIndices is longer than positions"})
+        EXPECT_NE(all.find(expected), std::string::npos) << expected << "\n" << all;
+    EXPECT_EQ(r.session->stats()["instances"], 1.0);
+    EXPECT_EQ(r.id("primId", r.px(0.0), r.py(0.0)), r.id("primId", r.px(-0.1), r.py(0.0)));
+    EXPECT_GE(r.id("primId", r.px(0.0), r.py(0.0)), 0);
 }

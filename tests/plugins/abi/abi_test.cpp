@@ -531,3 +531,32 @@ TEST(SceneBuilder, ErrorsAreStatusesWithMessages) {
     EXPECT_THAT(text, HasSubstr("def Xform \"World\"\n{\n    def Mesh \"M\"\n    {\n"));
     prdSceneBuilderDestroy(b);
 }
+
+TEST_F(AbiTest, InstancerTransformEditMovesItsInstancesWithoutRebuilding) {
+    // The plane of kScene drawn by a PointInstancer (one instance at the origin).
+    std::string scene = kScene;
+    const std::string from = "    def Mesh \"Plane\"";
+    size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos);
+    size_t end = scene.find("    def Material", at);
+    std::string plane = scene.substr(at, end - at);
+    std::string instancer = "    def PointInstancer \"Inst\"\n    {\n"
+                            "        rel prototypes = [</World/Inst/Plane>]\n"
+                            "        int[] protoIndices = [0]\n"
+                            "        point3f[] positions = [(0, 0, 0)]\n" +
+                            plane + "    }\n";
+    scene.replace(at, end - at, instancer);
+    ASSERT_EQ(prdOpenStageString(d, scene.c_str(), "instancer.usda"), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    auto [left, right] = halves();
+    EXPECT_NEAR(left, 0.5 * 2.0 / M_PI, 1e-3);
+    EXPECT_EQ(right, 0.0);
+    double blas = stats()["blasBuilds"];
+    const double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 10, 0, 0, 1};
+    ASSERT_EQ(prdSetLocalTransform(d, "/World/Inst", m), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    auto [left2, right2] = halves();
+    EXPECT_EQ(left2, 0.0);
+    EXPECT_NEAR(right2, left, 1e-3);  // moved once: not instancer * world of the prototype
+    EXPECT_EQ(stats()["blasBuilds"], blas);
+}

@@ -85,11 +85,15 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     const glm::mat3 normalToWorld =
         placed ? glm::transpose(glm::inverse(glm::mat3(placed->objectToWorld))) : rec.normalToWorld;
     hit->p = ray.origin + rh.ray.tfar * ray.direction;
+    const glm::mat4& objectToWorld = placed ? placed->objectToWorld : rec.objectToWorld;
     glm::vec3 ngObj, nsObj;
     if (rec.kind == GeometryRecord::Kind::Sphere) {
         glm::mat4 worldToObject = placed ? glm::inverse(placed->objectToWorld) : rec.worldToObject;
         glm::vec3 pObj = glm::vec3(worldToObject * glm::vec4(hit->p, 1.0f));
         ngObj = nsObj = pObj - rec.center;
+        // Re-project onto the sphere (o + t d loses precision far from the origin).
+        float l = glm::length(ngObj);
+        if (l > 0.0f) hit->p = glm::vec3(objectToWorld * glm::vec4(rec.center + ngObj * (rec.radius / l), 1.0f));
     } else {
         const glm::uvec3& t = rec.triangles[rh.hit.primID];
         hit->element = rec.triangleFace[rh.hit.primID];
@@ -98,6 +102,10 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
         hit->v = rh.hit.v;
         const glm::vec3 &p0 = rec.points[t.x], &p1 = rec.points[t.y], &p2 = rec.points[t.z];
         ngObj = glm::cross(p1 - p0, p2 - p0);
+        // The hit point from the barycentrics: its error scales with the vertices' magnitude,
+        // not with the ray's origin and distance.
+        glm::vec3 pObj = (1.0f - rh.hit.u - rh.hit.v) * p0 + rh.hit.u * p1 + rh.hit.v * p2;
+        hit->p = glm::vec3(objectToWorld * glm::vec4(pObj, 1.0f));
         nsObj = ngObj;
         if (!rec.cornerNormals.empty()) {
             float u = rh.hit.u, v = rh.hit.v;
@@ -141,7 +149,10 @@ bool occluded(const SceneSnapshot& scene, const glm::vec3& origin, const glm::ve
 // Offset a ray origin off the surface along the geometric normal, scaled to the position's
 // magnitude so large and small scenes both avoid self-intersection.
 glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir) {
-    float scale = 1e-4f * std::max(1.0f, maxComponent(glm::abs(p)));
+    // About 16 float ulps of the position's magnitude (2^-23 relative each), with a floor
+    // for positions near the origin: large enough for the reconstructed hit point's error,
+    // small enough that contact shadows survive far from the origin.
+    float scale = std::max(1e-5f, 2e-6f * maxComponent(glm::abs(p)));
     return p + (glm::dot(dir, ng) >= 0.0f ? scale : -scale) * ng;
 }
 

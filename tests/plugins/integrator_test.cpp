@@ -211,3 +211,50 @@ TEST(Integrator, SmoothGlassInAWhiteFurnaceIsOne) {
     Stats st = hitStats(*s);
     EXPECT_NEAR(st.mean, 1.0, 0.01);
 }
+
+TEST(Integrator, FarFromTheOriginRendersLikeAtTheOrigin) {
+    // The same sphere-on-a-plane scene translated by 1e5: hit points and ray offsets are
+    // relative to the geometry's magnitude, so shading and contact shadows survive.
+    auto scene = [](double offset) {
+        char buf[2048];
+        std::snprintf(buf, sizeof buf, R"(#usda 1.0
+def Xform "W" {
+    double3 xformOp:translate = (%g, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def Sphere "S" {
+        double radius = 0.5
+        double3 xformOp:translate = (0, 0.5, 0)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+    def Mesh "G" {
+        uniform token subdivisionScheme = "none"
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        point3f[] points = [(-5, 0, -5), (-5, 0, 5), (5, 0, 5), (5, 0, -5)]
+    }
+    def Camera "C" {
+        double3 xformOp:translate = (0, 1, 5)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+}
+def DistantLight "L" {
+    float inputs:angle = 1
+    float3 xformOp:rotateXYZ = (-60, 20, 0)
+    uniform token[] xformOpOrder = ["xformOp:rotateXYZ"]
+}
+)",
+                      offset);
+        return std::string(buf);
+    };
+    host::SessionOptions o;
+    o.width = 64;
+    o.height = 36;
+    o.samplesPerPixel = 8;
+    auto near = run(scene(0.0), o), far = run(scene(1e5), o);
+    double se = 0.0;
+    for (int i = 0; i < 64 * 36 * 4; ++i) {
+        double d = near->color()[i] - far->color()[i];
+        se += d * d;
+    }
+    EXPECT_LT(std::sqrt(se / (64 * 36 * 4)), 0.01);
+}

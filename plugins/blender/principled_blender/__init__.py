@@ -38,6 +38,10 @@ class PrincipledSettings(bpy.types.PropertyGroup):
                                         description="Stop a final render after this many "
                                                     "seconds (0: no limit)")
     seed: bpy.props.IntProperty(name="Seed", default=0, min=0)
+    viewport_scale: bpy.props.FloatProperty(
+        name="Viewport Resolution", default=0.5, min=0.1, max=1.0, subtype="FACTOR",
+        description="Viewport render size relative to the 3D view (the image is stretched to "
+                    "fit); smaller shows the first image after an edit sooner")
 
 
 def _settings(scene, viewport):
@@ -45,6 +49,7 @@ def _settings(scene, viewport):
     out = {"convergedSamplesPerPixel": int(s.preview_samples if viewport else s.samples)}
     out["maxDepth"] = int(s.max_depth)
     out["seed"] = int(s.seed)
+    out["defaultLighting"] = 0  # Blender adds no light to a scene without lights
     return out
 
 
@@ -204,21 +209,27 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
             params["verticalAperture"] = extent * 10.0 * (h / w if w >= h else 1)
         return Matrix(mw), params
 
-    def _view_update(self, context, depsgraph):
+    @staticmethod
+    def _view_size(context):
         region = context.region
-        w, h = region.width, region.height
+        f = context.scene.principled.viewport_scale
+        return region.width, region.height, max(1, round(region.width * f)), \
+            max(1, round(region.height * f))
+
+    def _view_update(self, context, depsgraph):
+        w, h, rw, rh = self._view_size(context)
         cam = self._view_camera(context, w, h)
         s = self.view_session
         if s is None:
             s = _session.Session(aovs=("color",))
             _apply_settings(s.delegate, _settings(depsgraph.scene, True))
             self.view_session = s
-            s.full_sync(depsgraph, w, h, view_camera=cam)
-            self.view_key = (w, h, cam[1].get("projection"))
+            s.full_sync(depsgraph, rw, rh, view_camera=cam)
+            self.view_key = (rw, rh, cam[1].get("projection"))
             return
         done = s.apply_updates(depsgraph, depsgraph.updates)
         if done["rebuild"]:
-            s.full_sync(depsgraph, w, h, view_camera=cam)
+            s.full_sync(depsgraph, rw, rh, view_camera=cam)
         for msg in s.delegate.take_warnings():
             if msg not in self._warned:
                 self._warned.add(msg)
@@ -229,22 +240,29 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
         if s is None:
             return
         try:
-            region = context.region
-            w, h = region.width, region.height
+            w, h, rw, rh = self._view_size(context)
             mw, params = self._view_camera(context, w, h)
-            key = (w, h, params.get("projection"))
+            key = (rw, rh, params.get("projection"))
             if key != self.view_key:
-                s.resize(w, h)
+                s.resize(rw, rh)
                 if params.get("projection") != (self.view_key or (0, 0, None))[2]:
-                    s.full_sync(depsgraph, w, h, view_camera=(mw, params))
+                    s.full_sync(depsgraph, rw, rh, view_camera=(mw, params))
                 self.view_key = key
             if s.camera_matrix is None or mw != s.camera_matrix or \
                     params != getattr(s, "view_params", None):
                 s.set_view_camera(mw, params)
                 s.view_params = params
+            t_pass = time.perf_counter()
             converged = s.delegate.render_pass()
+            t_pass = time.perf_counter() - t_pass
             rgba = s.delegate.aov("color")
-            self._draw_pixels(context, depsgraph, rgba[::-1], w, h)
+            self._draw_pixels(context, depsgraph, rgba[::-1], w, h)  # stretched to the view
+            if _session.CAPTURE is not None:
+                _session.CAPTURE.setdefault("view_draw", []).append({
+                    "time": time.perf_counter(), "color": rgba.copy(), "converged": converged,
+                    "rebuilds": s.rebuilds, "stats": s.delegate.stats(),
+                    "update": dict(s.last_update),
+                    "pass_seconds": t_pass, "size": (rw, rh)})
             if not converged:
                 self.tag_redraw()
         except Exception as e:
@@ -258,7 +276,7 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
 
         flat = np.ascontiguousarray(rgba, dtype=np.float32).ravel()
         buf = gpu.types.Buffer("FLOAT", flat.size, flat)
-        tex = gpu.types.GPUTexture((w, h), format="RGBA16F", data=buf)
+        tex = gpu.types.GPUTexture((rgba.shape[1], rgba.shape[0]), format="RGBA16F", data=buf)
         gpu.state.blend_set("ALPHA_PREMULT")
         self.bind_display_space_shader(depsgraph.scene)
         draw_texture_2d(tex, (0, 0), w, h)
@@ -285,6 +303,7 @@ class PRINCIPLED_PT_sampling(bpy.types.Panel):
         col.prop(s, "max_depth")
         col.prop(s, "time_limit")
         col.prop(s, "seed")
+        col.prop(s, "viewport_scale")
 
 
 def _compat_panels():

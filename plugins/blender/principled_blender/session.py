@@ -71,10 +71,15 @@ class Session:
         self.last_update = {}
         self.camera_matrix = None
 
-    def close(self):
+    def close(self, keep_textures=False):
         if self.delegate is not None:
             self.delegate.close()
         self.delegate = None
+        if not keep_textures and self.texture_dir:
+            import shutil
+
+            shutil.rmtree(self.texture_dir, ignore_errors=True)
+            self.texture_dir = None
 
     # ---- sync --------------------------------------------------------------------------
     def resize(self, width, height):
@@ -93,7 +98,7 @@ class Session:
             self.delegate.camera = ex.camera_path
         self.export = ex
         self.rebuilds += 1
-        self.usda = builder.to_usda() if os.environ.get("PRINCIPLED_KEEP_USDA") else None
+        self.builder = builder  # builder.to_usda(): the stage as text (debugging, tests)
         if view_camera is None and depsgraph.scene.camera is not None:
             self.camera_matrix = depsgraph.scene.camera.matrix_world.copy()
         return ex.warnings

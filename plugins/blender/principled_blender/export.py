@@ -430,7 +430,10 @@ class SceneExport:
             try:
                 md = self.meshes.get(obj.name)
                 if md is None:
-                    md = self.meshes[obj.name] = MeshData(obj)
+                    # Never to_mesh() the temporary object of an instance (it shares runtime
+                    # data with the evaluated object): convert that evaluated object instead.
+                    geom = obj.original.evaluated_get(self.depsgraph) if inst.is_instance else obj
+                    md = self.meshes[obj.name] = MeshData(geom)
             except RuntimeError as e:
                 self.warnings.append(f"object '{name}': {e}")
                 continue

@@ -1,0 +1,340 @@
+# SPDX-License-Identifier: Apache-2.0
+"""principled render engine for Blender 3.4 (bl_idname "PRINCIPLED").
+
+Final renders (F12, `blender -b file.blend -E PRINCIPLED -f 1`) translate the evaluated
+depsgraph into a principled.SceneBuilder, render progressive passes through the C ABI and
+write Combined plus Depth, Normal, IndexOB, Diffuse, Glossy, Emit and the other principled
+AOVs into the render result. The viewport renders progressively and applies material, light,
+world and transform edits through the delegate's edit calls (no geometry rebuild).
+"""
+
+bl_info = {
+    "name": "principled",
+    "author": "principled",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "Render Properties > Render Engine > principled",
+    "description": "The principled Disney-BSDF path tracer as a render engine",
+    "category": "Render",
+}
+
+import time
+
+import bpy
+
+from . import session as _session
+
+_ENGINE_PANELS = []
+
+
+class PrincipledSettings(bpy.types.PropertyGroup):
+    samples: bpy.props.IntProperty(name="Samples", default=64, min=1, max=1 << 16,
+                                   description="Samples per pixel of a final render")
+    preview_samples: bpy.props.IntProperty(name="Viewport Samples", default=32, min=1,
+                                           max=1 << 16,
+                                           description="Samples per pixel in the viewport")
+    max_depth: bpy.props.IntProperty(name="Max Bounces", default=8, min=0, max=1024)
+    time_limit: bpy.props.FloatProperty(name="Time Limit", default=0.0, min=0.0,
+                                        description="Stop a final render after this many "
+                                                    "seconds (0: no limit)")
+    seed: bpy.props.IntProperty(name="Seed", default=0, min=0)
+    viewport_scale: bpy.props.FloatProperty(
+        name="Viewport Resolution", default=0.5, min=0.1, max=1.0, subtype="FACTOR",
+        description="Viewport render size relative to the 3D view (the image is stretched to "
+                    "fit); smaller shows the first image after an edit sooner")
+
+
+def _settings(scene, viewport):
+    s = scene.principled
+    out = {"convergedSamplesPerPixel": int(s.preview_samples if viewport else s.samples)}
+    out["maxDepth"] = int(s.max_depth)
+    out["seed"] = int(s.seed)
+    out["defaultLighting"] = 0  # Blender adds no light to a scene without lights
+    return out
+
+
+def _apply_settings(delegate, settings, report=None):
+    known = {d["key"] for d in delegate.settings()}
+    for k, v in settings.items():
+        if k in known:
+            delegate.set_setting(k, v)
+        elif report:
+            report(f"principled: render setting '{k}' not offered by the delegate; ignored")
+
+
+def _set_rect(render_pass, pixels):
+    """pixels: (w*h, channels) float32, rows bottom to top."""
+    try:
+        render_pass.rect.foreach_set(pixels)
+    except (TypeError, RuntimeError):
+        render_pass.rect = pixels.tolist()
+
+
+def _get_rect(render_pass, count):
+    import numpy as np
+
+    buf = np.empty((count, render_pass.channels), np.float32)
+    try:
+        render_pass.rect.foreach_get(buf)
+    except (TypeError, RuntimeError):
+        buf[:] = np.array(render_pass.rect, np.float32)
+    return buf.ravel()
+
+
+class PrincipledRenderEngine(bpy.types.RenderEngine):
+    bl_idname = "PRINCIPLED"
+    bl_label = "principled"
+    bl_use_preview = False
+    bl_use_shading_nodes_custom = False
+    bl_use_postprocess = True
+
+    def __init__(self):
+        self.session = None
+        self.view_session = None
+        self.view_key = None
+        self._warned = set()
+
+    def __del__(self):
+        for s in (getattr(self, "session", None), getattr(self, "view_session", None)):
+            if s is not None:
+                try:
+                    s.close()
+                except Exception:
+                    pass
+
+    # ---- passes ------------------------------------------------------------------------
+    def update_render_passes(self, scene=None, renderlayer=None):
+        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
+        for name, _aov, ch, chan_id, kind in _session.PASSES:
+            self.register_pass(scene, renderlayer, name, ch, chan_id, kind)
+
+    # ---- final render ------------------------------------------------------------------
+    def render(self, depsgraph):
+        try:
+            self._render(depsgraph)
+        except Exception as e:  # never take Blender down: report and leave
+            self.report({"ERROR"}, f"principled: {e}")
+            self.error_set(f"principled: {e}")
+
+    def _render(self, depsgraph):
+        scene = depsgraph.scene
+        scale = scene.render.resolution_percentage / 100.0
+        w = max(1, int(scene.render.resolution_x * scale))
+        h = max(1, int(scene.render.resolution_y * scale))
+        t0 = time.perf_counter()
+        s = _session.Session()
+        try:
+            _apply_settings(s.delegate, _settings(scene, False),
+                            lambda m: self.report({"WARNING"}, m))
+            s.bind(s.required_aovs([p[0] for p in _session.PASSES]))
+            self.update_stats("principled", "Exporting scene")
+            warnings = s.full_sync(depsgraph, w, h)
+            for wmsg in warnings + s.delegate.take_warnings():
+                self.report({"WARNING"}, f"principled: {wmsg}")
+            t_sync = time.perf_counter() - t0
+            limit = scene.principled.time_limit
+            start = time.perf_counter()
+            while True:
+                if self.test_break():
+                    break
+                converged = s.delegate.render_pass()
+                done, target = s.delegate.progress()[1:]
+                self.update_progress(min(1.0, done / max(1, target)))
+                self.update_stats("principled", f"Sample {done}/{target}")
+                if converged:
+                    break
+                if limit > 0 and time.perf_counter() - start >= limit:
+                    break
+            self._write_result(s, w, h)
+            stats = s.delegate.stats()
+            self.last_timing = {"sync": t_sync, "render": time.perf_counter() - start,
+                                "stats": stats}
+            for wmsg in s.delegate.take_warnings():
+                self.report({"WARNING"}, f"principled: {wmsg}")
+        finally:
+            s.close()
+
+    def _write_result(self, s, w, h):
+        result = self.begin_result(0, 0, w, h)
+        try:
+            layer = result.layers[0]
+            for rp in layer.passes:
+                name = rp.name
+                if name == "Combined":
+                    _set_rect(rp, s.blender_pass("Combined", "color", 4))
+                    continue
+                entry = next((p for p in _session.PASSES if p[0] == name), None)
+                if entry is None:
+                    continue
+                _n, aov, ch, _cid, _k = entry
+                _set_rect(rp, s.blender_pass(name, aov, rp.channels))
+            if _session.CAPTURE is not None:
+                for rp in layer.passes:
+                    _session.CAPTURE[rp.name] = _get_rect(rp, w * h)
+        finally:
+            self.end_result(result)
+
+    # ---- viewport ----------------------------------------------------------------------
+    def view_update(self, context, depsgraph):
+        try:
+            self._view_update(context, depsgraph)
+        except Exception as e:
+            self.report({"ERROR"}, f"principled: {e}")
+            self.view_session = None
+
+    def _view_camera(self, context, w, h):
+        from mathutils import Matrix
+
+        rv3d = context.region_data
+        space = context.space_data
+        mw = rv3d.view_matrix.inverted()
+        if rv3d.view_perspective == "CAMERA" and context.scene.camera is not None:
+            from . import export
+
+            cam = context.scene.camera
+            return cam.matrix_world.copy(), export.camera_params(cam.data, w, h)
+        # Free view: Blender's viewport uses a 72 mm sensor along the larger side.
+        sensor = 72.0
+        if w >= h:
+            hap, vap = sensor, sensor * h / w
+        else:
+            vap, hap = sensor, sensor * w / h
+        params = {"focalLength": float(space.lens), "horizontalAperture": hap,
+                  "verticalAperture": vap, "clippingRange": (space.clip_start, space.clip_end),
+                  "projection": "perspective"}
+        if rv3d.view_perspective == "ORTHO":
+            params["projection"] = "orthographic"
+            extent = rv3d.view_distance * sensor / space.lens
+            params["horizontalAperture"] = extent * 10.0 * (1 if w >= h else w / h)
+            params["verticalAperture"] = extent * 10.0 * (h / w if w >= h else 1)
+        return Matrix(mw), params
+
+    @staticmethod
+    def _view_size(context):
+        region = context.region
+        f = context.scene.principled.viewport_scale
+        return region.width, region.height, max(1, round(region.width * f)), \
+            max(1, round(region.height * f))
+
+    def _view_update(self, context, depsgraph):
+        w, h, rw, rh = self._view_size(context)
+        cam = self._view_camera(context, w, h)
+        s = self.view_session
+        if s is None:
+            s = _session.Session(aovs=("color",))
+            _apply_settings(s.delegate, _settings(depsgraph.scene, True))
+            self.view_session = s
+            s.full_sync(depsgraph, rw, rh, view_camera=cam)
+            self.view_key = (rw, rh, cam[1].get("projection"))
+            return
+        done = s.apply_updates(depsgraph, depsgraph.updates)
+        if done["rebuild"]:
+            s.full_sync(depsgraph, rw, rh, view_camera=cam)
+        for msg in s.delegate.take_warnings():
+            if msg not in self._warned:
+                self._warned.add(msg)
+                self.report({"WARNING"}, f"principled: {msg}")
+
+    def view_draw(self, context, depsgraph):
+        s = self.view_session
+        if s is None:
+            return
+        try:
+            w, h, rw, rh = self._view_size(context)
+            mw, params = self._view_camera(context, w, h)
+            key = (rw, rh, params.get("projection"))
+            if key != self.view_key:
+                s.resize(rw, rh)
+                if params.get("projection") != (self.view_key or (0, 0, None))[2]:
+                    s.full_sync(depsgraph, rw, rh, view_camera=(mw, params))
+                self.view_key = key
+            if s.camera_matrix is None or mw != s.camera_matrix or \
+                    params != getattr(s, "view_params", None):
+                s.set_view_camera(mw, params)
+                s.view_params = params
+            t_pass = time.perf_counter()
+            converged = s.delegate.render_pass()
+            t_pass = time.perf_counter() - t_pass
+            rgba = s.delegate.aov("color")
+            self._draw_pixels(context, depsgraph, rgba[::-1], w, h)  # stretched to the view
+            if _session.CAPTURE is not None:
+                _session.CAPTURE.setdefault("view_draw", []).append({
+                    "time": time.perf_counter(), "color": rgba.copy(), "converged": converged,
+                    "rebuilds": s.rebuilds, "stats": s.delegate.stats(),
+                    "update": dict(s.last_update),
+                    "pass_seconds": t_pass, "size": (rw, rh)})
+            if not converged:
+                self.tag_redraw()
+        except Exception as e:
+            self.report({"ERROR"}, f"principled: {e}")
+            self.view_session = None
+
+    def _draw_pixels(self, context, depsgraph, rgba, w, h):
+        import gpu
+        import numpy as np
+        from gpu_extras.presets import draw_texture_2d
+
+        flat = np.ascontiguousarray(rgba, dtype=np.float32).ravel()
+        buf = gpu.types.Buffer("FLOAT", flat.size, flat)
+        tex = gpu.types.GPUTexture((rgba.shape[1], rgba.shape[0]), format="RGBA16F", data=buf)
+        gpu.state.blend_set("ALPHA_PREMULT")
+        self.bind_display_space_shader(depsgraph.scene)
+        draw_texture_2d(tex, (0, 0), w, h)
+        self.unbind_display_space_shader()
+        gpu.state.blend_set("NONE")
+
+
+class PRINCIPLED_PT_sampling(bpy.types.Panel):
+    bl_label = "principled"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "render"
+    COMPAT_ENGINES = {"PRINCIPLED"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+    def draw(self, context):
+        s = context.scene.principled
+        col = self.layout.column()
+        col.prop(s, "samples")
+        col.prop(s, "preview_samples")
+        col.prop(s, "max_depth")
+        col.prop(s, "time_limit")
+        col.prop(s, "seed")
+        col.prop(s, "viewport_scale")
+
+
+def _compat_panels():
+    # Let the usual material/light/world/camera panels show for this engine.
+    names = ("DATA_PT_lens", "DATA_PT_camera", "DATA_PT_light", "DATA_PT_EEVEE_light",
+             "EEVEE_MATERIAL_PT_surface", "EEVEE_WORLD_PT_surface", "MATERIAL_PT_preview",
+             "RENDER_PT_format", "RENDER_PT_dimensions", "VIEWLAYER_PT_layer_passes",
+             "CYCLES_LIGHT_PT_light", "CYCLES_WORLD_PT_surface", "CYCLES_MATERIAL_PT_surface")
+    out = []
+    for n in names:
+        p = getattr(bpy.types, n, None)
+        if p is not None and hasattr(p, "COMPAT_ENGINES"):
+            out.append(p)
+    return out
+
+
+def register():
+    bpy.utils.register_class(PrincipledSettings)
+    bpy.types.Scene.principled = bpy.props.PointerProperty(type=PrincipledSettings)
+    bpy.utils.register_class(PrincipledRenderEngine)
+    bpy.utils.register_class(PRINCIPLED_PT_sampling)
+    for p in _compat_panels():
+        p.COMPAT_ENGINES.add("PRINCIPLED")
+        _ENGINE_PANELS.append(p)
+
+
+def unregister():
+    for p in _ENGINE_PANELS:
+        p.COMPAT_ENGINES.discard("PRINCIPLED")
+    _ENGINE_PANELS.clear()
+    bpy.utils.unregister_class(PRINCIPLED_PT_sampling)
+    bpy.utils.unregister_class(PrincipledRenderEngine)
+    del bpy.types.Scene.principled
+    bpy.utils.unregister_class(PrincipledSettings)

@@ -1,0 +1,539 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Blender evaluated depsgraph -> principled.SceneBuilder.
+
+Conventions (docs/hosts.md has the long form):
+- Blender's world is kept as is: the stage is Z-up with metersPerUnit 1, every matrix is
+  Blender's matrix_world written in USD row-vector order. Cameras and lights look down their
+  local -Z with +Y up in both.
+- Each object instance becomes an Xform /World/<object>_<n> holding its transform and one Mesh
+  per material slot used (Geom_<slot>); a transform edit only rewrites the Xform's matrix.
+- Light units follow Cycles 3.4 (reference/cycles-peer.md); see light_params().
+"""
+import math
+import os
+import re
+
+import numpy as np
+
+_NAME_RE = re.compile(r"[^A-Za-z0-9_]")
+
+
+def usd_name(name, prefix="N"):
+    n = _NAME_RE.sub("_", name)
+    if not n or not (n[0].isalpha() or n[0] == "_"):
+        n = prefix + "_" + n
+    return n
+
+
+def usd_matrix(m):
+    """Blender column-vector Matrix -> 16 numbers in USD row-vector order."""
+    return [float(x) for col in m.col for x in col]
+
+
+def _socket_value(sock):
+    v = sock.default_value
+    try:
+        return [float(x) for x in v]
+    except TypeError:
+        return float(v)
+
+
+def _linked_node(sock):
+    if not sock.is_linked:
+        return None
+    link = sock.links[0]
+    node = link.from_node
+    # Skip reroutes.
+    while node.type == "REROUTE" and node.inputs[0].is_linked:
+        node = node.inputs[0].links[0].from_node
+    return node
+
+
+class TextureWriter:
+    """Gives every Blender image a file the delegate can read (PPM/PFM written from the
+    pixels for generated, packed or edited images; the image's own file otherwise)."""
+
+    def __init__(self, directory):
+        self.directory = directory
+        self.files = {}
+
+    def file_for(self, image):
+        key = image.name
+        if key in self.files:
+            return self.files[key]
+        path = None
+        if image.source == "FILE" and not image.packed_file and not image.is_dirty:
+            import bpy
+
+            p = bpy.path.abspath(image.filepath, library=image.library)
+            if p and os.path.isfile(p):
+                path = os.path.abspath(p)
+        if path is None:
+            path = self._write_pixels(image)
+        self.files[key] = path
+        return path
+
+    def _write_pixels(self, image):
+        w, h = image.size
+        if w == 0 or h == 0:
+            where = f" (file '{image.filepath}' not found?)" if image.source == "FILE" else ""
+            raise RuntimeError(f"no pixels{where}")
+        px = np.empty(w * h * 4, np.float32)
+        image.pixels.foreach_get(px)
+        px = px.reshape(h, w, 4)
+        os.makedirs(self.directory, exist_ok=True)
+        base = os.path.join(self.directory, usd_name(image.name, "Image"))
+        if image.is_float:
+            # PFM: linear floats, rows bottom to top (Blender's order too).
+            path = base + ".pfm"
+            with open(path, "wb") as f:
+                f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
+                f.write(np.ascontiguousarray(px[:, :, :3], dtype="<f4").tobytes())
+        else:
+            # 8-bit images: Blender's pixels are the stored (sRGB-encoded) values; an 8-bit
+            # PPM is read as sRGB by the delegate, as the original PNG would be.
+            path = base + ".ppm"
+            rgb = np.clip(np.round(px[::-1, :, :3] * 255.0), 0, 255).astype(np.uint8)
+            with open(path, "wb") as f:
+                f.write(b"P6\n%d %d\n255\n" % (w, h))
+                f.write(rgb.tobytes())
+        return path
+
+
+def principled_bsdf(material):
+    if material is None or not material.use_nodes or material.node_tree is None:
+        return None
+    out = None
+    for n in material.node_tree.nodes:
+        if n.type == "OUTPUT_MATERIAL" and (n.is_active_output or out is None):
+            out = n
+    if out is None:
+        return None
+    node = _linked_node(out.inputs["Surface"])
+    return node if node is not None and node.type == "BSDF_PRINCIPLED" else None
+
+
+def material_params(material, textures):
+    """Principled BSDF (v1, Blender 3.4) -> UsdPreviewSurface + Disney inputs.
+
+    Returns (inputs: {name: float | [3 floats]}, links: {input: (file, channel, extra)},
+    warnings: [str]). Mapping: Base Color -> diffuseColor; Metallic, Roughness,
+    Anisotropic, Sheen, Specular, IOR unchanged; Specular Tint -> specularTint; Sheen Tint ->
+    sheenTint; Clearcoat -> clearcoat; Clearcoat Roughness r -> clearcoatGloss
+    g = (0.1 - r^2)/0.099 (Cycles alpha = r^2, Disney alpha = mix(0.1, 0.001, g));
+    Transmission -> specTrans; Emission * Emission Strength -> emissiveColor; Alpha ->
+    opacity; a Normal Map node fed by an Image Texture -> the tangent-space normal input.
+    """
+    warnings = []
+    inputs = {}
+    links = {}
+    if material is None:
+        return {"diffuseColor": [0.8, 0.8, 0.8], "roughness": 0.5}, links, warnings
+    bsdf = principled_bsdf(material)
+    if bsdf is None:
+        c = list(material.diffuse_color)[:3]
+        warnings.append(f"material '{material.name}': no Principled BSDF on the output; "
+                        "using its viewport display color")
+        return {"diffuseColor": c, "roughness": float(material.roughness),
+                "metallic": float(material.metallic)}, links, warnings
+    I = bsdf.inputs
+
+    def value(name):
+        return _socket_value(I[name])
+
+    def image_file(image):
+        try:
+            return textures.file_for(image)
+        except Exception as e:  # a missing or unreadable image: warn, use the socket value
+            warnings.append(f"material '{material.name}': image '{image.name}': {e}")
+            return None
+
+    def image_link(name):
+        node = _linked_node(I[name])
+        if node is None:
+            return None
+        if node.type == "TEX_IMAGE" and node.image is not None:
+            return node if image_file(node.image) else None
+        warnings.append(f"material '{material.name}': input '{name}' is linked to a "
+                        f"'{node.type}' node; only Image Texture links are translated, "
+                        "using the socket value")
+        return None
+
+    inputs["diffuseColor"] = value("Base Color")[:3]
+    tex = image_link("Base Color")
+    if tex is not None:
+        links["diffuseColor"] = (textures.file_for(tex.image), "rgb", None)
+    for blender, usd in (("Metallic", "metallic"), ("Roughness", "roughness"),
+                         ("Specular", "specular"), ("Specular Tint", "specularTint"),
+                         ("Anisotropic", "anisotropic"), ("Sheen", "sheen"),
+                         ("Sheen Tint", "sheenTint"), ("Clearcoat", "clearcoat"),
+                         ("Transmission", "specTrans"), ("IOR", "ior"), ("Alpha", "opacity"),
+                         ("Subsurface", "subsurface")):
+        inputs[usd] = float(value(blender))
+        tex = image_link(blender)
+        if tex is not None:
+            links[usd] = (textures.file_for(tex.image), "r", None)
+    r = float(value("Clearcoat Roughness"))
+    inputs["clearcoatGloss"] = min(1.0, max(0.0, (0.1 - r * r) / 0.099))
+    strength = float(value("Emission Strength"))
+    inputs["emissiveColor"] = [c * strength for c in value("Emission")[:3]]
+    nnode = _linked_node(I["Normal"])
+    if nnode is not None:
+        if nnode.type == "NORMAL_MAP" and nnode.space == "TANGENT":
+            tex = _linked_node(nnode.inputs["Color"])
+            if tex is not None and tex.type == "TEX_IMAGE" and tex.image is not None and \
+                    image_file(tex.image):
+                links["normal"] = (textures.file_for(tex.image), "rgb",
+                                   float(nnode.inputs["Strength"].default_value))
+            else:
+                warnings.append(f"material '{material.name}': Normal Map without an Image "
+                                "Texture; ignored")
+        else:
+            warnings.append(f"material '{material.name}': Normal linked to '{nnode.type}' "
+                            "(only a tangent-space Normal Map node is translated); ignored")
+    if bsdf.distribution == "MULTI_GGX":
+        warnings.append(f"material '{material.name}': Multiscatter GGX rendered as GGX")
+    return inputs, links, warnings
+
+
+def light_params(light, obj_matrix):
+    """Blender light -> (kind, params) following Cycles 3.4's units.
+
+    SUN, strength S (W/m^2) and angle t: principled's DistantLight with angle t delivers
+    E = L pi sin^2(t/2) head-on; Cycles samples the sun as a disk of radius tan(t/2) with
+    perpendicular irradiance S * 2/(1 + sec(t/2)) (cycles-peer.md, checked to 2e-4), so
+    L = 2S / ((1 + sec(t/2)) pi sin^2(t/2)); t = 0 is a delta light with E = S.
+    POINT / SPOT, power P (W), radius r: Cycles gives radiant intensity I = P/(4 pi) W/sr,
+    i.e. a sphere of radius r with radiance L = P/(4 pi^2 r^2) (its far-field intensity is
+    L pi r^2); exported as an emissive sphere (r < 1 mm becomes 1 mm, I kept). The spot's
+    cone is not supported by the delegate: exported as a point light with a warning.
+    AREA, power P (W), area A: Cycles' area-lamp radiance is P/(4A) (cycles-peer.md); exported
+    as an emissive quad/disk of that radiance facing the light's -Z.
+    """
+    color = [float(c) for c in light.color]
+    if light.type == "SUN":
+        S = float(light.energy)
+        t = float(light.angle)
+        half = 0.5 * t
+        if t <= 1e-6:
+            return "sun", {"intensity": S, "angle": 0.0, "color": color}
+        E = 2.0 * S / (1.0 + 1.0 / math.cos(half))
+        L = E / (math.pi * math.sin(half) ** 2)
+        return "sun", {"intensity": L, "angle": math.degrees(t), "color": color}
+    if light.type in ("POINT", "SPOT"):
+        r = max(float(light.shadow_soft_size), 1e-3)
+        L = float(light.energy) / (4.0 * math.pi * math.pi * r * r)
+        return "sphere", {"radius": r, "radiance": [c * L for c in color]}
+    if light.type == "AREA":
+        sx = float(light.size)
+        sy = float(light.size_y) if light.shape in ("RECTANGLE", "ELLIPSE") else sx
+        disk = light.shape in ("DISK", "ELLIPSE")
+        area = (math.pi * sx * sy / 4.0) if disk else sx * sy
+        L = float(light.energy) / (4.0 * max(area, 1e-12))
+        return "area", {"size": (sx, sy), "disk": disk, "radiance": [c * L for c in color]}
+    return None, {}
+
+
+def world_params(world):
+    """World -> dome radiance (color * strength). An Environment Texture is reduced to its
+    mean color (the delegate's dome light has no texture input yet; documented)."""
+    warnings = []
+    if world is None:
+        return [0.0, 0.0, 0.0], warnings
+    if not world.use_nodes or world.node_tree is None:
+        return [float(c) for c in world.color], warnings
+    out = None
+    for n in world.node_tree.nodes:
+        if n.type == "OUTPUT_WORLD" and (n.is_active_output or out is None):
+            out = n
+    if out is None:
+        return [0.0, 0.0, 0.0], warnings
+    bg = _linked_node(out.inputs["Surface"])
+    if bg is None or bg.type != "BACKGROUND":
+        warnings.append("world: surface is not a Background node; black")
+        return [0.0, 0.0, 0.0], warnings
+    strength = float(bg.inputs["Strength"].default_value)
+    src = _linked_node(bg.inputs["Color"])
+    if src is not None and src.type == "TEX_ENVIRONMENT" and src.image is not None:
+        img = src.image
+        px = np.empty(img.size[0] * img.size[1] * 4, np.float32)
+        img.pixels.foreach_get(px)
+        px = px.reshape(-1, 4)[:, :3]
+        if not img.is_float:  # stored sRGB values -> linear
+            px = np.where(px <= 0.04045, px / 12.92, ((px + 0.055) / 1.055) ** 2.4)
+        # Mean over the sphere: weight rows by cos(latitude).
+        h, w = img.size[1], img.size[0]
+        lat = (np.arange(h) + 0.5) / h * math.pi - math.pi / 2
+        wts = np.repeat(np.cos(lat), w)
+        mean = (px * wts[:, None]).sum(axis=0) / wts.sum()
+        warnings.append("world: Environment Texture rendered as its mean color (dome-light "
+                        "textures are not supported by the delegate yet)")
+        return [float(c) * strength for c in mean], warnings
+    if src is not None:
+        warnings.append(f"world: Color linked to '{src.type}'; using the socket value")
+    return [float(c) * strength for c in bg.inputs["Color"].default_value[:3]], warnings
+
+
+def camera_params(cam_data, width, height):
+    """Blender camera -> USD camera attributes (apertures match the image aspect exactly, so
+    the delegate's fit does nothing). Sensor fit AUTO uses sensor_width along the larger image
+    side; shift is in units of that fitted side."""
+    aspect = width / float(height)
+    fit = cam_data.sensor_fit
+    if fit == "AUTO":
+        fit = "HORIZONTAL" if width >= height else "VERTICAL"
+        size = cam_data.sensor_width
+    else:
+        size = cam_data.sensor_width if fit == "HORIZONTAL" else cam_data.sensor_height
+    if fit == "HORIZONTAL":
+        hap, vap = size, size / aspect
+    else:
+        vap, hap = size, size * aspect
+    p = {
+        "clippingRange": (float(cam_data.clip_start), float(cam_data.clip_end)),
+    }
+    if cam_data.type == "ORTHO":
+        # Orthographic: apertures are in tenths of a scene unit.
+        s = cam_data.ortho_scale
+        hs, vs = (s, s / aspect) if fit == "HORIZONTAL" else (s * aspect, s)
+        p.update(projection="orthographic", horizontalAperture=hs * 10.0,
+                 verticalAperture=vs * 10.0, focalLength=50.0,
+                 horizontalApertureOffset=cam_data.shift_x * s * 10.0,
+                 verticalApertureOffset=cam_data.shift_y * s * 10.0)
+        return p
+    fitted = hap if fit == "HORIZONTAL" else vap
+    p.update(projection="perspective", focalLength=float(cam_data.lens),
+             horizontalAperture=float(hap), verticalAperture=float(vap),
+             horizontalApertureOffset=float(cam_data.shift_x * fitted),
+             verticalApertureOffset=float(cam_data.shift_y * fitted))
+    return p
+
+
+class MeshData:
+    """Triangulated evaluated mesh split per material slot: points, triangle indices,
+    face-varying split normals and UVs."""
+
+    def __init__(self, obj_eval):
+        mesh = obj_eval.to_mesh()
+        try:
+            mesh.calc_loop_triangles()
+            if hasattr(mesh, "calc_normals_split"):
+                mesh.calc_normals_split()
+            nv, nt = len(mesh.vertices), len(mesh.loop_triangles)
+            self.points = np.empty(nv * 3, np.float32)
+            mesh.vertices.foreach_get("co", self.points)
+            tri_v = np.empty(nt * 3, np.int32)
+            mesh.loop_triangles.foreach_get("vertices", tri_v)
+            normals = np.empty(nt * 9, np.float32)
+            mesh.loop_triangles.foreach_get("split_normals", normals)
+            loops = np.empty(nt * 3, np.int32)
+            mesh.loop_triangles.foreach_get("loops", loops)
+            mat_index = np.empty(nt, np.int32)
+            mesh.loop_triangles.foreach_get("material_index", mat_index)
+            uv = None
+            if mesh.uv_layers.active is not None:
+                all_uv = np.empty(len(mesh.loops) * 2, np.float32)
+                mesh.uv_layers.active.data.foreach_get("uv", all_uv)
+                uv = all_uv.reshape(-1, 2)[loops]
+            self.parts = []  # (slot index, indices, normals, st)
+            for slot in np.unique(mat_index):
+                sel = mat_index == slot
+                idx = tri_v.reshape(-1, 3)[sel].ravel()
+                nrm = normals.reshape(-1, 9)[sel].ravel()
+                st = uv.reshape(-1, 6)[sel].ravel() if uv is not None else None
+                self.parts.append((int(slot), idx, nrm, st))
+            self.triangles = nt
+        finally:
+            obj_eval.to_mesh_clear()
+
+
+class SceneExport:
+    """One translation of an evaluated depsgraph. Records the prim paths of everything it
+    wrote (objects, materials, lights, camera) so a viewport can edit them later."""
+
+    def __init__(self, principled, depsgraph, texture_dir, width, height,
+                 camera_matrix=None, camera_data=None, view_camera=None):
+        self.p = principled
+        self.depsgraph = depsgraph
+        self.textures = TextureWriter(texture_dir)
+        self.width, self.height = width, height
+        self.warnings = []
+        self.object_xforms = {}   # object name -> [xform paths] (one per instance)
+        self.mesh_prims = []      # rprim order: (mesh prim path, object name, pass_index)
+        self.materials = {}       # material name -> (material prim path, link signature)
+        self.lights = {}          # object name -> (kind, prim path, [light prim paths])
+        self.camera_path = None
+        self.view_camera = view_camera  # (matrix, params) for a viewport camera
+        self.meshes = {}          # mesh cache: evaluated object name -> MeshData
+        self._names = set()
+
+    def _unique(self, base):
+        n, k = base, 1
+        while n in self._names:
+            k += 1
+            n = f"{base}_{k}"
+        self._names.add(n)
+        return n
+
+    def material_path(self, b, material):
+        key = material.name if material is not None else "__default__"
+        if key in self.materials:
+            return self.materials[key][0]
+        path = "/World/Looks/" + self._unique(usd_name(key, "Mat"))
+        inputs, links, warns = material_params(material, self.textures)
+        self.warnings += warns
+        b.add_material(path)
+        for k, v in inputs.items():
+            b.set_material_input(path, k, v)
+        for k, (file, channel, strength) in links.items():
+            b.set_material_texture(path, k, file, channel)
+            tex = f"{path}/{k}Texture"
+            if k == "normal":
+                s = 1.0 if strength is None else strength
+                # Tangent-space map stored as 0.5 + 0.5 n: scale/bias to [-1, 1], raw data.
+                b.set_attribute(tex, "float4", "inputs:scale", [2.0 * s, 2.0 * s, 2.0, 1.0])
+                b.set_attribute(tex, "float4", "inputs:bias", [-s, -s, -1.0, 0.0])
+                b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
+            elif k != "diffuseColor":
+                b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
+        self.materials[key] = (path, tuple(sorted(links)))
+        return path
+
+    def build(self):
+        import bpy  # noqa: F401  (only inside Blender)
+
+        p = self.p
+        b = p.SceneBuilder()
+        b.set_stage_metadata("Z", 1.0)
+        b.add_prim("/World", "Xform")
+        counters = {}
+        scene_cam = self.depsgraph.scene.camera
+        for inst in self.depsgraph.object_instances:
+            obj = inst.object
+            if obj is None:
+                continue
+            src = inst.instance_object if inst.is_instance else obj
+            name = src.name if src is not None else obj.name
+            mw = inst.matrix_world
+            if obj.type == "CAMERA":
+                if self.view_camera is None and scene_cam is not None and \
+                        obj.original == scene_cam.original and not inst.is_instance:
+                    self._camera(b, mw, obj.data)
+                continue
+            if obj.type == "LIGHT":
+                self._light(b, name, mw, obj.data)
+                continue
+            if obj.type not in ("MESH", "CURVE", "SURFACE", "META", "FONT"):
+                continue
+            if not inst.show_self:
+                continue
+            try:
+                md = self.meshes.get(obj.name)
+                if md is None:
+                    # Never to_mesh() the temporary object of an instance (it shares runtime
+                    # data with the evaluated object): convert that evaluated object instead.
+                    geom = obj.original.evaluated_get(self.depsgraph) if inst.is_instance else obj
+                    md = self.meshes[obj.name] = MeshData(geom)
+            except RuntimeError as e:
+                self.warnings.append(f"object '{name}': {e}")
+                continue
+            if md.triangles == 0:
+                continue
+            k = counters.get(name, 0)
+            counters[name] = k + 1
+            xf = "/World/" + self._unique(usd_name(name, "Obj") + ("" if k == 0 else f"_i{k}"))
+            b.add_prim(xf, "Xform")
+            b.set_transform(xf, usd_matrix(mw))
+            self.object_xforms.setdefault(name, []).append(xf)
+            pass_index = int(src.pass_index if src is not None else obj.pass_index)
+            for slot, idx, nrm, st in md.parts:
+                mat = None
+                if 0 <= slot < len(obj.material_slots):
+                    mat = obj.material_slots[slot].material
+                gp = f"{xf}/Geom_{slot}"
+                counts = np.full(len(idx) // 3, 3, np.int32)
+                b.add_mesh(gp, md.points, counts, idx, normals=nrm, st=st,
+                           normals_interpolation="faceVarying", st_interpolation="faceVarying",
+                           double_sided=True)
+                b.bind_material(gp, self.material_path(b, mat))
+                self.mesh_prims.append((gp, name, pass_index))
+        if self.view_camera is not None:
+            mw, params = self.view_camera
+            self._camera_params(b, "/World/ViewCamera", mw, params)
+        elif self.camera_path is None:
+            self.warnings.append("no active camera: the delegate frames the scene")
+        color, warns = world_params(self.depsgraph.scene.world)
+        self.warnings += warns
+        b.add_prim("/World/Environment", "DomeLight")
+        b.set_attribute("/World/Environment", "color3f", "inputs:color", color)
+        b.set_attribute("/World/Environment", "float", "inputs:intensity", 1.0)
+        return b
+
+    def _camera(self, b, mw, cam_data):
+        self._camera_params(b, "/World/Camera", mw,
+                            camera_params(cam_data, self.width, self.height))
+
+    def _camera_params(self, b, path, mw, params):
+        from mathutils import Matrix
+
+        b.add_prim(path, "Camera")
+        loc, rot, _ = mw.decompose()
+        m = Matrix.Translation(loc) @ rot.to_matrix().to_4x4()  # no scale on a camera
+        b.set_transform(path, usd_matrix(m))
+        for k, v in params.items():
+            if k == "projection":
+                b.set_attribute_string(path, "token", "projection", v)
+            elif k == "clippingRange":
+                b.set_attribute(path, "float2", "clippingRange", list(v))
+            else:
+                b.set_attribute(path, "float", k, v)
+        self.camera_path = path
+
+    def _light(self, b, name, mw, light):
+        kind, lp = light_params(light, mw)
+        xf = "/World/" + self._unique(usd_name(name, "Light"))
+        if kind == "sun":
+            b.add_prim(xf, "DistantLight")
+            from mathutils import Matrix
+
+            loc, rot, _ = mw.decompose()
+            b.set_transform(xf, usd_matrix(Matrix.Translation(loc) @ rot.to_matrix().to_4x4()))
+            b.set_attribute(xf, "float", "inputs:intensity", lp["intensity"])
+            b.set_attribute(xf, "float", "inputs:angle", lp["angle"])
+            b.set_attribute(xf, "color3f", "inputs:color", lp["color"])
+            self.lights[name] = (kind, xf, [xf])
+            return
+        if kind is None:
+            self.warnings.append(f"light '{name}': type {light.type} not supported")
+            return
+        if light.type == "SPOT":
+            self.warnings.append(f"light '{name}': spot cone not supported by the delegate; "
+                                 "rendered as a point light of the same power")
+        b.add_prim(xf, "Xform")
+        b.set_transform(xf, usd_matrix(mw))
+        mat = "/World/Looks/" + self._unique(usd_name(name, "Light") + "_Emission")
+        b.add_material(mat)
+        b.set_material_input(mat, "diffuseColor", [0.0, 0.0, 0.0])
+        b.set_material_input(mat, "specular", 0.0)
+        b.set_material_input(mat, "emissiveColor", lp["radiance"])
+        geom = xf + "/Emitter"
+        if kind == "sphere":
+            b.add_prim(geom, "Sphere")
+            b.set_attribute(geom, "double", "radius", lp["radius"])
+        else:
+            sx, sy = lp["size"]
+            if lp["disk"]:
+                n = 32
+                ang = np.arange(n) * 2 * math.pi / n
+                pts = np.stack([0.5 * sx * np.cos(ang), -0.5 * sy * np.sin(ang),
+                                np.zeros(n)], axis=1).ravel()
+                b.add_mesh(geom, pts, [n], list(range(n)))
+            else:
+                # Wound clockwise seen from +Z: the normal faces -Z, the emitting side.
+                pts = [-sx / 2, -sy / 2, 0, -sx / 2, sy / 2, 0, sx / 2, sy / 2, 0, sx / 2, -sy / 2, 0]
+                b.add_mesh(geom, pts, [4], [0, 1, 2, 3])
+            self.mesh_prims.append((geom, name, 0))
+        if kind == "sphere":
+            self.mesh_prims.append((geom, name, 0))
+        b.bind_material(geom, mat)
+        self.lights[name] = (kind, xf, [mat + "/Surface"])

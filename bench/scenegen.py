@@ -57,17 +57,24 @@ def figure(name, params):
 
 
 def row(name, doc, mats, spacing=1.15, radius=0.5, lights=None, ground=True, cam=None):
+    """Spheres on a grid in the x-y plane (left to right, bottom to top), floating above the
+    ground, framed by a square camera looking down -z."""
     n = len(mats)
+    cols = math.ceil(math.sqrt(n))
+    rows = math.ceil(n / cols)
     objs = [GROUND] if ground else []
     materials = {"Ground": GROUND_MAT} if ground else {}
     for i, m in enumerate(mats):
-        x = (i - (n - 1) / 2) * spacing
-        objs.append(dict(type="sphere", name=f"S{i}", center=[round(x, 4), radius, 0], radius=radius, material=f"M{i}"))
+        x = (i % cols - (cols - 1) / 2) * spacing
+        y = radius + 0.1 + (rows - 1 - i // cols) * spacing
+        objs.append(dict(type="sphere", name=f"S{i}", center=[round(x, 4), round(y, 4), 0], radius=radius,
+                         material=f"M{i}"))
         materials[f"M{i}"] = m
-    width = n * spacing
-    focal = 24.0
-    dist = (width / 2 + 0.4) * focal / (20.955 / 2) if cam is None else None
-    return dict(name=name, doc=doc, camera=cam or camera([0, 1.2, dist], [0, 0.4, 0], focal=focal),
+    extent = max(cols, rows) * spacing
+    focal = 35.0
+    dist = (extent / 2 + 0.3) * focal / (20.955 / 2)
+    cy = radius + 0.1 + (rows - 1) * spacing / 2
+    return dict(name=name, doc=doc, camera=cam or camera([0, cy + 0.3, dist], [0, cy, 0], focal=focal),
                 lights=lights if lights is not None else [SUN, SKY], objects=objs, materials=materials, peer=True)
 
 
@@ -111,8 +118,7 @@ def furnace():
             mat(baseColor=[1, 1, 1], roughness=0.3, sheen=1.0, clearcoat=1.0, clearcoatGloss=0.5)]
     s = row("furnace", "White furnace: a white dome of radiance 1, no ground; white spheres (diffuse, "
             "plastic, rough metal r=0.5 and 1, sheen+clearcoat) should vanish into the background "
-            "where energy is conserved.", mats, lights=[dict(type="dome", color=[1, 1, 1])], ground=False,
-            cam=camera([0, 0.5, 8.0], [0, 0.5, 0], focal=35.0))
+            "where energy is conserved.", mats, lights=[dict(type="dome", color=[1, 1, 1])], ground=False)
     return s
 
 
@@ -156,9 +162,9 @@ def all_scenes():
     rubber = mat(baseColor=[0.05, 0.05, 0.05], metallic=0.0, roughness=0.9, specular=0.5)
     metal = mat(baseColor=GOLD, metallic=1.0, roughness=0.2, specular=0.5)
     s.append(row("rubber_to_metal", "Rubber-to-metal interpolation: every parameter lerped linearly from black "
-                 "rubber (metallic 0, roughness 0.9) to gold metal (metallic 1, roughness 0.2) in 7 steps.",
+                 "rubber (metallic 0, roughness 0.9) to gold metal (metallic 1, roughness 0.2) in 7 steps (left to right, top row first).",
                  [{k: lerp(rubber[k], metal[k], t / 6) for k in rubber} for t in range(7)]))
-    s.append(row("roughness_sweep", "Roughness sweep 0..1 in 11 steps on a white-ish metal "
+    s.append(row("roughness_sweep", "Roughness sweep 0..1 in 11 steps (left to right, top row first) on a white-ish metal "
                  "(metallic 1, base 0.9); exercises the delta-mirror threshold at r = 0.",
                  [mat(baseColor=[0.9, 0.9, 0.9], metallic=1.0, roughness=i / 10) for i in range(11)],
                  spacing=1.05))

@@ -168,6 +168,11 @@ def all_scenes():
                  "(metallic 1, base 0.9); exercises the delta-mirror threshold at r = 0.",
                  [mat(baseColor=[0.9, 0.9, 0.9], metallic=1.0, roughness=i / 10) for i in range(11)],
                  spacing=1.05))
+    s.append(row("low_roughness", "Stability as roughness -> 0: metal spheres (base 0.9) at roughness 0, 0.005, "
+                 "0.01, 0.02, 0.03, 0.05, 0.1, 0.2, 0.3 (left to right, top row first), lit by the sky dome and the "
+                 "ground only (no sun, so no sub-pixel highlight dominates the error).",
+                 [mat(baseColor=[0.9, 0.9, 0.9], metallic=1.0, roughness=r) for r in
+                  (0.0, 0.005, 0.01, 0.02, 0.03, 0.05, 0.1, 0.2, 0.3)], lights=[SKY]))
     s.append(cornell())
     s.append(furnace())
     s.append(textured_subdiv())

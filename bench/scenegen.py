@@ -150,6 +150,29 @@ def textured_subdiv():
                 objects=[GROUND, obj], materials={"Ground": GROUND_MAT, "Checker": m}, peer=True)
 
 
+def subdiv_extreme():
+    """Catmull-Clark double cone of triangles: two vertices of valence 24 (apex and bottom
+    centre) and an infinitely sharp crease (sharpness 10) around the 24-vertex rim."""
+    n = 24
+    pts = [[0.0, 1.3, 0.0], [0.0, 0.35, 0.0]]
+    for i in range(n):
+        a = 2 * math.pi * i / n
+        pts.append([round(0.6 * math.cos(a), 6), 0.7, round(0.6 * math.sin(a), 6)])
+    faces = []
+    for i in range(n):
+        r0, r1 = 2 + i, 2 + (i + 1) % n
+        faces.append([0, r1, r0])
+        faces.append([1, r0, r1])
+    crease = [2 + i for i in range(n)] + [2]
+    obj = dict(type="subdiv", name="Cone", points=pts, faces=faces, material="Red",
+               creases=dict(indices=crease, lengths=[len(crease)], sharpnesses=[10.0]))
+    return dict(name="subdiv_extreme", doc="Subdivision at extreme valence and crease: a Catmull-Clark double cone "
+                "of 48 triangles, two valence-24 vertices and a sharpness-10 crease around the rim.",
+                camera=camera([0, 1.5, 2.6], [0, 0.75, 0], focal=35.0), lights=[SUN, SKY],
+                objects=[GROUND, obj], materials={"Ground": GROUND_MAT, "Red": mat(baseColor=[0.6, 0.1, 0.08], roughness=0.3)},
+                peer=False)
+
+
 def all_scenes():
     s = [figure("fig_reference", REFERENCE),
          figure("fig_metallic1", dict(REFERENCE, metallic=1.0)),
@@ -176,6 +199,7 @@ def all_scenes():
     s.append(cornell())
     s.append(furnace())
     s.append(textured_subdiv())
+    s.append(subdiv_extreme())
     s.append(dict(figure("far_origin", REFERENCE), name="far_origin",
                   doc="fig_reference translated by 1e5 units (float precision at large coordinates).",
                   offset=[1e5, 0, 1e5]))
@@ -246,11 +270,17 @@ def to_usda(sc):
             out += [f'    def Mesh "{o["name"]}" (', *bind, '    )', '    {', '        uniform token subdivisionScheme = "catmullClark"',
                     f'        int[] faceVertexCounts = [{", ".join(str(len(f)) for f in o["faces"])}]',
                     f'        int[] faceVertexIndices = [{", ".join(str(i) for f in o["faces"] for i in f)}]',
-                    f'        point3f[] points = [{", ".join(fmt(add(p, off)) for p in o["points"])}]',
-                    f'        texCoord2f[] primvars:st = [{", ".join(fmt(p) for p in o["st"])}] (',
-                    '            interpolation = "faceVarying"', '        )',
-                    f'        int[] primvars:st:indices = [{", ".join(str(i) for f in o["stIndices"] for i in f)}]',
-                    rel, '    }']
+                    f'        point3f[] points = [{", ".join(fmt(add(p, off)) for p in o["points"])}]']
+            if "st" in o:
+                out += [f'        texCoord2f[] primvars:st = [{", ".join(fmt(p) for p in o["st"])}] (',
+                        '            interpolation = "faceVarying"', '        )',
+                        f'        int[] primvars:st:indices = [{", ".join(str(i) for f in o["stIndices"] for i in f)}]']
+            if "creases" in o:
+                c_ = o["creases"]
+                out += [f'        int[] creaseIndices = [{", ".join(str(i) for i in c_["indices"])}]',
+                        f'        int[] creaseLengths = [{", ".join(str(i) for i in c_["lengths"])}]',
+                        f'        float[] creaseSharpnesses = [{", ".join(str(i) for i in c_["sharpnesses"])}]']
+            out += [rel, '    }']
     out += ['    def Scope "Looks"', '    {']
     for name, m in sc["materials"].items():
         path = f'/World/Looks/{name}'

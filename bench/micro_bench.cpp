@@ -324,8 +324,13 @@ const std::vector<float>& texels() {
     return t;
 }
 
+struct TempFile {
+    std::string path;
+    ~TempFile() { std::remove(path.c_str()); }
+};
+
 std::string texturePath() {
-    static std::string path = [] {
+    static TempFile file{[] {
         std::string p = "/tmp/principled_bench_tex_" + std::to_string(::getpid()) + ".exr";
         auto out = OIIO::ImageOutput::create(p);
         OIIO::ImageSpec spec(kTex, kTex, 3, OIIO::TypeDesc::FLOAT);
@@ -333,8 +338,8 @@ std::string texturePath() {
         out->write_image(OIIO::TypeDesc::FLOAT, texels().data());
         out->close();
         return p;
-    }();
-    return path;
+    }()};
+    return file.path;
 }
 
 std::vector<glm::vec2> randomSt(size_t n) {

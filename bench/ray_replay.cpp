@@ -38,7 +38,7 @@ struct RecordedRay {
     glm::vec3 o;
     float tnear;
     glm::vec3 d;
-    float tfar;  // negative sign bit unused; shadow flag kept separately per ray
+    float tfar;  // the shadow flag is kept in a parallel array
 };
 
 class PerThreadRecorder : public embree::RayRecorder {
@@ -72,10 +72,9 @@ struct Times {
     double wall = 0, cpu = 0;
 };
 
+// Steps a session to convergence. The scene sync (parse, subdivision, BVH) happens when the
+// session is opened, so this times sampling passes only; main() checks that with a 1-spp render.
 Times renderToEnd(host::RenderSession& s) {
-    // The first step syncs the scene (BVH builds); time only the sampling passes after it by
-    // running the sync through a step of a session whose first step we include... the sync
-    // happens inside the first step, so we measure it separately with the stats' build times.
     const double w0 = wallSeconds(), c0 = cpuSeconds();
     while (!s.step()) {
     }
@@ -125,9 +124,9 @@ int main(int argc, char** argv) {
     }
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
-    // 1. The path tracer, untouched (no recorder). The first step() includes the scene sync
-    //    (BVH build); do a 1-spp warm-up session first so file caches are warm, then time a
-    //    full render and subtract nothing: sync is reported separately from a 1-spp render.
+    // 1. The path tracer, untouched (no recorder), best of `repeat`. A 1-spp render first warms
+    //    the caches and estimates any sync work left inside step() (reported as syncEstimate and
+    //    subtracted).
     Times pt{1e30, 1e30}, sync{1e30, 1e30};
     for (int r = 0; r < repeat; ++r) {
         host::SessionOptions one = o;

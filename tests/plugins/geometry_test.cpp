@@ -316,3 +316,41 @@ def Capsule "Cap" { uniform token axis = "Q" }
     EXPECT_EQ(r.id("primId", r.px(0.0), r.py(0.0)), r.id("primId", r.px(-0.1), r.py(0.0)));
     EXPECT_GE(r.id("primId", r.px(0.0), r.py(0.0)), 0);
 }
+
+TEST(Geometry, EmissiveInstancerPrototypesAreNotPlacedAsLights) {
+    // The prototype's own record is instancer-relative: it must not become a mesh light at
+    // the wrong place; its instances still glow (found by BSDF sampling and camera rays).
+    Rendered r = render(R"(
+def PointInstancer "Inst"
+{
+    rel prototypes = [</Inst/P/Panel>]
+    int[] protoIndices = [0]
+    point3f[] positions = [(1, 0, 0)]
+    def Scope "P"
+    {
+        def Mesh "Panel" (prepend apiSchemas = ["MaterialBindingAPI"])
+        {
+            uniform token subdivisionScheme = "none"
+            int[] faceVertexCounts = [4]
+            int[] faceVertexIndices = [0, 1, 2, 3]
+            point3f[] points = [(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)]
+            rel material:binding = </Glow>
+        }
+    }
+}
+def Material "Glow"
+{
+    token outputs:surface.connect = </Glow/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:emissiveColor = (2, 2, 2)
+        token outputs:surface
+    }
+}
+def DistantLight "Sun" { float inputs:intensity = 1 }
+)");
+    EXPECT_EQ(r.session->stats()["lights"], 1.0);
+    EXPECT_GT(r.color(r.px(1.0), r.py(0.0))[0], 1.5f);  // the instance, emitting
+    EXPECT_EQ(r.id("primId", r.px(0.0), r.py(0.0)), -1);  // nothing at the prototype's origin
+}

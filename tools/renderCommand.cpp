@@ -15,6 +15,7 @@
 #include "delegate/imageWriter.h"
 #include "plugins/renderSession.h"
 #include "scene_adapter/usda/error.h"
+#include "tools/aovLayers.h"
 #include "tools/defaultScene.h"
 #include "tools/distributed/distributedRender.h"
 #include "tools/progressBar.h"
@@ -127,32 +128,8 @@ int runRender(const RenderArgs& a) {
     double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     report();
 
-    // Layers: color as the main RGBA, every other AOV as "name.R"... (IDs as float channels,
-    // exact for ids below 2^24).
-    std::vector<std::vector<float>> storage;
-    std::vector<embree::ImageLayer> layers;
-    size_t n = size_t(session->width()) * session->height();
-    for (const auto& img : session->aovs()) {
-        embree::ImageLayer l;
-        l.name = img.name == "color" ? "" : img.name;
-        static const char* rgba[] = {"R", "G", "B", "A"};
-        if (img.components == 1)
-            l.channels = {img.isInt ? "id" : "Z"};
-        else
-            for (int c = 0; c < img.components; ++c) l.channels.push_back(rgba[c]);
-        if (img.name == "depth" || img.name == "cameraDepth") l.channels = {"Z"};
-        if (img.name == "alpha") l.channels = {"A"};
-        if (img.name == "sampleCount" || img.name == "variance") l.channels = {"V"};
-        if (img.isInt) {
-            storage.emplace_back(n);
-            const int32_t* ids = static_cast<const int32_t*>(img.pixels);
-            for (size_t i = 0; i < n; ++i) storage.back()[i] = float(ids[i]);
-            l.pixels = storage.back().data();
-        } else {
-            l.pixels = static_cast<const float*>(img.pixels);
-        }
-        layers.push_back(l);
-    }
+    AovLayers written = aovLayers(*session);
+    const std::vector<embree::ImageLayer>& layers = written.layers;
     for (const auto& out : a.outputs) {
         std::error_code ec;
         auto path = std::filesystem::path(out);

@@ -25,6 +25,7 @@
 #include "tools/defaultScene.h"
 #include "tools/distributed/accumulation.h"
 #include "tools/distributed/comm.h"
+#include "tools/aovLayers.h"
 #include "tools/progressBar.h"
 
 namespace principled::tools::distributed {
@@ -119,29 +120,8 @@ std::string readFile(const std::string& path) {
 /// Writes the session's AOVs like `principled render` does, each file through a temporary
 /// name renamed into place, so an output is either complete or absent.
 void writeOutputs(host::RenderSession& session, const std::vector<std::string>& outputs, bool split) {
-    std::vector<std::vector<float>> storage;
-    std::vector<embree::ImageLayer> layers;
-    size_t n = size_t(session.width()) * session.height();
-    for (const auto& img : session.aovs()) {
-        embree::ImageLayer l;
-        l.name = img.name == "color" ? "" : img.name;
-        static const char* rgba[] = {"R", "G", "B", "A"};
-        if (img.components == 1) l.channels = {img.isInt ? "id" : "Z"};
-        else
-            for (int c = 0; c < img.components; ++c) l.channels.push_back(rgba[c]);
-        if (img.name == "depth" || img.name == "cameraDepth") l.channels = {"Z"};
-        if (img.name == "alpha") l.channels = {"A"};
-        if (img.name == "sampleCount" || img.name == "variance") l.channels = {"V"};
-        if (img.isInt) {
-            storage.emplace_back(n);
-            const int32_t* ids = static_cast<const int32_t*>(img.pixels);
-            for (size_t i = 0; i < n; ++i) storage.back()[i] = float(ids[i]);
-            l.pixels = storage.back().data();
-        } else {
-            l.pixels = static_cast<const float*>(img.pixels);
-        }
-        layers.push_back(l);
-    }
+    AovLayers written = aovLayers(session);
+    const std::vector<embree::ImageLayer>& layers = written.layers;
     auto atomicWrite = [&](const fs::path& path, const std::vector<embree::ImageLayer>& ls) {
         std::error_code ec;
         if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), ec);

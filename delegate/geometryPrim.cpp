@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/geometryPrim.h"
 
+#include <cmath>
+#include <string>
+
 #include "delegate/hd/sceneDelegate.h"
 
 namespace principled::embree {
@@ -23,10 +26,25 @@ void GeometryPrim::sync(SceneDelegate* delegate, RenderParam* renderParam, Dirty
         _registered = true;
     }
     if (*bits & RprimDirty::Instancer) _instancer = delegate->getInstancerId(id());
-    // A PointInstancer prototype keeps its own instance disabled: only its instances draw.
-    const bool drawnAlone = _instancer.empty();
+    // A prototype (only its instances draw) and a prim with an unusable transform keep their
+    // own instance disabled.
     if (*bits & RprimDirty::Transform) {
         glm::mat4 m(delegate->getTransform(id()));
+        // Rays are moved into object space by the inverse: a singular, non-finite or
+        // projective matrix cannot place geometry (Embree would get invalid rays).
+        float det = glm::determinant(glm::mat3(m));
+        bool finite = true;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(m[c][r]);
+        bool affine = std::abs(m[0][3]) + std::abs(m[1][3]) + std::abs(m[2][3]) < 1e-6f &&
+                      std::abs(m[3][3] - 1.0f) < 1e-6f;
+        bool usable = finite && affine && std::isfinite(det) && std::abs(det) > 1e-30f;
+        if (!usable && !_badTransform)
+            param->warn(id(), std::string("transform is ") +
+                                  (!finite ? "not finite" : !affine ? "projective (last column is not (0,0,0,1))" : "singular") +
+                                  "; prim not rendered");
+        _badTransform = !usable;
+        if (!usable) m = glm::mat4(1.0f);
         _record.objectToWorld = m;
         _record.worldToObject = glm::inverse(m);
         _record.normalToWorld = glm::transpose(glm::inverse(glm::mat3(m)));
@@ -34,7 +52,8 @@ void GeometryPrim::sync(SceneDelegate* delegate, RenderParam* renderParam, Dirty
         param->transformUpdates++;
         param->markSceneDirty();
     }
-    if (*bits & RprimDirty::Visibility) {
+    const bool drawnAlone = _instancer.empty() && !_badTransform;
+    if (*bits & (RprimDirty::Visibility | RprimDirty::Transform)) {
         _visible = delegate->getVisible(id());
         _instance.setEnabled(_visible && drawnAlone);
         param->markSceneDirty();

@@ -48,6 +48,7 @@ private:
     InstanceSet _instances;
     bool _registered = false;
     bool _visible = true;
+    bool _badTransform = false;
 };
 
 }  // namespace principled::embree

@@ -96,9 +96,19 @@ ColorTag colorTag(const OIIO::ImageSpec& spec, const std::string& format) {
 
 TextureCache::TextureCache() : TextureCache(Options()) {}
 
+// One OpenImageIO texture system per process, created on first use and never destroyed.
+// Destroying one is unsafe here: OIIO 2.4's TextureSystem::destroy() deletes the
+// implementation through its non-virtual base (a sized-delete mismatch that ASan reports and
+// that corrupts jemalloc's heap inside Blender), and the per-thread micro-caches of reused TBB
+// workers would outlive it (a crash when a second textured session renders in the process).
+static TextureSystem* processTextureSystem() {
+    static TextureSystem* system = TextureSystem::create(false);
+    return system;
+}
+
 TextureCache::TextureCache(const Options& options) {
-    // A private system (shared=false): its memory limit and options are ours alone.
-    TextureSystem* system = TextureSystem::create(false);
+    // Options apply process-wide (the last cache created sets them).
+    TextureSystem* system = processTextureSystem();
     system->attribute("max_memory_MB", options.maxMemoryMB);
     system->attribute("max_open_files", options.maxOpenFiles);
     system->attribute("automip", options.autoMip ? 1 : 0);
@@ -109,9 +119,7 @@ TextureCache::TextureCache(const Options& options) {
     _system = system;
 }
 
-TextureCache::~TextureCache() {
-    if (_system) TextureSystem::destroy(ts(_system), true);
-}
+TextureCache::~TextureCache() = default;  // the process-wide system stays alive
 
 TextureOpenResult TextureCache::open(const std::string& path) {
     std::lock_guard<std::mutex> lock(_mutex);

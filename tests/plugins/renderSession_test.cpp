@@ -259,3 +259,55 @@ def Camera "Cam"
     EXPECT_EQ(centreAlpha(10.0), 1.0f);  // the ball is centred
     EXPECT_EQ(centreAlpha(NAN), 0.0f);   // default: startTimeCode 0
 }
+
+TEST(RenderSession, SeveralTexturedSessionsInOneProcess) {
+    // Texture lookups go through one process-wide OpenImageIO system: sessions created and
+    // destroyed one after another (a DCC host re-rendering) must not reuse freed caches.
+    std::string scene = std::string(PRINCIPLED_SOURCE_DIR) +
+                        "/../shared/usd-wg/test_assets/TextureCoordinateTest/TextureCoordinateTest.usda";
+    double first = -1.0;
+    for (int i = 0; i < 4; ++i) {
+        host::SessionOptions o;
+        o.width = 48;
+        o.height = 27;
+        o.samplesPerPixel = 2;
+        auto s = host::RenderSession::openFile(scene, o);
+        while (!s->step()) {
+        }
+        double sum = 0.0;
+        for (int p = 0; p < 48 * 27 * 4; ++p) sum += s->color()[p];
+        if (first < 0.0) first = sum;
+        EXPECT_DOUBLE_EQ(sum, first) << "session " << i;
+    }
+}
+
+TEST(RenderSession, ProjectiveOrSingularTransformsAreSkippedWithAWarning) {
+    host::SessionOptions o;
+    o.width = o.height = 16;
+    o.samplesPerPixel = 1;
+    auto s = host::RenderSession::openString(R"(#usda 1.0
+def Sphere "Projective"
+{
+    matrix4d xformOp:transform = ((1, 2, 3, 4), (5, 6, 7, 8), (9, 10, 11, 12), (13, 14, 15, 1))
+    uniform token[] xformOpOrder = ["xformOp:transform"]
+}
+def Sphere "Flat"
+{
+    double3 xformOp:scale = (1, 0, 1)
+    uniform token[] xformOpOrder = ["xformOp:scale"]
+}
+def Sphere "Fine"
+{
+    double3 xformOp:translate = (0, 0, -3)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)",
+                                             "weird.usda", o);
+    while (!s->step()) {
+    }
+    std::string all;
+    for (const auto& w : s->takeWarnings()) all += w + "\n";
+    EXPECT_NE(all.find("/Projective: transform is projective"), std::string::npos) << all;
+    EXPECT_NE(all.find("/Flat: transform is singular"), std::string::npos) << all;
+    for (int p = 0; p < 16 * 16 * 4; ++p) ASSERT_TRUE(std::isfinite(s->color()[p]));
+}

@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -35,15 +36,23 @@ const std::string kCorpus = PRINCIPLED_SOURCE_DIR "/../shared/usd-wg";
 
 std::string corpus(const std::string& rel) { return kCorpus + "/" + rel; }
 
-// Every layer of the corpus, relative to kCorpus, sorted.
-std::vector<std::string> corpusFiles() {
+// Files that crash the renderer today: each has its own DISABLED_ test below naming the gap
+// (docs/conformance.md); they are left out of the parameterized run so the rest stays green.
+const std::set<std::string> kKnownCrashes = {
+    "test_assets/schemaTests/usdGeom/transforms/weird_matrix_transform.usda",
+};
+
+// Every layer of the corpus, relative to kCorpus, sorted (known crashes left out).
+std::vector<std::string> corpusFiles(bool withKnownCrashes = false) {
     std::vector<std::string> files;
     std::error_code ec;
     if (!fs::is_directory(kCorpus, ec)) return files;
     for (const auto& e : fs::recursive_directory_iterator(kCorpus, ec)) {
         if (!e.is_regular_file()) continue;
         std::string ext = e.path().extension().string();
-        if (ext == ".usda" || ext == ".usd") files.push_back(fs::relative(e.path(), kCorpus).generic_string());
+        if (ext != ".usda" && ext != ".usd") continue;
+        std::string rel = fs::relative(e.path(), kCorpus).generic_string();
+        if (withKnownCrashes || !kKnownCrashes.count(rel)) files.push_back(rel);
     }
     std::sort(files.begin(), files.end());
     return files;
@@ -175,12 +184,24 @@ TEST_P(Corpus, RendersEveryFile) {
 }
 
 INSTANTIATE_TEST_SUITE_P(UsdWg, Corpus, ::testing::ValuesIn(corpusFiles()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                             return testName(info.param);
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                             return testName(param.param);
                          });
 
+// GAP (docs/conformance.md): weird_matrix_transform.usda authors a projective matrix (last column
+// (4, 8, 12, 1) in USD's row-vector layout). Rendering it aborts the process: Embree asserts
+// `ray.valid()` (bvh_intersector1.cpp:59) in rtcIntersect1 called from
+// embree::Integrator::trace, i.e. a NaN/Inf ray reaches Embree. Expected: render (or warn about
+// the non-affine matrix) without crashing.
+TEST(CorpusKnownCrash, DISABLED_WeirdMatrixTransformRenders) {
+    const std::string path = corpus("test_assets/schemaTests/usdGeom/transforms/weird_matrix_transform.usda");
+    Rendered r;
+    ASSERT_NO_THROW(r = render(path)) << path;
+    EXPECT_TRUE(r.allFinite());
+}
+
 TEST(CorpusLayout, CorpusIsPresentAndComplete) {
-    auto files = corpusFiles();
+    auto files = corpusFiles(true);
     ASSERT_FALSE(files.empty()) << "corpus not found at " << kCorpus;
     EXPECT_GE(files.size(), 70u);
 }
@@ -350,8 +371,8 @@ INSTANTIATE_TEST_SUITE_P(UsdWg, Transforms,
                          ::testing::Values("simple_transform.usda", "complex_transform.usda",
                                            "matrix_transform.usda", "weird_matrix_transform.usda",
                                            "xforms_nested.usda", "scopes_and_xforms_nested.usda"),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                             return testName(info.param);
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                             return testName(param.param);
                          });
 
 TEST(Readme, TransformsKnownValues) {

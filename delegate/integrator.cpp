@@ -268,9 +268,18 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             break;
         }
 
+        const GeometryRecord& rec = *hit.record;
+        // UsdGeomGprim doubleSided = 0: camera rays do not see the back of a single-sided mesh
+        // (as Storm and usdrecord cull it); light transport still uses both sides.
+        if (depth == 0 && hit.backface && !rec.doubleSided &&
+            rec.kind == GeometryRecord::Kind::Triangles && passThrough < kMaxPassThrough) {
+            ++passThrough;
+            ray.origin = offsetOrigin(hit.p, hit.ng, ray.direction);
+            --depth;
+            continue;
+        }
         // Material: the bound one (evaluated here if textured), or UsdPreviewSurface
         // defaults with displayColor.
-        const GeometryRecord& rec = *hit.record;
         HitContext context(hit);
         shading::ShadedMaterial shaded;
         const int materialIndex = rec.materialFor(hit.triangle);  // GeomSubset or the prim's

@@ -127,6 +127,7 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
         e.world = world;
         e.visible = visible;
         if (isRprim) e.material = resolveMaterialBinding(prim);
+        if (hdType == tokens::mesh() && type == "Mesh") checkExtent(prim);
         bool ok = !isImplicitShape(type) || prepareShape(prim, &e);  // warns when not
         bool inserted = ok && (isRprim ? index->insertRprim(hdType, this, id)
                                        : index->insertSprim(hdType, this, id));
@@ -157,6 +158,33 @@ Path UsdSceneDelegate::resolveMaterialBinding(const usd::Prim& start) const {
         }
     }
     return Path();
+}
+
+void UsdSceneDelegate::checkExtent(const usd::Prim& prim) {
+    // UsdGeomBoundable extent: [min, max] bounding the points. A wrong extent makes
+    // extent-culling renderers drop the prim; here it is reported (geometry is not culled).
+    const usd::Attribute* ext = prim.attribute("extent");
+    const usd::Attribute* pts = prim.attribute("points");
+    if (!ext || !ext->hasValue() || !pts || !pts->hasValue()) return;
+    usd::Value e = ext->get(_time), p = pts->get(_time);
+    const std::vector<double>* en = e.numbers();
+    const std::vector<double>* pn = p.numbers();
+    if (!en || en->size() != 6 || e.components() != 3) return;
+    std::string where = ext->location().str() + ": " + prim.path();
+    for (int k = 0; k < 3; ++k)
+        if ((*en)[k] > (*en)[3 + k]) {
+            warn(where, "extent min > max (inverted); it should bound the points");
+            return;
+        }
+    if (!pn || p.components() != 3) return;
+    double tol = 1e-4;
+    for (int k = 0; k < 3; ++k) tol = std::max(tol, 1e-4 * std::abs((*en)[3 + k] - (*en)[k]));
+    for (size_t i = 0; i + 2 < pn->size(); i += 3)
+        for (int k = 0; k < 3; ++k)
+            if ((*pn)[i + k] < (*en)[k] - tol || (*pn)[i + k] > (*en)[3 + k] + tol) {
+                warn(where, "points lie outside the authored extent");
+                return;
+            }
 }
 
 const UsdSceneDelegate::Entry* UsdSceneDelegate::entry(const Path& id) const {

@@ -106,6 +106,7 @@ private:
     hd::Value attributeValue(const usd::Prim& prim, const std::string& name) const;
     hd::Path resolveMaterialBinding(const usd::Prim& prim) const;
     void warn(const std::string& where, const std::string& message);
+    void checkExtent(const usd::Prim& prim);
 
     const usd::Stage& _stage;
     AdapterOptions _options;

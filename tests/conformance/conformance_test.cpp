@@ -254,10 +254,9 @@ TEST(Invalid, EmptyMeshIsReportedByPrimPathAndRendersEmpty) {
 // Extent README: an inverse extent [(1,1,1),(0,0,0)] and a zero extent [(0,0,0),(0,0,0)] on a
 // cube whose points span [-0.5, 0.5]: "This screenshot is empty as expected" (usdrecord culls the
 // mesh by its authored extent). Issue 5 asks for a clear message on such input.
-// GAP (docs/conformance.md): the adapter ignores authored extents: no warning is given and the
-// cube renders. Disabled until the adapter validates `extent` (warn: "<prim>: extent min > max"
-// / "points outside the authored extent").
-TEST(Invalid, DISABLED_InverseExtentIsReported) {
+// The adapter validates `extent` and warns ("extent min > max" / "points lie outside the
+// authored extent"); the geometry itself still renders (it is not culled by extent).
+TEST(Invalid, InverseExtentIsReported) {
     const std::string path = corpus("test_assets/schemaTests/usdGeom/extent/inverse_extent.usda");
     Rendered r;
     ASSERT_NO_THROW(r = render(path, 64, 64, 1, {"primId"}));
@@ -265,7 +264,7 @@ TEST(Invalid, DISABLED_InverseExtentIsReported) {
     EXPECT_TRUE(contains(w, "/mesh")) << w;
     EXPECT_TRUE(contains(w, "extent")) << w;
 }
-TEST(Invalid, DISABLED_ZeroExtentIsReported) {
+TEST(Invalid, ZeroExtentIsReported) {
     const std::string path = corpus("test_assets/schemaTests/usdGeom/extent/zero_extent.usda");
     Rendered r;
     ASSERT_NO_THROW(r = render(path, 64, 64, 1, {"primId"}));
@@ -697,10 +696,8 @@ TEST(Readme, SingleAndDoubleSided) {
     }
 }
 
-// GAP (docs/conformance.md): principled draws the back of doubleSided = 0 meshes (416 of 4096
-// pixels hit Plane_1); Storm/usdrecord cull them. Only the doubleSided flag reaches the delegate
-// (Readme.SingleAndDoubleSided); primary rays do not honour it.
-TEST(Readme, DISABLED_SingleSidedBackFacesAreNotDrawn) {
+// Camera rays skip the back of doubleSided = 0 meshes, as Storm/usdrecord cull them.
+TEST(Readme, SingleSidedBackFacesAreNotDrawn) {
     // singleSided.usda: Plane_0 (x < 0) winds counter-clockwise seen from +z, Plane_1 (x > 0)
     // clockwise, both doubleSided = 0. Seen from the front (+z, the default camera), Plane_1 shows
     // its back and is not drawn (usdrecord: one plane). doubleSided_quad.usda: both drawn.

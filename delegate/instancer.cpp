@@ -80,7 +80,9 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
         bool finite = true;
         for (int c = 0; c < 4; ++c)
             for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(m[c][k]);
-        if (finite) out.push_back(rec);
+        if (!finite) continue;
+        rec.normalToWorld = glm::transpose(glm::inverse(glm::mat3(m)));
+        out.push_back(rec);
     }
     if (outOfRange > 0 && count > 0)
         warnings->push_back(std::to_string(outOfRange) + " instance(s) of " + prototypeId.str() +

@@ -83,7 +83,7 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
         inst < scene.instanceByInstance.size() ? scene.instanceByInstance[inst] : nullptr;
     hit->instance = placed;
     const glm::mat3 normalToWorld =
-        placed ? glm::transpose(glm::inverse(glm::mat3(placed->objectToWorld))) : rec.normalToWorld;
+        placed ? placed->normalToWorld : rec.normalToWorld;
     hit->p = ray.origin + rh.ray.tfar * ray.direction;
     const glm::mat4& objectToWorld = placed ? placed->objectToWorld : rec.objectToWorld;
     glm::vec3 ngObj, nsObj;
@@ -185,7 +185,8 @@ private:
 // degenerate.
 Frame tangentFrame(const Hit& hit, const glm::vec3& n) {
     const GeometryRecord& rec = *hit.record;
-    const PrimvarChannel* st = rec.primvar(hd::Token("st"));
+    static const hd::Token kSt("st");  // interned once: Token() takes a global lock
+    const PrimvarChannel* st = rec.primvar(kSt);
     if (rec.kind == GeometryRecord::Kind::Triangles && st && !st->constant && st->components >= 2) {
         const glm::uvec3& t = rec.triangles[hit.triangle];
         glm::vec3 e1 = rec.points[t.y] - rec.points[t.x], e2 = rec.points[t.z] - rec.points[t.x];
@@ -289,7 +290,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         } else {
             shaded.params.baseColor = rec.displayColor;
             float dc[3];
-            if (context.primvar(hd::Token("displayColor"), 3, dc))
+            static const hd::Token kDisplayColor("displayColor");  // interned once, not per hit
+            if (context.primvar(kDisplayColor, 3, dc))
                 shaded.params.baseColor = glm::clamp(glm::vec3(dc[0], dc[1], dc[2]), 0.0f, 1.0f);
             shaded.params.roughness = 0.5f;
             shaded.params.specular = 0.5f;

@@ -71,6 +71,7 @@ struct GeometryRecord {
 /// prototype's GeometryRecord supplies everything but the placement.
 struct InstanceRecord {
     glm::mat4 objectToWorld{1.0f};  ///< instancer * translate * rotate * scale * prototype
+    glm::mat3 normalToWorld{1.0f};  ///< inverse transpose of objectToWorld's 3x3 (set at sync)
     int instanceIndex = -1;         ///< index into the instancer's arrays (instanceId AOV)
 };
 

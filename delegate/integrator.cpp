@@ -210,6 +210,48 @@ Frame tangentFrame(const Hit& hit, const glm::vec3& n) {
     return Frame(n);
 }
 
+// How much of the shadow rays a surface at this hit stops: its material's presence
+// (UsdPreviewSurface opacity, or 0/1 with an opacityThreshold cutout).
+float presenceAt(const SceneSnapshot& scene, const Hit& hit) {
+    const int mi = hit.record->materialFor(hit.triangle);
+    if (mi < 0 || mi >= int(scene.materials.size())) return 1.0f;
+    const MaterialRecord& m = scene.materials[mi];
+    if (!m.mayBePartlyPresent) return 1.0f;
+    if (!m.program) return m.constant.presence();
+    HitContext context(hit);
+    return m.program->evaluate(context).presence();
+}
+
+// Visibility along a shadow ray: 0 when an opaque surface blocks it, else the product of
+// (1 - presence) of the partly present surfaces it crosses. The camera path chooses to pass
+// through such a surface with probability 1 - presence, so both estimate the same expected
+// value; here the factor is exact, so cutout and partial-opacity shadows carry no extra noise.
+float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const glm::vec3& dir,
+                    float tfar) {
+    if (!scene.anyPartlyPresent) return occluded(scene, origin, dir, tfar) ? 0.0f : 1.0f;
+    const bool bounded = tfar < kInf;
+    const glm::vec3 end = origin + (bounded ? tfar : 0.0f) * dir;
+    Ray r;
+    r.origin = origin;
+    r.direction = dir;
+    r.tnear = 0.0f;
+    r.tfar = tfar;
+    float T = 1.0f;
+    for (int layer = 0; layer < kMaxPassThrough; ++layer) {
+        Hit h;
+        if (!intersect(scene, r, &h)) return T;
+        const float p = presenceAt(scene, h);
+        T *= 1.0f - p;
+        if (!(T > 0.0f)) return 0.0f;
+        r.origin = offsetOrigin(h.p, h.ng, dir);
+        if (bounded) {
+            r.tfar = glm::dot(end - r.origin, dir);
+            if (!(r.tfar > 0.0f)) return T;
+        }
+    }
+    return 0.0f;  // more layers than a path may cross: treat as blocked
+}
+
 }  // namespace
 
 PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
@@ -382,9 +424,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                     float tfar = ls.distance >= kInf ? kInf
                                                       : std::max(0.0f, glm::length(hit.p + ls.distance * ls.wi - shadowOrigin) * (1.0f - 1e-4f));
                     if (_settings.recorder) _settings.recorder->record(shadowOrigin, ls.wi, 0.0f, tfar, true);
-                    if (!occluded(_scene, shadowOrigin, ls.wi, tfar)) {
+                    const float visible = transmittance(_scene, shadowOrigin, ls.wi, tfar);
+                    if (visible > 0.0f) {
                         float w = (ls.delta || !_settings.mis) ? 1.0f : powerHeuristic(ls.pdf * lightPick, bsdfPdf);
-                        glm::vec3 scale = beta * ls.Li * (w / (ls.pdf * lightPick));
+                        glm::vec3 scale = beta * ls.Li * (visible * w / (ls.pdf * lightPick));
                         glm::vec3 c = scale * f;
                         if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                             c *= _settings.clampIndirect / maxComponent(c);

@@ -85,10 +85,12 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
         std::vector<MaterialSource*> mats(_param->materials().begin(), _param->materials().end());
         std::sort(mats.begin(), mats.end(), [](auto* a, auto* b) { return a->materialId() < b->materialId(); });
         _snapshot.materials.clear();
+        _snapshot.anyPartlyPresent = false;
         std::unordered_map<Path, int> index;
         for (MaterialSource* m : mats) {
             index[m->materialId()] = static_cast<int>(_snapshot.materials.size());
             _snapshot.materials.push_back(m->record());
+            _snapshot.anyPartlyPresent |= m->record().mayBePartlyPresent;
         }
         for (GeometrySource* g : _param->geometry()) g->bindMaterials(index);
         std::vector<LightSource*> lights;

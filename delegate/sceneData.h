@@ -21,6 +21,7 @@ namespace principled::embree {
 struct MaterialRecord {
     shading::ShadedMaterial constant;                        ///< used when program is null
     std::shared_ptr<const shading::MaterialProgram> program;  ///< non-null when textured
+    bool mayBePartlyPresent = false;  ///< opacity < 1 somewhere: shadow rays must evaluate it
 };
 
 /// One primvar of a mesh, expanded to three values per triangle (or one value if constant).
@@ -121,6 +122,9 @@ struct SceneSnapshot {
     std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
     std::vector<float> lightCdf;                      ///< lights.size() + 1 entries, by power
     bool usingDefaultLight = false;                   ///< the scene had no light
+    /// Some material can be partly present (opacity, cutouts): shadow rays then look at
+    /// each surface they cross instead of stopping at the first.
+    bool anyPartlyPresent = false;
 };
 
 }  // namespace principled::embree

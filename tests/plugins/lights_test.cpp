@@ -9,69 +9,17 @@
 
 #include "delegate/colorTemperature.h"
 #include "plugins/renderSession.h"
+#include "tests/support/lambertPlaneScene.h"
 
 using namespace principled;
+using principled::test::planeScene;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A Lambert plane (y = 0, facing +Y) seen by a tiny orthographic camera aimed at the origin,
-// tilted by `tilt` degrees from straight down (so it can look past a light in the way), plus
-// the given light prims. Render with the UE4 model so the diffuse is exactly Lambertian at
-// any view angle.
-std::string planeScene(double albedo, const std::string& lights, double tilt = 0.0) {
-    double rad = tilt * kPi / 180.0;
-    char head[2048];
-    std::snprintf(head, sizeof head, R"(#usda 1.0
-def Mesh "Plane" (prepend apiSchemas = ["MaterialBindingAPI"])
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
-    rel material:binding = </Mat>
-}
-def Material "Mat"
-{
-    token outputs:surface.connect = </Mat/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (%g, %g, %g)
-        float inputs:ior = 1
-        float inputs:roughness = 1
-        token outputs:surface
-    }
-}
-def Camera "Cam"
-{
-    token projection = "orthographic"
-    float horizontalAperture = 0.01
-    float verticalAperture = 0.01
-    float2 clippingRange = (0.001, 1000)
-    double3 xformOp:translate = (0, %g, %g)
-    float xformOp:rotateX = %g
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
-)",
-                  albedo, albedo, albedo, 50.0 * std::cos(rad), 50.0 * std::sin(rad), -90.0 + tilt);
-    return std::string(head) + lights;
-}
-
 double render(const std::string& usda, int spp, std::map<std::string, std::string> settings = {}) {
-    host::SessionOptions o;
-    o.width = o.height = 4;
-    o.samplesPerPixel = spp;
-    o.settings = std::move(settings);
-    o.settings["shadingModel"] = "ue4";
-    auto s = host::RenderSession::openString(usda, "lights.usda", o);
-    while (!s->step()) {
-    }
-    const float* c = s->color();
-    double sum = 0.0;
-    for (int i = 0; i < 16; ++i) sum += c[4 * i];
-    return sum / 16.0;
+    return test::planeRadiance(usda, spp, std::move(settings));
 }
 
 }  // namespace

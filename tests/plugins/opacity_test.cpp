@@ -9,6 +9,7 @@
 #include <string>
 
 #include "plugins/renderSession.h"
+#include "tests/support/lambertPlaneScene.h"
 
 using namespace principled;
 
@@ -43,27 +44,7 @@ def Material "%sMat"
     return buf;
 }
 
-const char* kPlane = R"(#usda 1.0
-def Mesh "Plane" (prepend apiSchemas = ["MaterialBindingAPI"])
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
-    rel material:binding = </Mat>
-}
-def Material "Mat"
-{
-    token outputs:surface.connect = </Mat/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (0.5, 0.5, 0.5)
-        float inputs:ior = 1
-        float inputs:roughness = 1
-        token outputs:surface
-    }
-}
+const std::string kPlane = test::planeScene(0.5, R"(
 def DistantLight "Sun"
 {
     float inputs:intensity = 2
@@ -73,32 +54,10 @@ def DistantLight "Sun"
     float xformOp:rotateZ = 45
     uniform token[] xformOpOrder = ["xformOp:rotateZ", "xformOp:rotateX"]
 }
-def Camera "Cam"
-{
-    token projection = "orthographic"
-    float horizontalAperture = 0.01
-    float verticalAperture = 0.01
-    float2 clippingRange = (0.001, 1000)
-    double3 xformOp:translate = (0, 50, 0)
-    float xformOp:rotateX = -90
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
-)";
+)");
 
-double render(const std::string& usda) {
-    host::SessionOptions o;
-    o.width = o.height = 4;
-    o.samplesPerPixel = 4;
-    o.maxDepth = 1;  // direct light only: the blockers' own reflections stay out
-    o.settings["shadingModel"] = "ue4";
-    auto s = host::RenderSession::openString(usda, "opacity.usda", o);
-    while (!s->step()) {
-    }
-    const float* c = s->color();
-    double sum = 0.0;
-    for (int i = 0; i < 16; ++i) sum += c[4 * i];
-    return sum / 16.0;
-}
+// Direct light only (maxDepth 1): the blockers' own reflections stay out.
+double render(const std::string& usda) { return test::planeRadiance(usda, 4, {}, 1); }
 
 }  // namespace
 
@@ -109,28 +68,28 @@ TEST(Opacity, UnblockedPlaneSeesTheLight) {
 }
 
 TEST(Opacity, OpaqueBlockerCastsAFullShadow) {
-    EXPECT_NEAR(render(std::string(kPlane) + blocker("B", 5, "")), 0.0, 1e-6);
+    EXPECT_NEAR(render(kPlane + blocker("B", 5, "")), 0.0, 1e-6);
 }
 
 TEST(Opacity, PartialOpacityLetsOneMinusOpacityThrough) {
     double lit = render(kPlane);
-    double shadowed = render(std::string(kPlane) + blocker("B", 5, "float inputs:opacity = 0.25"));
+    double shadowed = render(kPlane + blocker("B", 5, "float inputs:opacity = 0.25"));
     EXPECT_NEAR(shadowed / lit, 0.75, 1e-3);
 }
 
 TEST(Opacity, StackedLayersMultiply) {
     double lit = render(kPlane);
-    double shadowed = render(std::string(kPlane) + blocker("A", 5, "float inputs:opacity = 0.5") +
+    double shadowed = render(kPlane + blocker("A", 5, "float inputs:opacity = 0.5") +
                              blocker("B", 10, "float inputs:opacity = 0.6"));
     EXPECT_NEAR(shadowed / lit, 0.5 * 0.4, 1e-3);
 }
 
 TEST(Opacity, CutoutBelowThresholdCastsNoShadowAndAboveAFullOne) {
     double lit = render(kPlane);
-    double below = render(std::string(kPlane) +
+    double below = render(kPlane +
                           blocker("B", 5, "float inputs:opacity = 0.2\n        float inputs:opacityThreshold = 0.5"));
     EXPECT_NEAR(below / lit, 1.0, 1e-3);
-    double above = render(std::string(kPlane) +
+    double above = render(kPlane +
                           blocker("B", 5, "float inputs:opacity = 0.8\n        float inputs:opacityThreshold = 0.5"));
     EXPECT_NEAR(above, 0.0, 1e-6);
 }

@@ -210,7 +210,15 @@ void EmbreeRenderDelegate::buildLightDistribution() {
                 p = lum(L) * kPi * kPi * R * R;
                 break;
             }
-            default: p = lum(l.radiance) * kPi * l.area;  // one-sided Lambertian emitter
+            default: {
+                glm::vec3 L = l.radiance;  // one-sided Lambertian emitter
+                if (l.rectTexture && !l.rectTexture->texels.empty()) {
+                    glm::dvec3 sum(0.0);
+                    for (const auto& t : l.rectTexture->texels) sum += glm::dvec3(t);
+                    L *= glm::vec3(sum / double(l.rectTexture->texels.size()));
+                }
+                p = lum(L) * kPi * l.area;
+            }
         }
         power[i] = std::isfinite(p) && p > 0.0f ? p : 0.0f;
         total += power[i];

@@ -102,6 +102,9 @@ struct LightRecord {
     float radius = 0.0f;                 ///< sphere, cylinder
     float area = 0.0f;
     std::shared_ptr<const EnvironmentMap> environment;  ///< dome texture (null: constant)
+    /// Rect light texture:file (texels only; null: constant). Texel (0, 0), the image's top
+    /// left, sits at the light's (+X, +Y) corner.
+    std::shared_ptr<const EnvironmentMap> rectTexture;
     float pickProbability = 1.0f;  ///< chance next-event estimation picks this light
     // Mesh lights (emissive geometry with a constant emission): the triangles that emit, with
     // a CDF over their world-space areas. Emission is two-sided, as it is shaded.

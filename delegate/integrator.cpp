@@ -94,6 +94,14 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
         // Re-project onto the sphere (o + t d loses precision far from the origin).
         float l = glm::length(ngObj);
         if (l > 0.0f) hit->p = glm::vec3(objectToWorld * glm::vec4(rec.center + ngObj * (rec.radius / l), 1.0f));
+    } else if (rec.kind == GeometryRecord::Kind::Points || rec.kind == GeometryRecord::Kind::Curves) {
+        // Embree's sphere points and round curves: its geometric normal (object space for
+        // instanced geometry) is the surface normal of the sphere or tube.
+        hit->triangle = rh.hit.primID;
+        hit->u = rh.hit.u;
+        hit->v = rh.hit.v;
+        hit->element = rh.hit.primID < rec.triangleFace.size() ? rec.triangleFace[rh.hit.primID] : 0;
+        ngObj = nsObj = glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     } else {
         const glm::uvec3& t = rec.triangles[rh.hit.primID];
         hit->element = rec.triangleFace[rh.hit.primID];
@@ -165,8 +173,9 @@ public:
         if (!ch) return false;
         int n = std::min(components, ch->components);
         for (int c = 0; c < components; ++c) out[c] = 0.0f;
-        if (ch->constant) {
-            for (int c = 0; c < n; ++c) out[c] = ch->data[c];
+        if (ch->constant || ch->perPrimitive) {
+            const float* d = &ch->data[ch->constant ? 0 : size_t(_hit.triangle) * ch->components];
+            for (int c = 0; c < n; ++c) out[c] = d[c];
             return true;
         }
         const float* d = &ch->data[size_t(_hit.triangle) * 3 * ch->components];

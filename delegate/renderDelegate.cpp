@@ -14,6 +14,8 @@
 #include "delegate/renderBuffer.h"
 #include "delegate/renderPass.h"
 #include "delegate/sphere.h"
+#include "delegate/points.h"
+#include "delegate/curves.h"
 
 namespace principled::embree {
 
@@ -34,7 +36,7 @@ EmbreeRenderDelegate::EmbreeRenderDelegate() {
 EmbreeRenderDelegate::~EmbreeRenderDelegate() { rtcReleaseScene(_scene); }
 
 const std::vector<Token>& EmbreeRenderDelegate::supportedRprimTypes() const {
-    static const std::vector<Token> t{tokens::mesh(), tokens::sphere()};
+    static const std::vector<Token> t{tokens::mesh(), tokens::sphere(), tokens::pointsPrim(), tokens::basisCurves()};
     return t;
 }
 const std::vector<Token>& EmbreeRenderDelegate::supportedSprimTypes() const {
@@ -52,6 +54,8 @@ const std::vector<Token>& EmbreeRenderDelegate::supportedBprimTypes() const {
 std::unique_ptr<Rprim> EmbreeRenderDelegate::createRprim(const Token& typeId, const Path& id) {
     if (typeId == tokens::mesh()) return std::make_unique<Mesh>(id);
     if (typeId == tokens::sphere()) return std::make_unique<Sphere>(id);
+    if (typeId == tokens::pointsPrim()) return std::make_unique<Points>(id);
+    if (typeId == tokens::basisCurves()) return std::make_unique<BasisCurves>(id);
     return nullptr;
 }
 
@@ -267,6 +271,11 @@ EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
         if (g->instanceId() == RTC_INVALID_GEOMETRY_ID && (!ids || ids->empty())) continue;
         if (r->kind == GeometryRecord::Kind::Sphere) {
             ++out.spheres;
+        } else if (r->kind == GeometryRecord::Kind::Points) {
+            out.points += r->points.size();
+        } else if (r->kind == GeometryRecord::Kind::Curves) {
+            ++out.curvePrims;
+            out.curveSegments += r->triangleFace.size();
         } else {
             ++out.meshes;
             out.triangles += r->triangles.size();

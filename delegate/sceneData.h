@@ -29,13 +29,16 @@ struct PrimvarChannel {
     hd::Token name;
     int components = 0;
     bool constant = false;
+    bool perPrimitive = false;  ///< one value per Embree primitive (a point, a curve segment)
     std::vector<float> data;
 };
 
 /// One rprim's geometry as the integrator sees it. Owned by the rprim; the Embree instance of
 /// the rprim carries a pointer to it as user data.
 struct GeometryRecord {
-    enum class Kind : uint8_t { Triangles, Sphere };
+    /// Points are Embree sphere points, Curves Embree round curves: their hits carry Embree's
+    /// geometric normal; triangleFace maps each primitive to its point or curve.
+    enum class Kind : uint8_t { Triangles, Sphere, Points, Curves };
     Kind kind = Kind::Triangles;
     int primId = -1;
     int materialIndex = -1;  ///< into SceneSnapshot::materials; -1 = use displayColor

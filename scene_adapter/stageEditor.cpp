@@ -172,6 +172,18 @@ void StageEditor::setAttribute(const std::string& primPath, const std::string& n
     const usd::Prim* prim = existingPrim(primPath, "setAttribute");
     checkNotInstanceProxy(primPath);
     std::string where = primPath + "." + name;
+    if (name.rfind("xformOp:", 0) == 0) {
+        // USD ignores ops missing from xformOpOrder; an edit that would change nothing is an error.
+        const usd::Attribute* o = prim->attribute("xformOpOrder");
+        const std::vector<std::string>* ops = o ? o->get(usd::kDefaultTime).strings() : nullptr;
+        bool listed = ops && std::any_of(ops->begin(), ops->end(), [&](const std::string& op) {
+                          return op == name || op == "!invert!" + name;
+                      });
+        if (!listed)
+            throw EditError(Code::Unsupported,
+                            "'" + name + "' is not in the xformOpOrder of '" + primPath +
+                                "' (author xformOpOrder first, or replace the whole transform)");
+    }
     std::string type;
     bool isArray = false;
     if (const usd::Attribute* a = prim->attribute(name)) {

@@ -447,3 +447,62 @@ def Sphere "S"
 }
 
 }  // namespace
+
+namespace {
+
+TEST(StageEditor, EditsReachingInstancesRePopulateTheGroups) {
+    const char* text = R"(#usda 1.0
+def Xform "Proto" (
+    active = false
+)
+{
+    def Mesh "Quad"
+    {
+        uniform token subdivisionScheme = "none"
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+    }
+}
+def Xform "World"
+{
+    def Xform "I0" (instanceable = true
+        references = </Proto>
+        active = true)
+    {
+        double3 xformOp:translate = (-2, 0, 0)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+    def Xform "I1" (instanceable = true
+        references = </Proto>
+        active = true)
+    {
+        double3 xformOp:translate = (2, 0, 0)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+}
+)";
+    host::SessionOptions o;
+    o.width = 16;
+    o.height = 16;
+    o.samplesPerPixel = 1;
+    auto s = host::RenderSession::openString(text, "inst.usda", o);
+    while (!s->step()) {
+    }
+    double instances = s->stats()["instances"];
+    EXPECT_EQ(instances, 2.0);
+    // An instance proxy is read-only; the instance itself can move or go.
+    EXPECT_THROW(s->editor().setAttribute("/World/I0/Quad", "points", EditValue::of({0, 0, 0})),
+                 EditError);
+    const double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 3, 0, 1};
+    s->editor().setTransform("/World/I1", m);
+    while (!s->step()) {
+    }
+    EXPECT_EQ(s->stats()["instances"], 2.0);
+    s->editor().removePrim("/World/I0");
+    while (!s->step()) {
+    }
+    EXPECT_EQ(s->stats()["instances"], 1.0);
+}
+
+}  // namespace

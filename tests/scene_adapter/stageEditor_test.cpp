@@ -506,3 +506,28 @@ def Xform "World"
 }
 
 }  // namespace
+
+namespace {
+
+TEST(StageEditor, AddAPointInstancerWithItsPrototype) {
+    Fixture f;
+    auto& e = f.edit();
+    double before = f.stat("instances");
+    e.addPrim("/World/Inst2", "PointInstancer");
+    e.addPrim("/World/Inst2/Proto", "Sphere");
+    e.setAttribute("/World/Inst2/Proto", "radius", EditValue::of({0.3}));
+    e.setAttribute("/World/Inst2", "positions", EditValue::of({-4, 2.5, 0, 4, 2.5, 0, 0, -1, 1}));
+    e.setAttribute("/World/Inst2", "protoIndices", EditValue::of({0, 0, 0}));
+    e.setRelationship("/World/Inst2", "prototypes", {"/World/Inst2/Proto"});
+    ASSERT_NE(f.index().rprim(hd::Path("/World/Inst2/Proto")), nullptr);
+    f.render();
+    EXPECT_EQ(f.stat("instances"), before + 3);
+    EXPECT_GT(f.coverage()[f.primIdOf("/World/Inst2/Proto")], 0);
+    // One instance hidden: InstanceIndex on the prototype only.
+    e.setAttribute("/World/Inst2", "invisibleIds", EditValue::of({2}));
+    EXPECT_EQ(f.rprims(), (Dirty{{"/World/Inst2/Proto", D::InstanceIndex}}));
+    f.render();
+    EXPECT_EQ(f.stat("instances"), before + 2);
+}
+
+}  // namespace

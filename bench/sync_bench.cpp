@@ -86,13 +86,15 @@ const std::string& sceneText() {
         for (int k = 0; k < kMaterials; ++k) {
             std::string l = "L" + std::to_string(k);
             s += "        def Material \"" + l + "\"\n        {\n";
-            s += "            token outputs:surface.connect = </World/Looks/" + l + "/S.outputs:surface>\n";
+            s += "            token outputs:surface.connect = </World/Looks/" + l +
+                 "/S.outputs:surface>\n";
             s += "            def Shader \"S\"\n            {\n";
             s += "                uniform token info:id = \"UsdPreviewSurface\"\n";
             s += "                color3f inputs:diffuseColor = (0.5, 0.5, 0.5)\n";
             s += "                token outputs:surface\n            }\n        }\n";
         }
-        s += "    }\n    def DistantLight \"Sun\"\n    {\n        float inputs:intensity = 2\n    }\n}\n";
+        s += "    }\n    def DistantLight \"Sun\"\n    {\n        float inputs:intensity = 2\n    "
+             "}\n}\n";
         return s;
     }();
     return text;
@@ -158,7 +160,8 @@ void incremental(benchmark::State& state, Edit&& edit) {
 void BM_Edit_MaterialInput(benchmark::State& state) {
     incremental(state, [](adapter::StageEditor& e, long i) {
         double v = 0.1 + 0.8 * double(i % 2);
-        e.setAttribute("/World/Looks/L3/S", "inputs:diffuseColor", adapter::EditValue::of({v, 0.2, 0.2}));
+        e.setAttribute("/World/Looks/L3/S", "inputs:diffuseColor",
+                       adapter::EditValue::of({v, 0.2, 0.2}));
     });
 }
 BENCHMARK(BM_Edit_MaterialInput)->Unit(benchmark::kMicrosecond)->UseRealTime();

@@ -31,13 +31,16 @@ std::string pathProblem(const std::string& p) {
     for (size_t start = 1; start <= p.size();) {
         size_t end = std::min(p.find('/', start), p.size());
         if (!validName(p.substr(start, end - start)))
-            return "prim path '" + p + "' has an invalid name '" + p.substr(start, end - start) + "'";
+            return "prim path '" + p + "' has an invalid name '" + p.substr(start, end - start) +
+                   "'";
         start = end + 1;
     }
     return "";
 }
 
-std::string countText(size_t n) { return std::to_string(n) + (n == 1 ? " number" : " numbers"); }
+std::string countText(size_t n) {
+    return std::to_string(n) + (n == 1 ? " number" : " numbers");
+}
 
 /// Builds a usd::Value of `type` (isArray) from host input, or explains what was expected.
 usd::Value toUsdValue(const std::string& where, const std::string& type, bool isArray,
@@ -53,12 +56,16 @@ usd::Value toUsdValue(const std::string& where, const std::string& type, bool is
     if (textual != in.isText)
         throw bad(in.isText ? "got text" : "got " + countText(in.numbers.size()));
     if (textual) {
-        if (!isArray && in.texts.size() != 1) throw bad("got " + std::to_string(in.texts.size()) + " strings");
+        if (!isArray && in.texts.size() != 1)
+            throw bad("got " + std::to_string(in.texts.size()) + " strings");
         if (isArray) return usd::Value::stringArray(type, in.texts, loc);
-        if (vt->scalar == usd::ScalarType::Asset) return usd::Value::asset({in.texts[0], in.texts[0]}, loc);
+        if (vt->scalar == usd::ScalarType::Asset)
+            return usd::Value::asset({in.texts[0], in.texts[0]}, loc);
         return usd::Value::string(type, in.texts[0], loc);
     }
-    if (!vt->isNumeric()) throw EditError(Code::Unsupported, where + ": values of type '" + type + "' cannot be edited");
+    if (!vt->isNumeric())
+        throw EditError(Code::Unsupported,
+                        where + ": values of type '" + type + "' cannot be edited");
     const auto& n = in.numbers;
     size_t c = size_t(vt->components);
     if (!isArray && n.size() != c) throw bad("got " + countText(n.size()));
@@ -67,8 +74,10 @@ usd::Value toUsdValue(const std::string& where, const std::string& type, bool is
     for (size_t i = 0; i < n.size(); ++i) {
         if (!std::isfinite(n[i])) throw bad("element " + std::to_string(i) + " is not finite");
         if ((vt->isInteger() || vt->scalar == usd::ScalarType::Bool) && n[i] != std::floor(n[i]))
-            throw bad("element " + std::to_string(i) + " (" + std::to_string(n[i]) + ") is not an integer");
-        if (vt->isUnsigned() && n[i] < 0) throw bad("element " + std::to_string(i) + " is negative");
+            throw bad("element " + std::to_string(i) + " (" + std::to_string(n[i]) +
+                      ") is not an integer");
+        if (vt->isUnsigned() && n[i] < 0)
+            throw bad("element " + std::to_string(i) + " is negative");
     }
     if (isArray) return usd::Value::numberArray(type, int(c), n, loc);
     if (c == 1) return usd::Value::number(type, n[0], loc);
@@ -84,10 +93,10 @@ bool isLightType(const std::string& t) {
 
 const std::vector<std::string>& StageEditor::supportedPrimTypes() {
     static const std::vector<std::string> t{
-        "Xform",  "Scope",    "Mesh",      "Sphere",   "Cube",          "Cylinder",
-        "Cone",   "Capsule",  "PointInstancer", "Camera", "Material",   "Shader",
-        "NodeGraph", "GeomSubset", "DistantLight", "DomeLight", "SphereLight", "RectLight",
-        "DiskLight", "CylinderLight"};
+        "Xform",     "Scope",       "Mesh",      "Sphere",         "Cube",
+        "Cylinder",  "Cone",        "Capsule",   "PointInstancer", "Camera",
+        "Material",  "Shader",      "NodeGraph", "GeomSubset",     "DistantLight",
+        "DomeLight", "SphereLight", "RectLight", "DiskLight",      "CylinderLight"};
     return t;
 }
 
@@ -95,41 +104,74 @@ std::string StageEditor::schemaType(const std::string& primType, const std::stri
     // Types from the USD schemas (UsdGeom, UsdLux, UsdShade, UsdPreviewSurface) for the
     // attributes this renderer reads, so a host can author them on a new prim without a type.
     static const std::map<std::string, std::string> common{
-        {"visibility", "token"}, {"purpose", "token"}, {"xformOpOrder", "token[]"},
-        {"xformOp:transform", "matrix4d"}, {"xformOp:translate", "double3"},
-        {"xformOp:scale", "float3"}, {"xformOp:rotateXYZ", "float3"},
-        {"doubleSided", "bool"}, {"extent", "float3[]"}, {"principled:refineLevel", "int"}};
+        {"visibility", "token"},          {"purpose", "token"},
+        {"xformOpOrder", "token[]"},      {"xformOp:transform", "matrix4d"},
+        {"xformOp:translate", "double3"}, {"xformOp:scale", "float3"},
+        {"xformOp:rotateXYZ", "float3"},  {"doubleSided", "bool"},
+        {"extent", "float3[]"},           {"principled:refineLevel", "int"}};
     static const std::map<std::string, std::string> mesh{
-        {"points", "point3f[]"}, {"normals", "normal3f[]"}, {"faceVertexCounts", "int[]"},
-        {"faceVertexIndices", "int[]"}, {"holeIndices", "int[]"}, {"orientation", "token"},
-        {"subdivisionScheme", "token"}, {"interpolateBoundary", "token"},
-        {"faceVaryingLinearInterpolation", "token"}, {"creaseIndices", "int[]"},
-        {"creaseLengths", "int[]"}, {"creaseSharpnesses", "float[]"}, {"cornerIndices", "int[]"},
-        {"cornerSharpnesses", "float[]"}, {"primvars:displayColor", "color3f[]"},
-        {"primvars:st", "texCoord2f[]"}, {"primvars:normals", "normal3f[]"}};
+        {"points", "point3f[]"},
+        {"normals", "normal3f[]"},
+        {"faceVertexCounts", "int[]"},
+        {"faceVertexIndices", "int[]"},
+        {"holeIndices", "int[]"},
+        {"orientation", "token"},
+        {"subdivisionScheme", "token"},
+        {"interpolateBoundary", "token"},
+        {"faceVaryingLinearInterpolation", "token"},
+        {"creaseIndices", "int[]"},
+        {"creaseLengths", "int[]"},
+        {"creaseSharpnesses", "float[]"},
+        {"cornerIndices", "int[]"},
+        {"cornerSharpnesses", "float[]"},
+        {"primvars:displayColor", "color3f[]"},
+        {"primvars:st", "texCoord2f[]"},
+        {"primvars:normals", "normal3f[]"}};
     static const std::map<std::string, std::string> shapes{
         {"radius", "double"}, {"size", "double"}, {"height", "double"}, {"axis", "token"}};
     static const std::map<std::string, std::string> instancer{
         {"positions", "point3f[]"}, {"orientations", "quath[]"}, {"scales", "float3[]"},
-        {"protoIndices", "int[]"}, {"ids", "int64[]"}, {"invisibleIds", "int64[]"}};
-    static const std::map<std::string, std::string> camera{
-        {"focalLength", "float"}, {"horizontalAperture", "float"}, {"verticalAperture", "float"},
-        {"horizontalApertureOffset", "float"}, {"verticalApertureOffset", "float"},
-        {"clippingRange", "float2"}, {"fStop", "float"}, {"focusDistance", "float"},
-        {"projection", "token"}};
-    static const std::map<std::string, std::string> light{
-        {"inputs:intensity", "float"}, {"inputs:exposure", "float"}, {"inputs:color", "color3f"},
-        {"inputs:normalize", "bool"}, {"inputs:enableColorTemperature", "bool"},
-        {"inputs:colorTemperature", "float"}, {"inputs:angle", "float"}, {"inputs:radius", "float"},
-        {"inputs:width", "float"}, {"inputs:height", "float"}, {"inputs:length", "float"},
-        {"inputs:texture:file", "asset"}, {"inputs:texture:format", "token"}};
-    static const std::map<std::string, std::string> shader{
-        {"info:id", "token"}, {"inputs:diffuseColor", "color3f"}, {"inputs:emissiveColor", "color3f"},
-        {"inputs:specularColor", "color3f"}, {"inputs:metallic", "float"}, {"inputs:roughness", "float"},
-        {"inputs:clearcoat", "float"}, {"inputs:clearcoatRoughness", "float"}, {"inputs:opacity", "float"},
-        {"inputs:opacityThreshold", "float"}, {"inputs:ior", "float"}, {"inputs:useSpecularWorkflow", "int"},
-        {"inputs:sheen", "float"}, {"inputs:sheenTint", "float"}, {"inputs:specularTint", "float"},
-        {"inputs:anisotropic", "float"}, {"inputs:subsurface", "float"}, {"inputs:file", "asset"}};
+        {"protoIndices", "int[]"},  {"ids", "int64[]"},          {"invisibleIds", "int64[]"}};
+    static const std::map<std::string, std::string> camera{{"focalLength", "float"},
+                                                           {"horizontalAperture", "float"},
+                                                           {"verticalAperture", "float"},
+                                                           {"horizontalApertureOffset", "float"},
+                                                           {"verticalApertureOffset", "float"},
+                                                           {"clippingRange", "float2"},
+                                                           {"fStop", "float"},
+                                                           {"focusDistance", "float"},
+                                                           {"projection", "token"}};
+    static const std::map<std::string, std::string> light{{"inputs:intensity", "float"},
+                                                          {"inputs:exposure", "float"},
+                                                          {"inputs:color", "color3f"},
+                                                          {"inputs:normalize", "bool"},
+                                                          {"inputs:enableColorTemperature", "bool"},
+                                                          {"inputs:colorTemperature", "float"},
+                                                          {"inputs:angle", "float"},
+                                                          {"inputs:radius", "float"},
+                                                          {"inputs:width", "float"},
+                                                          {"inputs:height", "float"},
+                                                          {"inputs:length", "float"},
+                                                          {"inputs:texture:file", "asset"},
+                                                          {"inputs:texture:format", "token"}};
+    static const std::map<std::string, std::string> shader{{"info:id", "token"},
+                                                           {"inputs:diffuseColor", "color3f"},
+                                                           {"inputs:emissiveColor", "color3f"},
+                                                           {"inputs:specularColor", "color3f"},
+                                                           {"inputs:metallic", "float"},
+                                                           {"inputs:roughness", "float"},
+                                                           {"inputs:clearcoat", "float"},
+                                                           {"inputs:clearcoatRoughness", "float"},
+                                                           {"inputs:opacity", "float"},
+                                                           {"inputs:opacityThreshold", "float"},
+                                                           {"inputs:ior", "float"},
+                                                           {"inputs:useSpecularWorkflow", "int"},
+                                                           {"inputs:sheen", "float"},
+                                                           {"inputs:sheenTint", "float"},
+                                                           {"inputs:specularTint", "float"},
+                                                           {"inputs:anisotropic", "float"},
+                                                           {"inputs:subsurface", "float"},
+                                                           {"inputs:file", "asset"}};
     static const std::map<std::string, std::string> subset{
         {"indices", "int[]"}, {"elementType", "token"}, {"familyName", "token"}};
     auto find = [&](const std::map<std::string, std::string>& m) -> std::string {
@@ -154,8 +196,7 @@ StageEditor::StageEditor(usd::Stage& stage, UsdSceneDelegate& delegate, hd::Rend
 
 const usd::Prim* StageEditor::existingPrim(const std::string& primPath, const char* what) const {
     const usd::Prim* p = primPath == "/" ? nullptr : _stage.prim(primPath);
-    if (!p)
-        throw EditError(Code::NotFound, std::string(what) + ": no prim at '" + primPath + "'");
+    if (!p) throw EditError(Code::NotFound, std::string(what) + ": no prim at '" + primPath + "'");
     return p;
 }
 
@@ -288,17 +329,21 @@ void StageEditor::connect(const std::string& primPath, const std::string& name,
         throw EditError(Code::BadValue, where + ": only inputs:* and outputs:* can be connected");
     std::vector<std::string> sources;
     if (!source.empty()) {
-        size_t dot = source.find('.', source.rfind('/') == std::string::npos ? 0 : source.rfind('/'));
+        size_t dot =
+            source.find('.', source.rfind('/') == std::string::npos ? 0 : source.rfind('/'));
         std::string sourcePrim = source.substr(0, dot);
         if (dot == std::string::npos || !_stage.prim(sourcePrim))
-            throw EditError(Code::NotFound, where + ": expected a source like /Mat/Shader.outputs:rgb "
-                                                    "on an existing prim, got '" + source + "'");
+            throw EditError(Code::NotFound, where +
+                                                ": expected a source like /Mat/Shader.outputs:rgb "
+                                                "on an existing prim, got '" +
+                                                source + "'");
         sources.push_back(source);
     }
     if (const usd::Attribute* a = prim->attribute(name); !a && !usd::findValueType(typeName))
         throw EditError(Code::BadValue, where + ": unknown value type '" + typeName + "'");
     usd::StageEdit(_stage).connect(primPath, name, typeName, std::move(sources));
-    _delegate.attributeChanged(primPath, name.rfind("inputs:", 0) == 0 ? "connection:" + name : name, &_index);
+    _delegate.attributeChanged(
+        primPath, name.rfind("inputs:", 0) == 0 ? "connection:" + name : name, &_index);
 }
 
 void StageEditor::setRelationship(const std::string& primPath, const std::string& name,
@@ -312,8 +357,9 @@ void StageEditor::setRelationship(const std::string& primPath, const std::string
         for (const std::string& t : targets) {
             const usd::Prim* m = _stage.prim(t);
             if (!m || m->typeName() != "Material")
-                throw EditError(Code::BadValue, primPath + "." + name + ": expected a Material, but '" +
-                                                    t + "' is " + (m ? m->typeName() : "not a prim"));
+                throw EditError(Code::BadValue, primPath + "." + name +
+                                                    ": expected a Material, but '" + t + "' is " +
+                                                    (m ? m->typeName() : "not a prim"));
         }
     usd::StageEdit(_stage).setRelationship(primPath, name, targets);
     _delegate.relationshipChanged(primPath, name, &_index);

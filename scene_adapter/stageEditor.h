@@ -25,7 +25,7 @@ namespace principled::adapter {
 class UsdSceneDelegate;
 
 class EditError : public std::runtime_error {
-public:
+  public:
     enum class Code { NotFound, BadValue, Unsupported };
     EditError(Code code, const std::string& message) : std::runtime_error(message), code(code) {}
     Code code;
@@ -52,7 +52,7 @@ struct EditValue {
 };
 
 class StageEditor {
-public:
+  public:
     /// All three must outlive the editor; the delegate must serve `stage` into `index`.
     StageEditor(usd::Stage& stage, UsdSceneDelegate& delegate, hd::RenderIndex& index);
 
@@ -60,8 +60,8 @@ public:
     /// authored in the layers stay there but no longer win). The attribute's authored type
     /// decides how the value is read; a new attribute takes `typeName` ("point3f[]",
     /// "color3f", "token"), or the schema type of a well-known name (points, inputs:color...).
-    void setAttribute(const std::string& primPath, const std::string& name,
-                      const EditValue& value, const std::string& typeName = "");
+    void setAttribute(const std::string& primPath, const std::string& name, const EditValue& value,
+                      const std::string& typeName = "");
     /// Replaces the prim's local transform (16 numbers in USD order, translation in 12..14):
     /// authors xformOp:transform and makes it the only op.
     void setTransform(const std::string& primPath, const double matrix[16]);
@@ -85,7 +85,7 @@ public:
     /// The type of a well-known attribute of a prim type ("" when unknown).
     static std::string schemaType(const std::string& primType, const std::string& attribute);
 
-private:
+  private:
     const usd::Prim* existingPrim(const std::string& primPath, const char* what) const;
     void checkNotInstanceProxy(const std::string& primPath) const;
 

@@ -37,7 +37,9 @@ const Token& instancerType() {
     return t;
 }
 
-bool isRprimType(const Token& t) { return t == tokens::mesh() || t == tokens::sphere(); }
+bool isRprimType(const Token& t) {
+    return t == tokens::mesh() || t == tokens::sphere();
+}
 
 bool isLightType(const Token& t) {
     return t == tokens::distantLight() || t == tokens::domeLight() || t == tokens::sphereLight() ||
@@ -50,7 +52,9 @@ bool isAtOrBelow(const std::string& path, const std::string& root) {
            (path.size() == root.size() || path[root.size()] == '/');
 }
 
-bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+bool startsWith(const std::string& s, const char* prefix) {
+    return s.rfind(prefix, 0) == 0;
+}
 
 std::string tokenOf(const usd::Prim& prim, const char* name, double time,
                     const std::string& fallback) {
@@ -143,8 +147,10 @@ void UsdSceneDelegate::removeEntry(const Path& id, RenderIndex* index) {
     auto it = _entries.find(id);
     if (it == _entries.end()) return;
     const Token& t = it->second.type;
-    if (isRprimType(t)) index->removeRprim(id);
-    else if (t != instancerType()) index->removeSprim(id);
+    if (isRprimType(t))
+        index->removeRprim(id);
+    else if (t != instancerType())
+        index->removeSprim(id);
     _cameras.erase(std::remove(_cameras.begin(), _cameras.end(), id), _cameras.end());
     _entries.erase(it);
 }
@@ -197,7 +203,8 @@ void UsdSceneDelegate::primAdded(const std::string& path, RenderIndex* index) {
         if (const Entry* e = entry(inst); e && e->prim) resyncSubtree(e->prim->path(), index);
     const std::string& type = p->typeName();
     if (type == "Material") rebind("/", "", index);  // bindings waiting for it now resolve
-    if (type == "Shader" || type == "NodeGraph") materialNetworkChanged(*p, SprimDirty::Resource, index);
+    if (type == "Shader" || type == "NodeGraph")
+        materialNetworkChanged(*p, SprimDirty::Resource, index);
     if (type == "GeomSubset" && p->parent())
         for (const Path& id : idsOf(p->parent()))
             if (isRprimType(_entries[id].type))
@@ -294,14 +301,15 @@ void UsdSceneDelegate::visibilityChanged(const usd::Prim& prim, RenderIndex* ind
     ChangeTracker& tracker = index->changeTracker();
     std::vector<std::string> instancers;
     std::function<void(const usd::Prim&, bool)> walk = [&](const usd::Prim& p, bool parentVisible) {
-        bool visible =
-            parentVisible && tokenOf(p, "visibility", _time, "inherited") != "invisible";
+        bool visible = parentVisible && tokenOf(p, "visibility", _time, "inherited") != "invisible";
         auto it = _entries.find(Path(p.path()));
         if (it != _entries.end() && it->second.instancer.empty()) {
             Entry& e = it->second;
             e.visible = visible;
-            if (isRprimType(e.type)) tracker.markRprimDirty(it->first, RprimDirty::Visibility);
-            else if (isLightType(e.type)) tracker.markSprimDirty(it->first, SprimDirty::Visibility);
+            if (isRprimType(e.type))
+                tracker.markRprimDirty(it->first, RprimDirty::Visibility);
+            else if (isLightType(e.type))
+                tracker.markSprimDirty(it->first, SprimDirty::Visibility);
         }
         if (p.typeName() == "PointInstancer") {  // prototypes carry the instancer's visibility
             instancers.push_back(p.path());
@@ -327,9 +335,9 @@ void UsdSceneDelegate::rebind(const std::string& root, const std::string& materi
     };
     for (auto& [id, e] : _entries) {
         if (!isRprimType(e.type) || !e.prim) continue;
-        bool resolve = (!root.empty() && isAtOrBelow(e.prim->path(), root)) ||
-                       (!material.empty() && !e.material.empty() &&
-                        isAtOrBelow(e.material.str(), material));
+        bool resolve =
+            (!root.empty() && isAtOrBelow(e.prim->path(), root)) ||
+            (!material.empty() && !e.material.empty() && isAtOrBelow(e.material.str(), material));
         bool dirty = false;
         if (resolve) {
             Path now = resolveMaterialBinding(*e.prim);
@@ -385,7 +393,8 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
         if (isRprimType(e.type)) {
             DirtyBits bits = meshAttributeBits(attr);
             if (e.type == tokens::sphere() && attr == "radius") bits = RprimDirty::Points;
-            if (e.shape && (attr == "size" || attr == "radius" || attr == "height" || attr == "axis")) {
+            if (e.shape &&
+                (attr == "size" || attr == "radius" || attr == "height" || attr == "axis")) {
                 prepareShape(*p, &e);  // keeps the previous mesh (and warns) when invalid
                 bits = RprimDirty::Points | RprimDirty::Normals;
             }
@@ -420,8 +429,7 @@ void UsdSceneDelegate::relationshipChanged(const std::string& primPath, const st
         if (subtreeHasInstances(primPath)) return repopulate(index);  // keys hold the binding
         return rebind(primPath, "", index);
     }
-    if (name == "prototypes" && p->typeName() == "PointInstancer")
-        resyncSubtree(primPath, index);
+    if (name == "prototypes" && p->typeName() == "PointInstancer") resyncSubtree(primPath, index);
 }
 
 }  // namespace principled::adapter

@@ -143,7 +143,8 @@ void EmbreeSession::openFile(const std::string& path) {
 
 void EmbreeSession::openString(const std::string& text, const std::string& displayName) {
     open([&](const host::SessionOptions& o) {
-        return host::RenderSession::openString(text, displayName.empty() ? "<string>" : displayName, o);
+        return host::RenderSession::openString(text, displayName.empty() ? "<string>" : displayName,
+                                               o);
     });
 }
 
@@ -399,8 +400,10 @@ const std::vector<std::pair<std::string, double>>& EmbreeSession::snapshotStats(
 const char* EmbreeSession::takeWarnings() {
     _text.clear();
     std::vector<std::string> lines;
-    if (_session) lines = _session->takeWarnings();
-    else lines = _delegate->takeWarnings();
+    if (_session)
+        lines = _session->takeWarnings();
+    else
+        lines = _delegate->takeWarnings();
     for (const auto& line : lines) _text += line + "\n";
     return _text.c_str();
 }

@@ -106,7 +106,7 @@ class EmbreeSession {
     // The delegate outlives stages, so settings set before or between opens are kept.
     std::unique_ptr<embree::EmbreeRenderDelegate> _delegate;
     std::unique_ptr<host::RenderSession> _session;  ///< the open stage, if any
-    std::string _cameraRequest;  ///< empty: the default camera
+    std::string _cameraRequest;                     ///< empty: the default camera
     int _width = 640, _height = 360;
     std::vector<std::string> _bound;  ///< in bind order
     // Storage behind strings returned through the C ABI (declared before _aovs, which points in).

@@ -49,10 +49,11 @@ const Attribute* StageEdit::setAttribute(const std::string& primPath, const std:
 }
 
 const Attribute* StageEdit::connect(const std::string& primPath, const std::string& name,
-                                   const std::string& typeName, std::vector<std::string> sources) {
+                                    const std::string& typeName, std::vector<std::string> sources) {
     Prim* prim = mutablePrim(primPath);
     if (!prim) return nullptr;
-    if (!prim->attribute(name)) setAttribute(primPath, name, typeName, false, Value::none(typeName, false, location()));
+    if (!prim->attribute(name))
+        setAttribute(primPath, name, typeName, false, Value::none(typeName, false, location()));
     auto* attr = const_cast<Attribute*>(prim->attribute(name));
     attr->_connections = std::move(sources);
     attr->_location = location();

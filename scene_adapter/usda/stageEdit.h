@@ -15,7 +15,7 @@
 namespace principled::usd {
 
 class StageEdit {
-public:
+  public:
     explicit StageEdit(Stage& stage) : _stage(stage) {}
 
     /// The location edits report ("<host edit>").
@@ -41,7 +41,7 @@ public:
     /// pointers a reader still holds never dangle.
     bool removePrim(const std::string& path);
 
-private:
+  private:
     Prim* mutablePrim(const std::string& path);
     void unindex(Prim& prim);
 

@@ -194,8 +194,9 @@ TEST(StageEditor, PointsEditMarksPointsOnlyOnThatMesh) {
     EXPECT_EQ(f.rprims(), (Dirty{{"/World/Group/Left", D::Points}}));
     EXPECT_TRUE(f.sprims().empty());
     f.index().sync();
-    EXPECT_EQ(f.syncedRprims(), (std::vector<std::pair<std::string, hd::DirtyBits>>{
-                                    {"/World/Group/Left", D::Points}}));
+    EXPECT_EQ(
+        f.syncedRprims(),
+        (std::vector<std::pair<std::string, hd::DirtyBits>>{{"/World/Group/Left", D::Points}}));
     EXPECT_TRUE(f.index().lastSync().sprims.empty());
     f.render();
     EXPECT_EQ(f.stat("blasBuilds"), blas + 1);
@@ -228,8 +229,8 @@ TEST(StageEditor, XformTransformMarksTransformOnDescendantsOnly) {
     double blas = f.stat("blasBuilds");
     const double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1.5, 0, 0, 1};
     f.edit().setTransform("/World/Group", m);
-    EXPECT_EQ(f.rprims(), (Dirty{{"/World/Group/Left", D::Transform},
-                                 {"/World/Group/Right", D::Transform}}));
+    EXPECT_EQ(f.rprims(),
+              (Dirty{{"/World/Group/Left", D::Transform}, {"/World/Group/Right", D::Transform}}));
     EXPECT_TRUE(f.sprims().empty());
     f.render();
     EXPECT_EQ(f.stat("blasBuilds"), blas);  // instances move; no BVH is rebuilt
@@ -289,8 +290,8 @@ TEST(StageEditor, TopologyEditMarksTopologyOnly) {
 TEST(StageEditor, VisibilityAndPurpose) {
     Fixture f;
     f.edit().setAttribute("/World/Group", "visibility", EditValue::text("invisible"));
-    EXPECT_EQ(f.rprims(), (Dirty{{"/World/Group/Left", D::Visibility},
-                                 {"/World/Group/Right", D::Visibility}}));
+    EXPECT_EQ(f.rprims(),
+              (Dirty{{"/World/Group/Left", D::Visibility}, {"/World/Group/Right", D::Visibility}}));
     f.render();
     EXPECT_EQ(f.coverage().count(f.primIdOf("/World/Group/Left")), 0u);
     EXPECT_EQ(f.coverage().count(f.primIdOf("/World/Group/Right")), 0u);
@@ -351,10 +352,13 @@ TEST(StageEditor, AddMeshMaterialLightAndCamera) {
     e.addPrim("/World/Looks/Green", "Material");
     e.addPrim("/World/Looks/Green/Surface", "Shader");
     e.setAttribute("/World/Looks/Green/Surface", "info:id", EditValue::text("UsdPreviewSurface"));
-    e.setAttribute("/World/Looks/Green/Surface", "inputs:diffuseColor", EditValue::of({0.05, 0.8, 0.05}));
-    e.connect("/World/Looks/Green", "outputs:surface", "/World/Looks/Green/Surface.outputs:surface");
+    e.setAttribute("/World/Looks/Green/Surface", "inputs:diffuseColor",
+                   EditValue::of({0.05, 0.8, 0.05}));
+    e.connect("/World/Looks/Green", "outputs:surface",
+              "/World/Looks/Green/Surface.outputs:surface");
     e.addPrim("/World/New", "Mesh");
-    e.setAttribute("/World/New", "points", EditValue::of({-1, -2, 1, 1, -2, 1, 1, -1, 1, -1, -1, 1}));
+    e.setAttribute("/World/New", "points",
+                   EditValue::of({-1, -2, 1, 1, -2, 1, 1, -1, 1, -1, -1, 1}));
     e.setAttribute("/World/New", "faceVertexCounts", EditValue::of({4}));
     e.setAttribute("/World/New", "faceVertexIndices", EditValue::of({0, 1, 2, 3}));
     e.setAttribute("/World/New", "subdivisionScheme", EditValue::text("none"));
@@ -394,25 +398,40 @@ TEST(StageEditor, BadEditsThrowNamingThePrimAndChangeNothing) {
         EXPECT_TRUE(f.sprims().empty());
     };
     auto& e = f.edit();
-    expectError([&] { e.setAttribute("/World/Nope", "points", EditValue::of({0, 0, 0})); },
-                EditError::Code::NotFound, "/World/Nope");
+    expectError(
+        [&] {
+            e.setAttribute("/World/Nope", "points", EditValue::of({0, 0, 0}));
+        },
+        EditError::Code::NotFound, "/World/Nope");
     expectError([&] { e.setAttribute("/World/Group/Left", "points", EditValue::text("x")); },
                 EditError::Code::BadValue, "point3f[]");
-    expectError([&] { e.setAttribute("/World/Group/Left", "points", EditValue::of({1, 2})); },
-                EditError::Code::BadValue, "/World/Group/Left.points");
-    expectError([&] { e.setAttribute("/World/Looks/Red/Surface", "inputs:diffuseColor", EditValue::of({1, 0})); },
-                EditError::Code::BadValue, "color3f");
-    expectError([&] { e.setAttribute("/World/Group/Left", "faceVertexCounts", EditValue::of({3.5})); },
-                EditError::Code::BadValue, "int[]");
-    expectError([&] { e.setAttribute("/World/Group/Left", "visibility", EditValue::text("hidden")); },
-                EditError::Code::BadValue, "invisible");
+    expectError(
+        [&] {
+            e.setAttribute("/World/Group/Left", "points", EditValue::of({1, 2}));
+        },
+        EditError::Code::BadValue, "/World/Group/Left.points");
+    expectError(
+        [&] {
+            e.setAttribute("/World/Looks/Red/Surface", "inputs:diffuseColor",
+                           EditValue::of({1, 0}));
+        },
+        EditError::Code::BadValue, "color3f");
+    expectError(
+        [&] { e.setAttribute("/World/Group/Left", "faceVertexCounts", EditValue::of({3.5})); },
+        EditError::Code::BadValue, "int[]");
+    expectError(
+        [&] { e.setAttribute("/World/Group/Left", "visibility", EditValue::text("hidden")); },
+        EditError::Code::BadValue, "invisible");
     expectError([&] { e.setAttribute("/World/Group/Left", "madeUp", EditValue::of({1})); },
                 EditError::Code::NotFound, "madeUp");
     expectError([&] { e.bindMaterial("/World/Group/Left", "/World/Group/Right"); },
                 EditError::Code::BadValue, "expected a Material");
-    expectError([&] { e.addPrim("/World/Thing", "Teapot"); }, EditError::Code::Unsupported, "Teapot");
-    expectError([&] { e.addPrim("/Missing/Child", "Mesh"); }, EditError::Code::NotFound, "/Missing");
-    expectError([&] { e.addPrim("/World/Group", "Xform"); }, EditError::Code::BadValue, "already exists");
+    expectError([&] { e.addPrim("/World/Thing", "Teapot"); }, EditError::Code::Unsupported,
+                "Teapot");
+    expectError([&] { e.addPrim("/Missing/Child", "Mesh"); }, EditError::Code::NotFound,
+                "/Missing");
+    expectError([&] { e.addPrim("/World/Group", "Xform"); }, EditError::Code::BadValue,
+                "already exists");
     expectError([&] { e.removePrim("/World/Nope"); }, EditError::Code::NotFound, "/World/Nope");
     const double nan[16] = {std::nan(""), 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     expectError([&] { e.setTransform("/World/Group", nan); }, EditError::Code::BadValue, "finite");

@@ -170,6 +170,7 @@ bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& wo
             visitPrototype(*child, Path(child->path()), glm::dmat4(1.0), true, instancer, 0, index);
     }
     if (visible) _entries[it->second].instanceXforms->push_back(world);
+    _instancePrims.push_back(prim.path());
     return true;
 }
 

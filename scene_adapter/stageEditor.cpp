@@ -93,7 +93,7 @@ bool isLightType(const std::string& t) {
 
 const std::vector<std::string>& StageEditor::supportedPrimTypes() {
     static const std::vector<std::string> t{
-        "Xform",     "Scope",       "Mesh",      "Sphere",         "Cube",
+        "Xform",     "Scope",       "Mesh",      "Sphere",         "Points",  "BasisCurves", "Cube",
         "Cylinder",  "Cone",        "Capsule",   "PointInstancer", "Camera",
         "Material",  "Shader",      "NodeGraph", "GeomSubset",     "DistantLight",
         "DomeLight", "SphereLight", "RectLight", "DiskLight",      "CylinderLight"};
@@ -172,6 +172,9 @@ std::string StageEditor::schemaType(const std::string& primType, const std::stri
                                                            {"inputs:anisotropic", "float"},
                                                            {"inputs:subsurface", "float"},
                                                            {"inputs:file", "asset"}};
+    static const std::map<std::string, std::string> curves{
+        {"points", "point3f[]"}, {"widths", "float[]"}, {"curveVertexCounts", "int[]"},
+        {"type", "token"},       {"basis", "token"},    {"wrap", "token"}};
     static const std::map<std::string, std::string> subset{
         {"indices", "int[]"}, {"elementType", "token"}, {"familyName", "token"}};
     auto find = [&](const std::map<std::string, std::string>& m) -> std::string {
@@ -183,6 +186,7 @@ std::string StageEditor::schemaType(const std::string& primType, const std::stri
     if (t.empty() && (primType == "Sphere" || primType == "Cube" || primType == "Cylinder" ||
                       primType == "Cone" || primType == "Capsule"))
         t = find(shapes);
+    if (t.empty() && (primType == "Points" || primType == "BasisCurves")) t = find(curves);
     if (t.empty() && primType == "PointInstancer") t = find(instancer);
     if (t.empty() && primType == "Camera") t = find(camera);
     if (t.empty() && isLightType(primType)) t = find(light);

@@ -38,7 +38,8 @@ const Token& instancerType() {
 }
 
 bool isRprimType(const Token& t) {
-    return t == tokens::mesh() || t == tokens::sphere();
+    return t == tokens::mesh() || t == tokens::sphere() || t == tokens::pointsPrim() ||
+           t == tokens::basisCurves();
 }
 
 bool isLightType(const Token& t) {
@@ -69,8 +70,10 @@ DirtyBits meshAttributeBits(const std::string& a) {
         return RprimDirty::Normals;
     if (startsWith(a, "primvars:")) return RprimDirty::Primvar;
     if (a == "faceVertexCounts" || a == "faceVertexIndices" || a == "holeIndices" ||
-        a == "orientation" || a == "subdivisionScheme")
+        a == "orientation" || a == "subdivisionScheme" || a == "curveVertexCounts" || a == "type" ||
+        a == "basis" || a == "wrap")
         return RprimDirty::Topology;
+    if (a == "widths") return RprimDirty::Widths;
     if (a == "interpolateBoundary" || a == "faceVaryingLinearInterpolation" ||
         a == "triangleSubdivisionRule" || startsWith(a, "crease") || startsWith(a, "corner"))
         return RprimDirty::SubdivTags;

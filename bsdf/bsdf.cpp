@@ -87,8 +87,12 @@ std::array<float, kLobeCount> Bsdf::lobeProbabilities(const glm::vec3& wo) const
 
 glm::vec3 Bsdf::eval(const glm::vec3& woIn, const glm::vec3& wiIn, float* pdfOut,
                      LobeValues* perLobe) const {
+    return evalView(prepare(woIn), wiIn, pdfOut, perLobe);
+}
+
+glm::vec3 Bsdf::evalView(const View& v, const glm::vec3& wiIn, float* pdfOut,
+                         LobeValues* perLobe) const {
     if (perLobe) perLobe->fill(glm::vec3(0.0f));
-    View v = prepare(woIn);
     glm::vec3 wi(wiIn.x, wiIn.y, wiIn.z * v.flip);
     glm::vec3 f(0.0f);
     float pdf = 0.0f;
@@ -149,7 +153,7 @@ std::optional<BsdfSample> Bsdf::sample(const glm::vec3& woIn, float uLobe,
         return s;
     }
     // The mixture value and density at wi (identical to eval() and pdf() there).
-    s.f = eval(woIn, s.wi, &s.pdf);
+    s.f = evalView(v, s.wi, &s.pdf, nullptr);
     if (!(s.pdf > 0.0f)) return std::nullopt;
     return s;
 }

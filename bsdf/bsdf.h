@@ -50,6 +50,8 @@ public:
 private:
     struct View;
     View prepare(const glm::vec3& wo) const;
+    /// eval() for a prepared view (sample() reuses its view instead of preparing it again).
+    glm::vec3 evalView(const View& v, const glm::vec3& wiIn, float* pdfOut, LobeValues* perLobe) const;
 
     LobeSet _set;
     LobeMask _lobes = 0;

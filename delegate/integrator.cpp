@@ -377,6 +377,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         std::optional<bsdf::Bsdf> builtBsdf;
         if (!constantBsdf) builtBsdf.emplace(mat->params, _settings.bsdf);
         const bsdf::Bsdf& bsdf = constantBsdf ? *constantBsdf : *builtBsdf;
+        const bsdf::Bsdf::View view = bsdf.prepare(woLocal);  // shared by NEE and sampling
 
         // Next-event estimation: one light picked uniformly.
         if (_settings.nee && !lights.empty() && !bsdf.isDeltaOnly()) {
@@ -391,7 +392,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::dot(ls.wi, hit.ng) > 0.0f) {
                 float bsdfPdf = 0.0f;
                 bsdf::LobeValues perLobe;
-                glm::vec3 f = bsdf.eval(woLocal, frame.toLocal(ls.wi), &bsdfPdf,
+                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf,
                                         depth == 0 ? &perLobe : nullptr);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
@@ -419,7 +420,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // Continue the path by sampling the BSDF.
         float ulobe = sampler.next1D();
         glm::vec2 u = sampler.next2D();
-        auto s = bsdf.sample(woLocal, ulobe, u);
+        auto s = bsdf.sample(view, ulobe, u);
         if (!s || !(s->pdf > 0.0f)) break;
         glm::vec3 wi = frame.toWorld(s->wi);
         // Reject directions on the wrong side of the geometric surface (light leaks).

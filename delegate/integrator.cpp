@@ -263,6 +263,17 @@ float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const g
 
 }  // namespace
 
+Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings)
+    : _scene(scene), _settings(settings) {
+    _constantBsdfs.reserve(scene.materials.size());
+    for (const MaterialRecord& m : scene.materials) {
+        if (m.program)
+            _constantBsdfs.emplace_back();
+        else
+            _constantBsdfs.emplace_back(std::in_place, m.constant.params, _settings.bsdf);
+    }
+}
+
 PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     PathSample out;
     out.lobes.fill(glm::vec3(0.0f));
@@ -334,10 +345,17 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // defaults with displayColor.
         HitContext context(hit);
         shading::ShadedMaterial shaded;
+        const shading::ShadedMaterial* mat = &shaded;
+        const bsdf::Bsdf* constantBsdf = nullptr;  // prebuilt for untextured materials
         const int materialIndex = rec.materialFor(hit.triangle);  // GeomSubset or the prim's
         if (materialIndex >= 0 && materialIndex < int(_scene.materials.size())) {
             const MaterialRecord& m = _scene.materials[materialIndex];
-            shaded = m.program ? m.program->evaluate(context) : m.constant;
+            if (m.program) {
+                shaded = m.program->evaluate(context);
+            } else {
+                mat = &m.constant;
+                constantBsdf = &*_constantBsdfs[size_t(materialIndex)];
+            }
         } else {
             shaded.params.baseColor = rec.displayColor;
             float dc[3];
@@ -348,7 +366,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             shaded.params.specular = 0.5f;
         }
         // Partial presence (opacity, cutouts): a stochastic choice to pass through.
-        float presence = shaded.presence();
+        float presence = mat->presence();
         if (presence < 1.0f && passThrough < kMaxPassThrough) {
             if (presence <= 0.0f || sampler.next1D() >= presence) {
                 ++passThrough;
@@ -357,7 +375,6 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 continue;
             }
         }
-        const shading::ShadedMaterial* mat = &shaded;
         if (mat->emission != glm::vec3(0.0f)) {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
             float lightPdf = 0.0f;
@@ -407,9 +424,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         }
         Frame frame(ns);
         glm::vec3 woLocal = frame.toLocal(wo);
-        bsdf::Bsdf bsdf(mat->params, _settings.bsdf);
-
         if (depth >= _settings.maxDepth) break;
+        std::optional<bsdf::Bsdf> builtBsdf;
+        if (!constantBsdf) builtBsdf.emplace(mat->params, _settings.bsdf);
+        const bsdf::Bsdf& bsdf = constantBsdf ? *constantBsdf : *builtBsdf;
+        const bsdf::Bsdf::View view = bsdf.prepare(woLocal);  // shared by NEE and sampling
 
         // Next-event estimation: one light picked uniformly.
         if (_settings.nee && !lights.empty() && !bsdf.isDeltaOnly()) {
@@ -424,7 +443,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::dot(ls.wi, hit.ng) > 0.0f) {
                 float bsdfPdf = 0.0f;
                 bsdf::LobeValues perLobe;
-                glm::vec3 f = bsdf.eval(woLocal, frame.toLocal(ls.wi), &bsdfPdf,
+                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf,
                                         depth == 0 ? &perLobe : nullptr);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
@@ -453,7 +472,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // Continue the path by sampling the BSDF.
         float ulobe = sampler.next1D();
         glm::vec2 u = sampler.next2D();
-        auto s = bsdf.sample(woLocal, ulobe, u);
+        auto s = bsdf.sample(view, ulobe, u);
         if (!s || !(s->pdf > 0.0f)) break;
         glm::vec3 wi = frame.toWorld(s->wi);
         // Reject directions on the wrong side of the geometric surface (light leaks).

@@ -107,6 +107,7 @@ struct LightRecord {
     const GeometryRecord* mesh = nullptr;
     std::shared_ptr<const std::vector<uint32_t>> meshTriangles;
     std::shared_ptr<const std::vector<float>> meshAreaCdf;  ///< meshTriangles.size() + 1
+    bool solidAngleSampling = true;  ///< small mesh lights: sample by solid angle (lightSampling.cpp)
 };
 
 /// Everything a render pass reads: the committed top-level scene and the tables the records

@@ -85,6 +85,7 @@ constexpr size_t kSolidAngleMaxTriangles = 8;
 // precision and area sampling is as good (the 1/r^2 factor is nearly constant over the light);
 // above it a point is almost enclosed. The same test decides sampleLight() and the MIS pdf.
 constexpr float kMinSolidAngle = 1e-3f, kMaxSolidAngle = 6.2f;
+constexpr float kNearRadii = 4.0f;
 
 void meshTriangleWorld(const LightRecord& l, size_t i, glm::vec3* a, glm::vec3* b, glm::vec3* c) {
     const GeometryRecord& g = *l.mesh;
@@ -99,6 +100,10 @@ void meshTriangleWorld(const LightRecord& l, size_t i, glm::vec3* a, glm::vec3* 
 float meshSolidAngles(const LightRecord& l, const glm::vec3& p, float* omegas) {
     size_t n = l.meshTriangles->size();
     if (n > kSolidAngleMaxTriangles) return 0.0f;
+    // Far from the light (beyond kNearRadii bounding radii) 1/r^2 and the cosine barely vary
+    // over it, area sampling is nearly as good and costs no trigonometry: one distance test.
+    glm::vec3 toC = p - l.center;
+    if (glm::dot(toC, toC) > kNearRadii * kNearRadii * l.radius * l.radius) return 0.0f;
     float total = 0.0f;
     for (size_t i = 0; i < n; ++i) {
         glm::vec3 a, b, c;

@@ -170,6 +170,20 @@ void EmbreeRenderDelegate::addMeshLights() {
         l.radiance = emission;
         l.area = float(area);
         l.mesh = r;
+        // Bounding sphere of the emitting triangles (vertex mean, farthest vertex): solid-angle
+        // sampling is used only near the light (lightSampling.cpp).
+        {
+            glm::dvec3 sum(0.0);
+            for (uint32_t t : *tris)
+                for (int k = 0; k < 3; ++k)
+                    sum += glm::dvec3(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)));
+            l.center = glm::vec3(sum / double(3 * tris->size()));
+            float rad = 0.0f;
+            for (uint32_t t : *tris)
+                for (int k = 0; k < 3; ++k)
+                    rad = std::max(rad, glm::length(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)) - l.center));
+            l.radius = rad;
+        }
         l.meshTriangles = std::move(tris);
         l.meshAreaCdf = std::move(cdf);
         l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice

@@ -229,9 +229,10 @@ void EmbreeRenderDelegate::buildLightDistribution() {
         total += power[i];
     }
     _snapshot.lightCdf.assign(lights.size() + 1, 0.0f);
+    const float mix = std::clamp(floatSetting("lightPickUniform", 0.1f), 0.0f, 1.0f);
     for (size_t i = 0; i < lights.size(); ++i) {
         float uniform = 1.0f / float(lights.size());
-        float prob = total > 0.0 ? 0.9f * float(power[i] / total) + 0.1f * uniform : uniform;
+        float prob = total > 0.0 ? (1.0f - mix) * float(power[i] / total) + mix * uniform : uniform;
         lights[i].pickProbability = prob;
         _snapshot.lightCdf[i + 1] = _snapshot.lightCdf[i] + prob;
     }
@@ -315,6 +316,7 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
+        {"Light pick uniform", Token("lightPickUniform"), Value(0.1f), "next-event estimation light pick: this fraction uniform, the rest by power"},
         {"Light solid angle", Token("lightSolidAngle"), Value(1), "small mesh lights (<= 8 triangles) sampled by solid angle (Arvo 1995); 0: by area"},
         {"NEE", Token("nee"), Value(1), "next-event estimation (shadow rays to lights); 0: lights found by BSDF sampling only"},
         {"Lobe pruning", Token("lobePruning"), Value(1), "skip BSDF lobes whose weight is below the cutoff"},

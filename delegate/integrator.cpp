@@ -363,13 +363,15 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // made maxDepth 0 render emitters only and gave every path one bounce fewer than Cycles.
         if (depth > _settings.maxDepth) break;
 
-        // Next-event estimation: one light picked uniformly.
-        if (_settings.nee && !lights.empty() && !bsdf.isDeltaOnly()) {
+        // Next-event estimation: one light picked by power, or every light in turn when the scene
+        // has few (SceneSnapshot::neeAllLights; their pick probabilities are then 1).
+        const size_t neeCount = _scene.neeAllLights ? lights.size() : 1;
+        for (size_t nee = 0; nee < neeCount && _settings.nee && !lights.empty() && !bsdf.isDeltaOnly(); ++nee) {
             glm::vec2 u = sampler.next2D();  // dimensions (0, 1) of a fresh Sobol group
             float ul = sampler.next1D();      // dimension 2: the pick, stratified with u
             const auto& cdf = _scene.lightCdf;
             size_t li = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, ul) - (cdf.begin() + 1));
-            li = std::min(li, lights.size() - 1);
+            li = _scene.neeAllLights ? nee : std::min(li, lights.size() - 1);
             const float lightPick = lights[li].pickProbability;
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls) && ls.pdf > 0.0f &&

@@ -237,6 +237,14 @@ void EmbreeRenderDelegate::buildLightDistribution() {
         _snapshot.lightCdf[i + 1] = _snapshot.lightCdf[i] + prob;
     }
     if (!lights.empty()) _snapshot.lightCdf.back() = 1.0f;
+    // Few lights: sample each at every vertex instead of picking one. No pick variance (on the
+    // sun + sky figure scenes the pick was most of the direct-light noise, docs/performance.md
+    // 5b) for one extra shadow ray per light. Veach 1997, thesis section 9.2.4 (MIS with a
+    // sampling technique per light); pdfs are per light, so each pick probability is 1.
+    const int allUpTo = intSetting("neeAllLights", 4);
+    _snapshot.neeAllLights = !lights.empty() && int(lights.size()) <= allUpTo;
+    if (_snapshot.neeAllLights)
+        for (auto& l : lights) l.pickProbability = 1.0f;
 }
 
 void EmbreeRenderDelegate::addInstancerInstances() {
@@ -316,6 +324,7 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
+        {"NEE all lights", Token("neeAllLights"), Value(4), "next-event estimation samples every light when the scene has at most this many (0: always pick one)"},
         {"Light pick uniform", Token("lightPickUniform"), Value(0.1f), "next-event estimation light pick: this fraction uniform, the rest by power"},
         {"Light solid angle", Token("lightSolidAngle"), Value(1), "small mesh lights (<= 8 triangles) sampled by solid angle (Arvo 1995); 0: by area"},
         {"NEE", Token("nee"), Value(1), "next-event estimation (shadow rays to lights); 0: lights found by BSDF sampling only"},

@@ -122,6 +122,9 @@ struct SceneSnapshot {
     std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
     std::vector<float> lightCdf;                      ///< lights.size() + 1 entries, by power
     bool usingDefaultLight = false;                   ///< the scene had no light
+    /// Next-event estimation samples every light at every vertex (setting neeAllLights: scenes
+    /// with at most that many lights); each light's pickProbability is then 1.
+    bool neeAllLights = false;
 };
 
 }  // namespace principled::embree

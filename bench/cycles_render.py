@@ -20,7 +20,13 @@ Conversions (verified in /work/shared/reference/cycles-peer.md; listed in docs/p
   * Catmull-Clark mesh -> Subdivision Surface modifier at the same level, limit surface on,
     UVs "keep boundaries" (OpenSubdiv face-varying default differs: cornersPlus1 vs Blender's).
   * Render: box filter 1 px, Standard view transform, no clamping, Filter Glossy 0, caustics on,
-    adaptive sampling off, denoising off, max_bounces = principled --max-depth.
+    adaptive sampling off, denoising off, max_bounces = principled --max-depth (both count the
+    bounces after the camera hit, 0 = direct light only; principled matches since the acc branch),
+    light_sampling_threshold left at Cycles' default 0.01 (unbiased: a stochastic cut of weak
+    shadow rays), sampling pattern left at the 3.4 default (progressive multi-jitter).
+  * Timing: cpuSeconds = process CPU of render(), all threads (sync + BVH + path tracing);
+    wallSeconds also includes Cycles' background-mode waits (a 32x32 16-spp render: 1.08 s wall,
+    0.10 s CPU), so compare CPU time, never wall time.
 """
 import json
 import math
@@ -218,6 +224,9 @@ for o in sc["objects"]:
 
 os.makedirs(outdir, exist_ok=True)
 times = {}
+# Cycles' sync and BVH build happen inside render() (principled's renderCpuSeconds excludes its
+# own parse/sync/BVH); the render_stats handler is not called in background mode, so the
+# fixed part is found by a straight-line fit of cpuSeconds against spp (bench/peer_equal_time.py).
 for spp in ladder:
     cy.samples = spp
     path = os.path.join(outdir, f"cycles_{spp}.exr")
@@ -225,6 +234,7 @@ for spp in ladder:
     t0 = time.perf_counter()
     c0 = time.process_time()
     bpy.ops.render.render(write_still=True)
-    times[spp] = {"wallSeconds": time.perf_counter() - t0, "cpuSeconds": time.process_time() - c0}
+    c1, t1 = time.process_time(), time.perf_counter()
+    times[spp] = {"wallSeconds": t1 - t0, "cpuSeconds": c1 - c0}
     print(f"cycles: {sc['name']} {spp} spp {times[spp]['wallSeconds']:.2f}s", flush=True)
 json.dump(times, open(os.path.join(outdir, "cycles_times.json"), "w"), indent=1)

@@ -380,7 +380,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             float lightPdf = 0.0f;
             if (rec.emissiveLight >= 0 && rec.emissiveLight < int(lights.size())) {
                 const LightRecord& ml = lights[rec.emissiveLight];
-                lightPdf = ml.pickProbability * meshLightPdf(ml, hit.t, glm::dot(ray.direction, hit.ng));
+                lightPdf = ml.pickProbability * meshLightPdf(ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
             }
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f
@@ -424,19 +424,24 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         }
         Frame frame(ns);
         glm::vec3 woLocal = frame.toLocal(wo);
-        if (depth >= _settings.maxDepth) break;
+        // maxDepth = N: N bounces after the camera hit, Cycles' max_bounces convention (0 = direct
+        // light only: NEE at the camera hit plus the emitter its BSDF ray reaches). `>=` here
+        // made maxDepth 0 render emitters only and gave every path one bounce fewer than Cycles.
+        if (depth > _settings.maxDepth) break;
         std::optional<bsdf::Bsdf> builtBsdf;
         if (!constantBsdf) builtBsdf.emplace(mat->params, _settings.bsdf);
         const bsdf::Bsdf& bsdf = constantBsdf ? *constantBsdf : *builtBsdf;
         const bsdf::Bsdf::View view = bsdf.prepare(woLocal);  // shared by NEE and sampling
 
-        // Next-event estimation: one light picked uniformly.
-        if (_settings.nee && !lights.empty() && !bsdf.isDeltaOnly()) {
-            float ul = sampler.next1D();
-            glm::vec2 u = sampler.next2D();
+        // Next-event estimation: one light picked by power, or every light in turn when the scene
+        // has few (SceneSnapshot::neeAllLights; their pick probabilities are then 1).
+        const size_t neeCount = _scene.neeAllLights ? lights.size() : 1;
+        for (size_t nee = 0; nee < neeCount && _settings.nee && !lights.empty() && !bsdf.isDeltaOnly(); ++nee) {
+            glm::vec2 u = sampler.next2D();  // dimensions (0, 1) of a fresh Sobol group
+            float ul = sampler.next1D();      // dimension 2: the pick, stratified with u
             const auto& cdf = _scene.lightCdf;
             size_t li = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, ul) - (cdf.begin() + 1));
-            li = std::min(li, lights.size() - 1);
+            li = _scene.neeAllLights ? nee : std::min(li, lights.size() - 1);
             const float lightPick = lights[li].pickProbability;
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls) && ls.pdf > 0.0f &&
@@ -470,8 +475,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         }
 
         // Continue the path by sampling the BSDF.
-        float ulobe = sampler.next1D();
-        glm::vec2 u = sampler.next2D();
+        glm::vec2 u = sampler.next2D();  // dimensions (0, 1) of a fresh Sobol group
+        float ulobe = sampler.next1D();  // dimension 2: the lobe, stratified with u
         auto s = bsdf.sample(view, ulobe, u);
         if (!s || !(s->pdf > 0.0f)) break;
         glm::vec3 wi = frame.toWorld(s->wi);
@@ -496,8 +501,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         ray.tfar = kInf;
 
         // Russian roulette (Arvo & Kirk 1990): survive with probability q, reweight by 1/q.
+        // q = min(1, max throughput): a path whose throughput is >= 1 is never cut (a 0.95 cap
+        // killed 5 % of the bright paths at every bounce for nothing).
         if (depth + 1 >= _settings.rouletteDepth) {
-            float q = std::min(0.95f, maxComponent(beta));
+            float q = std::min(1.0f, maxComponent(beta));
             if (sampler.next1D() >= q) break;
             beta /= q;
         }

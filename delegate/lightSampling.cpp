@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/lightSampling.h"
 
+#include "delegate/sphericalTriangle.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -86,9 +88,50 @@ bool raySphere(const glm::vec3& o, const glm::vec3& d, const glm::vec3& c, float
     return true;
 }
 
+// Mesh lights of at most this many triangles are sampled by solid angle (each triangle picked
+// in proportion to the solid angle it subtends, then a uniform direction inside it: the
+// directions are uniform over everything the light covers, pdf 1 / total solid angle). Larger
+// meshes keep area sampling (picking by solid angle would cost a pass over every triangle).
+constexpr size_t kSolidAngleMaxTriangles = 8;
+// Below this total solid angle (a far or edge-on light) the spherical construction loses
+// precision and area sampling is as good (the 1/r^2 factor is nearly constant over the light);
+// above it a point is almost enclosed. The same test decides sampleLight() and the MIS pdf.
+constexpr float kMinSolidAngle = 1e-3f, kMaxSolidAngle = 6.2f;
+constexpr float kNearRadii = 4.0f;
+
+void meshTriangleWorld(const LightRecord& l, size_t i, glm::vec3* a, glm::vec3* b, glm::vec3* c) {
+    const GeometryRecord& g = *l.mesh;
+    const glm::uvec3& t = g.triangles[(*l.meshTriangles)[i]];
+    *a = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.x], 1.0f));
+    *b = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.y], 1.0f));
+    *c = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.z], 1.0f));
+}
+
+// Solid angles of a small mesh light's triangles seen from p and their sum; returns 0 when the
+// light is sampled by area from p instead.
+float meshSolidAngles(const LightRecord& l, const glm::vec3& p, float* omegas) {
+    size_t n = l.meshTriangles->size();
+    if (n > kSolidAngleMaxTriangles) return 0.0f;
+    // Far from the light (beyond kNearRadii bounding radii) 1/r^2 and the cosine barely vary
+    // over it, area sampling is nearly as good and costs no trigonometry: one distance test.
+    glm::vec3 toC = p - l.center;
+    if (glm::dot(toC, toC) > kNearRadii * kNearRadii * l.radius * l.radius) return 0.0f;
+    float total = 0.0f;
+    for (size_t i = 0; i < n; ++i) {
+        glm::vec3 a, b, c;
+        meshTriangleWorld(l, i, &a, &b, &c);
+        omegas[i] = triangleSolidAngle(p, a, b, c);
+        total += omegas[i];
+    }
+    return (total >= kMinSolidAngle && total <= kMaxSolidAngle) ? total : 0.0f;
+}
+
 }  // namespace
 
-float meshLightPdf(const LightRecord& l, float distance, float cosLight) {
+float meshLightPdf(const LightRecord& l, const glm::vec3& origin, float distance, float cosLight) {
+    float omegas[kSolidAngleMaxTriangles];
+    float total = l.solidAngleSampling ? meshSolidAngles(l, origin, omegas) : 0.0f;
+    if (total > 0.0f) return 1.0f / total;
     return toSolidAngle(1.0f / l.area, distance, std::abs(cosLight));
 }
 
@@ -200,6 +243,29 @@ bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, 
             return out->pdf > 0.0f;
         }
         case LightRecord::Kind::Mesh: {
+            float omegas[kSolidAngleMaxTriangles];
+            if (float total = l.solidAngleSampling ? meshSolidAngles(l, p, omegas) : 0.0f; total > 0.0f) {
+                // Triangle i with probability omega_i / total (u.x reused inside the cell), then
+                // a uniform direction in its spherical triangle: pdf = 1 / total.
+                size_t n = l.meshTriangles->size(), i = 0;
+                float target = u.x * total, acc = 0.0f;
+                while (i + 1 < n && acc + omegas[i] <= target) acc += omegas[i++];
+                float ux = omegas[i] > 0.0f ? std::clamp((target - acc) / omegas[i], 0.0f, 1.0f) : 0.5f;
+                glm::vec3 a, b, c;
+                meshTriangleWorld(l, i, &a, &b, &c);
+                glm::vec3 wi;
+                if (!sampleSphericalTriangle(p, a, b, c, glm::vec2(ux, u.y), &wi)) return false;
+                glm::vec3 n3 = glm::cross(b - a, c - a);
+                float denom = glm::dot(wi, n3);
+                if (denom == 0.0f) return false;
+                float dist = glm::dot(a - p, n3) / denom;  // the triangle's plane along wi
+                if (!(dist > 0.0f) || !std::isfinite(dist)) return false;
+                out->wi = wi;
+                out->pdf = 1.0f / total;
+                out->distance = dist;
+                out->Li = l.radiance;
+                return true;
+            }
             // Pick a triangle by area (u.x reused inside the chosen cell), then a uniform point
             // on it (Pharr et al. 2023, §6.5.4: b0 = 1 - sqrt(u0), b1 = v sqrt(u0)).
             const auto& cdf = *l.meshAreaCdf;

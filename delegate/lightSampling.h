@@ -36,9 +36,9 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::ve
 
 bool isAreaLight(const LightRecord& l);
 
-/// Solid-angle pdf with which sampleLight() picks a point of mesh light l seen at `distance`
-/// under the cosine `cosLight` (its surface normal against the direction).
-float meshLightPdf(const LightRecord& l, float distance, float cosLight);
+/// Solid-angle pdf with which sampleLight() picks a point of mesh light l, from `origin`, seen at
+/// `distance` under the cosine `cosLight` (its surface normal against the direction).
+float meshLightPdf(const LightRecord& l, const glm::vec3& origin, float distance, float cosLight);
 
 /// Lat-long mapping of a direction in the dome's frame (USD/OpenEXR convention: u = 0.5 -
 /// atan2(x, z) / 2pi, v measured from the +Y pole).

@@ -172,9 +172,24 @@ void EmbreeRenderDelegate::addMeshLights() {
         cdf->back() = 1.0f;
         LightRecord l;
         l.kind = LightRecord::Kind::Mesh;
+        l.solidAngleSampling = intSetting("lightSolidAngle", 1) != 0;
         l.radiance = emission;
         l.area = float(area);
         l.mesh = r;
+        // Bounding sphere of the emitting triangles (vertex mean, farthest vertex): solid-angle
+        // sampling is used only near the light (lightSampling.cpp).
+        {
+            glm::dvec3 sum(0.0);
+            for (uint32_t t : *tris)
+                for (int k = 0; k < 3; ++k)
+                    sum += glm::dvec3(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)));
+            l.center = glm::vec3(sum / double(3 * tris->size()));
+            float rad = 0.0f;
+            for (uint32_t t : *tris)
+                for (int k = 0; k < 3; ++k)
+                    rad = std::max(rad, glm::length(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)) - l.center));
+            l.radius = rad;
+        }
         l.meshTriangles = std::move(tris);
         l.meshAreaCdf = std::move(cdf);
         l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
@@ -228,13 +243,22 @@ void EmbreeRenderDelegate::buildLightDistribution() {
         total += power[i];
     }
     _snapshot.lightCdf.assign(lights.size() + 1, 0.0f);
+    const float mix = std::clamp(floatSetting("lightPickUniform", 0.1f), 0.0f, 1.0f);
     for (size_t i = 0; i < lights.size(); ++i) {
         float uniform = 1.0f / float(lights.size());
-        float prob = total > 0.0 ? 0.9f * float(power[i] / total) + 0.1f * uniform : uniform;
+        float prob = total > 0.0 ? (1.0f - mix) * float(power[i] / total) + mix * uniform : uniform;
         lights[i].pickProbability = prob;
         _snapshot.lightCdf[i + 1] = _snapshot.lightCdf[i] + prob;
     }
     if (!lights.empty()) _snapshot.lightCdf.back() = 1.0f;
+    // Few lights: sample each at every vertex instead of picking one. No pick variance (on the
+    // sun + sky figure scenes the pick was most of the direct-light noise, docs/performance.md
+    // 5b) for one extra shadow ray per light. Veach 1997, thesis section 9.2.4 (MIS with a
+    // sampling technique per light); pdfs are per light, so each pick probability is 1.
+    const int allUpTo = intSetting("neeAllLights", 4);
+    _snapshot.neeAllLights = !lights.empty() && int(lights.size()) <= allUpTo;
+    if (_snapshot.neeAllLights)
+        for (auto& l : lights) l.pickProbability = 1.0f;
 }
 
 void EmbreeRenderDelegate::addInstancerInstances() {
@@ -319,6 +343,9 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
+        {"NEE all lights", Token("neeAllLights"), Value(4), "next-event estimation samples every light when the scene has at most this many (0: always pick one)"},
+        {"Light pick uniform", Token("lightPickUniform"), Value(0.1f), "next-event estimation light pick: this fraction uniform, the rest by power"},
+        {"Light solid angle", Token("lightSolidAngle"), Value(1), "small mesh lights (<= 8 triangles) sampled by solid angle (Arvo 1995); 0: by area"},
         {"NEE", Token("nee"), Value(1), "next-event estimation (shadow rays to lights); 0: lights found by BSDF sampling only"},
         {"Lobe pruning", Token("lobePruning"), Value(1), "skip BSDF lobes whose weight is below the cutoff"},
         {"VNDF sampling", Token("vndf"), Value(1), "GGX visible-normal sampling (0: classic distribution sampling)"},

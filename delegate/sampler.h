@@ -68,7 +68,13 @@ public:
 
     /// Uniform in [0, 1).
     float next1D() { return toUnit(value(_dimension++)); }
+    /// A 2-D decision starts a fresh group of four, so it always gets dimensions (0, 1) of an
+    /// Owen-scrambled Sobol sequence of its own: a (0,2)-sequence, stratified in 2-D. 1-D
+    /// decisions take the dimensions left over in the group (2 and 3), which keeps a light
+    /// pick or lobe choice stratified jointly with the 2-D sample before it. Burley 2020,
+    /// "Practical Hash-based Owen Scrambling", JCGT 9(4), section 4 (padding by shuffling).
     glm::vec2 next2D() {
+        _dimension = (_dimension + 3u) & ~3u;
         float a = next1D();
         return {a, next1D()};
     }

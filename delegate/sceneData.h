@@ -114,6 +114,7 @@ struct LightRecord {
     const GeometryRecord* mesh = nullptr;
     std::shared_ptr<const std::vector<uint32_t>> meshTriangles;
     std::shared_ptr<const std::vector<float>> meshAreaCdf;  ///< meshTriangles.size() + 1
+    bool solidAngleSampling = true;  ///< small mesh lights: sample by solid angle (lightSampling.cpp)
 };
 
 /// Everything a render pass reads: the committed top-level scene and the tables the records
@@ -131,6 +132,9 @@ struct SceneSnapshot {
     /// Some material can be partly present (opacity, cutouts): shadow rays then look at
     /// each surface they cross instead of stopping at the first.
     bool anyPartlyPresent = false;
+    /// Next-event estimation samples every light at every vertex (setting neeAllLights: scenes
+    /// with at most that many lights); each light's pickProbability is then 1.
+    bool neeAllLights = false;
 };
 
 }  // namespace principled::embree

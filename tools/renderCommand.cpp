@@ -2,6 +2,7 @@
 #include "tools/renderCommand.h"
 
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -111,6 +112,7 @@ int runRender(const RenderArgs& a) {
 
     ProgressBar bar("render", !a.quiet);
     auto t1 = std::chrono::steady_clock::now();
+    const std::clock_t c1 = std::clock();  // process CPU time, all threads (Linux)
     bool timedOut = false;
     while (!session->step()) {
         double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
@@ -126,6 +128,7 @@ int runRender(const RenderArgs& a) {
                          std::to_string(session->targetSamples()) + " spp");
     bar.finish();
     double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    double renderCpuSeconds = double(std::clock() - c1) / CLOCKS_PER_SEC;
     report();
 
     AovLayers written = aovLayers(*session);
@@ -160,6 +163,7 @@ int runRender(const RenderArgs& a) {
         j["timedOut"] = timedOut;
         j["loadSeconds"] = loadSeconds;
         j["renderWallSeconds"] = renderSeconds;
+        j["renderCpuSeconds"] = renderCpuSeconds;  // equal-CPU-time comparisons on a shared machine
         for (const auto& [k, v] : session->stats()) j["delegate"][k] = v;
         std::ofstream f(a.statsPath);
         if (!f) return fail(a.statsPath + ": cannot write the stats file");

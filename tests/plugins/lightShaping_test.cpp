@@ -71,7 +71,6 @@ double render(const std::string& usda) {
     o.width = o.height = 4;
     o.samplesPerPixel = 256;
     o.settings["shadingModel"] = "ue4";
-    o.maxDepth = 0;
     auto s = host::RenderSession::openString(usda, "shaping.usda", o);
     while (!s->step()) {
     }
@@ -90,8 +89,8 @@ TEST(LightShaping, ConeFalloffIsASmoothstepOverTheSoftFraction) {
     // softness 0.5: full inside 20 degrees, 0.5 at 30 (smoothstep midpoint), 0 from 40.
     EXPECT_EQ(embree::coneFalloff(float(19.9 * kDeg), cone, 0.5f), 1.0f);
     EXPECT_NEAR(embree::coneFalloff(float(30 * kDeg), cone, 0.5f), 0.5f, 1e-5f);
-    // smoothstep(0.25) = 0.15625 -> 1 - 0.15625 at 22.5 degrees.
-    EXPECT_NEAR(embree::coneFalloff(float(22.5 * kDeg), cone, 0.5f), 0.84375f, 1e-5f);
+    // 25 degrees is a quarter into the edge: 1 - smoothstep(0.25) = 1 - 0.15625.
+    EXPECT_NEAR(embree::coneFalloff(float(25 * kDeg), cone, 0.5f), 0.84375f, 1e-5f);
     EXPECT_EQ(embree::coneFalloff(float(40 * kDeg), cone, 0.5f), 0.0f);
     embree::LightShaping s;
     s.enabled = true;

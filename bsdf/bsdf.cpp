@@ -10,16 +10,6 @@
 
 namespace principled::bsdf {
 
-/// The per-call view of the material: the (bent or mirrored) wo in the lobes' frame, which
-/// lobes act from this side, and their selection probabilities.
-struct Bsdf::View {
-    glm::vec3 wo;
-    float flip = 1.0f;      ///< -1 when the lobes' frame is mirrored through the surface
-    bool inside = false;    ///< view inside a solid transmissive object
-    LobeMask active = 0;
-    std::array<float, kLobeCount> prob{};
-};
-
 Bsdf::Bsdf(const MaterialParams& params, const Options& options)
     : _set(options.model == Model::UE4 ? buildUe4(params, options) : buildDisney(params, options)) {
     _set.deltaMask &= _set.mask;
@@ -73,7 +63,8 @@ Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
         sum += v.prob[k];
     }
     if (sum > 0.0f) {
-        for (int k = 0; k < kLobeCount; ++k) v.prob[k] /= sum;
+        for (int k = 0; k < kLobeCount; ++k)
+            if (v.prob[k] > 0.0f) v.prob[k] /= sum;  // inactive lobes stay 0 (no division)
     } else {
         int n = std::popcount(v.active);
         for (int k = 0; k < kLobeCount; ++k) v.prob[k] = (v.active & (1u << k)) ? 1.0f / n : 0.0f;
@@ -87,8 +78,12 @@ std::array<float, kLobeCount> Bsdf::lobeProbabilities(const glm::vec3& wo) const
 
 glm::vec3 Bsdf::eval(const glm::vec3& woIn, const glm::vec3& wiIn, float* pdfOut,
                      LobeValues* perLobe) const {
+    return eval(prepare(woIn), wiIn, pdfOut, perLobe);
+}
+
+glm::vec3 Bsdf::eval(const View& v, const glm::vec3& wiIn, float* pdfOut,
+                     LobeValues* perLobe) const {
     if (perLobe) perLobe->fill(glm::vec3(0.0f));
-    View v = prepare(woIn);
     glm::vec3 wi(wiIn.x, wiIn.y, wiIn.z * v.flip);
     glm::vec3 f(0.0f);
     float pdf = 0.0f;
@@ -122,7 +117,10 @@ float Bsdf::pdf(const glm::vec3& woIn, const glm::vec3& wiIn) const {
 
 std::optional<BsdfSample> Bsdf::sample(const glm::vec3& woIn, float uLobe,
                                        const glm::vec2& u) const {
-    View v = prepare(woIn);
+    return sample(prepare(woIn), uLobe, u);
+}
+
+std::optional<BsdfSample> Bsdf::sample(const View& v, float uLobe, const glm::vec2& u) const {
     // Pick the lobe from the cumulative probabilities and reuse the remainder of uLobe.
     int pick = -1;
     float cdf = 0.0f;
@@ -149,7 +147,7 @@ std::optional<BsdfSample> Bsdf::sample(const glm::vec3& woIn, float uLobe,
         return s;
     }
     // The mixture value and density at wi (identical to eval() and pdf() there).
-    s.f = eval(woIn, s.wi, &s.pdf);
+    s.f = eval(v, s.wi, &s.pdf, nullptr);
     if (!(s.pdf > 0.0f)) return std::nullopt;
     return s;
 }

@@ -33,6 +33,22 @@ public:
     /// Samples wi given two uniform numbers: uLobe picks the lobe, u picks the direction.
     std::optional<BsdfSample> sample(const glm::vec3& wo, float uLobe, const glm::vec2& u) const;
 
+    /// The part of eval() and sample() that depends on wo only (which side, the bent or
+    /// mirrored wo, the lobe probabilities). A caller that evaluates and samples at the same wo
+    /// (next-event estimation, then the path's next direction) prepares it once; the results
+    /// are identical to eval(wo, ...) and sample(wo, ...).
+    struct View {
+        glm::vec3 wo{0.0f};
+        float flip = 1.0f;      ///< -1 when the lobes' frame is mirrored through the surface
+        bool inside = false;    ///< view inside a solid transmissive object
+        LobeMask active = 0;
+        std::array<float, kLobeCount> prob{};
+    };
+    View prepare(const glm::vec3& wo) const;
+    glm::vec3 eval(const View& view, const glm::vec3& wi, float* pdf = nullptr,
+                   LobeValues* perLobe = nullptr) const;
+    std::optional<BsdfSample> sample(const View& view, float uLobe, const glm::vec2& u) const;
+
     /// Mixture pdf of sample() producing wi (solid angle); 0 for delta-only materials.
     float pdf(const glm::vec3& wo, const glm::vec3& wi) const;
 
@@ -48,8 +64,6 @@ public:
     const LobeSet& lobeSet() const { return _set; }
 
 private:
-    struct View;
-    View prepare(const glm::vec3& wo) const;
 
     LobeSet _set;
     LobeMask _lobes = 0;

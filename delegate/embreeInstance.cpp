@@ -5,13 +5,19 @@ namespace principled::embree {
 
 void EmbreeInstance::setGeometry(RTCDevice device, RTCScene top, RTCGeometry geom,
                                  void* userData) {
+    // Build quality per use: the first build of a prim is for the frames it will be in (MEDIUM:
+    // the binned SAH builder; HIGH's spatial splits cost 2-3x the build time for a few % of
+    // traversal speed on this renderer's scenes, docs/performance.md section 1); a rebuild is an
+    // edit a viewport is waiting for, so it takes the fastest builder (LOW).
+    const RTCBuildQuality quality = _blas ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM;
     if (_blas) {
         // Replace the BLAS content: detach the old geometry, attach the new one.
         rtcReleaseScene(_blas);
     }
     _blas = rtcNewScene(device);
     rtcSetSceneFlags(_blas, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(_blas, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(_blas, quality);
+    rtcSetGeometryBuildQuality(geom, quality);
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(_blas, geom, 0);
     rtcReleaseGeometry(geom);

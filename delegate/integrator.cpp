@@ -94,6 +94,14 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
         // Re-project onto the sphere (o + t d loses precision far from the origin).
         float l = glm::length(ngObj);
         if (l > 0.0f) hit->p = glm::vec3(objectToWorld * glm::vec4(rec.center + ngObj * (rec.radius / l), 1.0f));
+    } else if (rec.kind == GeometryRecord::Kind::Points || rec.kind == GeometryRecord::Kind::Curves) {
+        // Embree's sphere points and round curves: its geometric normal (object space for
+        // instanced geometry) is the surface normal of the sphere or tube.
+        hit->triangle = rh.hit.primID;
+        hit->u = rh.hit.u;
+        hit->v = rh.hit.v;
+        hit->element = rh.hit.primID < rec.triangleFace.size() ? rec.triangleFace[rh.hit.primID] : 0;
+        ngObj = nsObj = glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     } else {
         const glm::uvec3& t = rec.triangles[rh.hit.primID];
         hit->element = rec.triangleFace[rh.hit.primID];
@@ -165,8 +173,9 @@ public:
         if (!ch) return false;
         int n = std::min(components, ch->components);
         for (int c = 0; c < components; ++c) out[c] = 0.0f;
-        if (ch->constant) {
-            for (int c = 0; c < n; ++c) out[c] = ch->data[c];
+        if (ch->constant || ch->perPrimitive) {
+            const float* d = &ch->data[ch->constant ? 0 : size_t(_hit.triangle) * ch->components];
+            for (int c = 0; c < n; ++c) out[c] = d[c];
             return true;
         }
         const float* d = &ch->data[size_t(_hit.triangle) * 3 * ch->components];
@@ -210,7 +219,60 @@ Frame tangentFrame(const Hit& hit, const glm::vec3& n) {
     return Frame(n);
 }
 
+// How much of the shadow rays a surface at this hit stops: its material's presence
+// (UsdPreviewSurface opacity, or 0/1 with an opacityThreshold cutout).
+float presenceAt(const SceneSnapshot& scene, const Hit& hit) {
+    const int mi = hit.record->materialFor(hit.triangle);
+    if (mi < 0 || mi >= int(scene.materials.size())) return 1.0f;
+    const MaterialRecord& m = scene.materials[mi];
+    if (!m.mayBePartlyPresent) return 1.0f;
+    if (!m.program) return m.constant.presence();
+    HitContext context(hit);
+    return m.program->evaluate(context).presence();
+}
+
+// Visibility along a shadow ray: 0 when an opaque surface blocks it, else the product of
+// (1 - presence) of the partly present surfaces it crosses. The camera path chooses to pass
+// through such a surface with probability 1 - presence, so both estimate the same expected
+// value; here the factor is exact, so cutout and partial-opacity shadows carry no extra noise.
+float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const glm::vec3& dir,
+                    float tfar) {
+    if (!scene.anyPartlyPresent) return occluded(scene, origin, dir, tfar) ? 0.0f : 1.0f;
+    const bool bounded = tfar < kInf;
+    const glm::vec3 end = origin + (bounded ? tfar : 0.0f) * dir;
+    Ray r;
+    r.origin = origin;
+    r.direction = dir;
+    r.tnear = 0.0f;
+    r.tfar = tfar;
+    float T = 1.0f;
+    for (int layer = 0; layer < kMaxPassThrough; ++layer) {
+        Hit h;
+        if (!intersect(scene, r, &h)) return T;
+        const float p = presenceAt(scene, h);
+        T *= 1.0f - p;
+        if (!(T > 0.0f)) return 0.0f;
+        r.origin = offsetOrigin(h.p, h.ng, dir);
+        if (bounded) {
+            r.tfar = glm::dot(end - r.origin, dir);
+            if (!(r.tfar > 0.0f)) return T;
+        }
+    }
+    return 0.0f;  // more layers than a path may cross: treat as blocked
+}
+
 }  // namespace
+
+Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings)
+    : _scene(scene), _settings(settings) {
+    _constantBsdfs.reserve(scene.materials.size());
+    for (const MaterialRecord& m : scene.materials) {
+        if (m.program)
+            _constantBsdfs.emplace_back();
+        else
+            _constantBsdfs.emplace_back(std::in_place, m.constant.params, _settings.bsdf);
+    }
+}
 
 PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     PathSample out;
@@ -283,10 +345,17 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // defaults with displayColor.
         HitContext context(hit);
         shading::ShadedMaterial shaded;
+        const shading::ShadedMaterial* mat = &shaded;
+        const bsdf::Bsdf* constantBsdf = nullptr;  // prebuilt for untextured materials
         const int materialIndex = rec.materialFor(hit.triangle);  // GeomSubset or the prim's
         if (materialIndex >= 0 && materialIndex < int(_scene.materials.size())) {
             const MaterialRecord& m = _scene.materials[materialIndex];
-            shaded = m.program ? m.program->evaluate(context) : m.constant;
+            if (m.program) {
+                shaded = m.program->evaluate(context);
+            } else {
+                mat = &m.constant;
+                constantBsdf = &*_constantBsdfs[size_t(materialIndex)];
+            }
         } else {
             shaded.params.baseColor = rec.displayColor;
             float dc[3];
@@ -297,7 +366,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             shaded.params.specular = 0.5f;
         }
         // Partial presence (opacity, cutouts): a stochastic choice to pass through.
-        float presence = shaded.presence();
+        float presence = mat->presence();
         if (presence < 1.0f && passThrough < kMaxPassThrough) {
             if (presence <= 0.0f || sampler.next1D() >= presence) {
                 ++passThrough;
@@ -306,7 +375,6 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 continue;
             }
         }
-        const shading::ShadedMaterial* mat = &shaded;
         if (mat->emission != glm::vec3(0.0f)) {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
             float lightPdf = 0.0f;
@@ -356,9 +424,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         }
         Frame frame(ns);
         glm::vec3 woLocal = frame.toLocal(wo);
-        bsdf::Bsdf bsdf(mat->params, _settings.bsdf);
-
         if (depth >= _settings.maxDepth) break;
+        std::optional<bsdf::Bsdf> builtBsdf;
+        if (!constantBsdf) builtBsdf.emplace(mat->params, _settings.bsdf);
+        const bsdf::Bsdf& bsdf = constantBsdf ? *constantBsdf : *builtBsdf;
+        const bsdf::Bsdf::View view = bsdf.prepare(woLocal);  // shared by NEE and sampling
 
         // Next-event estimation: one light picked uniformly.
         if (_settings.nee && !lights.empty() && !bsdf.isDeltaOnly()) {
@@ -373,7 +443,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::dot(ls.wi, hit.ng) > 0.0f) {
                 float bsdfPdf = 0.0f;
                 bsdf::LobeValues perLobe;
-                glm::vec3 f = bsdf.eval(woLocal, frame.toLocal(ls.wi), &bsdfPdf,
+                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf,
                                         depth == 0 ? &perLobe : nullptr);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
@@ -382,9 +452,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                     float tfar = ls.distance >= kInf ? kInf
                                                       : std::max(0.0f, glm::length(hit.p + ls.distance * ls.wi - shadowOrigin) * (1.0f - 1e-4f));
                     if (_settings.recorder) _settings.recorder->record(shadowOrigin, ls.wi, 0.0f, tfar, true);
-                    if (!occluded(_scene, shadowOrigin, ls.wi, tfar)) {
+                    const float visible = transmittance(_scene, shadowOrigin, ls.wi, tfar);
+                    if (visible > 0.0f) {
                         float w = (ls.delta || !_settings.mis) ? 1.0f : powerHeuristic(ls.pdf * lightPick, bsdfPdf);
-                        glm::vec3 scale = beta * ls.Li * (w / (ls.pdf * lightPick));
+                        glm::vec3 scale = beta * ls.Li * (visible * w / (ls.pdf * lightPick));
                         glm::vec3 c = scale * f;
                         if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                             c *= _settings.clampIndirect / maxComponent(c);
@@ -401,7 +472,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // Continue the path by sampling the BSDF.
         float ulobe = sampler.next1D();
         glm::vec2 u = sampler.next2D();
-        auto s = bsdf.sample(woLocal, ulobe, u);
+        auto s = bsdf.sample(view, ulobe, u);
         if (!s || !(s->pdf > 0.0f)) break;
         glm::vec3 wi = frame.toWorld(s->wi);
         // Reject directions on the wrong side of the geometric surface (light leaks).

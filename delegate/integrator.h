@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "delegate/hd/token.h"
@@ -64,14 +65,16 @@ struct PathSample {
 
 class Integrator {
 public:
-    Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings)
-        : _scene(scene), _settings(settings) {}
+    Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings);
 
     PathSample trace(const Ray& cameraRay, Sampler& sampler) const;
 
 private:
     const SceneSnapshot& _scene;
     IntegratorSettings _settings;
+    /// Per material: the BSDF of a material without a program (no textures), built once per
+    /// pass instead of once per hit; empty for textured materials.
+    std::vector<std::optional<bsdf::Bsdf>> _constantBsdfs;
 };
 
 }  // namespace principled::embree

@@ -31,22 +31,24 @@ glm::vec3 vector(const glm::dmat4& m, double x, double y, double z) {
     return glm::vec3(m * glm::dvec4(x, y, z, 0.0));
 }
 
-// Reads a lat-long image as linear RGB; empty on failure (with *error).
-std::shared_ptr<EnvironmentMap> loadEnvironment(const std::string& path, std::string* error) {
+// Reads an image as linear RGB; null on failure (with *error naming `what`). A lat-long image
+// also gets its luminance sampling distribution.
+std::shared_ptr<EnvironmentMap> loadImage(const std::string& path, const std::string& what, bool latLong,
+                                          std::string* error) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
-        *error = "cannot read dome texture '" + path + "': " + OIIO::geterror();
+        *error = "cannot read " + what + " '" + path + "': " + OIIO::geterror();
         return nullptr;
     }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || size_t(spec.width) * spec.height > (size_t(1) << 26)) {
-        *error = "dome texture '" + path + "' has an unsupported size";
+        *error = what + " '" + path + "' has an unsupported size";
         return nullptr;
     }
     int channels = spec.nchannels;
     std::vector<float> px(size_t(spec.width) * spec.height * channels);
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, px.data())) {
-        *error = "cannot read dome texture '" + path + "': " + in->geterror();
+        *error = "cannot read " + what + " '" + path + "': " + in->geterror();
         return nullptr;
     }
     // 8-bit images are display-encoded (sRGB); float images are linear.
@@ -73,7 +75,7 @@ std::shared_ptr<EnvironmentMap> loadEnvironment(const std::string& path, std::st
             weights[i] = (0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z) * sinTheta;
         }
     }
-    env->distribution = Distribution2D(weights, spec.width, spec.height);
+    if (latLong) env->distribution = Distribution2D(weights, spec.width, spec.height);
     return env;
 }
 
@@ -137,7 +139,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 if (format && *format != "automatic" && *format != "latlong")
                     param->warn(id(), "dome texture format '" + *format + "' is not supported; read as latlong");
                 std::string error;
-                if (auto env = loadEnvironment(*file, &error)) {
+                if (auto env = loadImage(*file, "dome texture", true, &error)) {
                     glm::mat3 r(xf);
                     for (int c = 0; c < 3; ++c) {
                         float l = glm::length(r[c]);
@@ -168,8 +170,14 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 _record.axisU = vector(xf, 0.5 * w, 0, 0);
                 _record.axisV = vector(xf, 0, 0.5 * h, 0);
                 _record.area = 4.0f * glm::length(glm::cross(_record.axisU, _record.axisV));
-                if (getString(delegate->getLightParamValue(id(), Token("texture:file"))).value_or("") != "")
-                    param->warn(id(), "rect light textures are not supported yet; using its colour");
+                auto file = getString(delegate->getLightParamValue(id(), Token("texture:file")));
+                if (file && !file->empty()) {
+                    std::string error;
+                    if (auto img = loadImage(*file, "rect light texture", false, &error))
+                        _record.rectTexture = std::move(img);
+                    else
+                        param->warn(id(), error + "; using its constant colour");
+                }
             } else if (_type == tokens::diskLight()) {
                 _record.kind = LightRecord::Kind::Disk;
                 float r = std::max(0.0f, scalar("radius", 0.5f));

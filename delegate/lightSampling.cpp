@@ -46,6 +46,18 @@ glm::vec3 envLookup(const EnvironmentMap& env, const glm::vec3& dWorld) {
     return env.texels[size_t(y) * env.width + x] * env.scale;
 }
 
+// A rect light's texture at rectangle coordinates (a, b) in [-1, 1]^2 along (axisU, axisV):
+// texel (0, 0) (the image's top left) at (+X, +Y) and (1, 1) at (-X, -Y) (UsdLuxRectLight
+// schema), so the image reads upright and unmirrored from the lit side. Nearest texel, as the
+// dome's lookup.
+glm::vec3 rectTexel(const LightRecord& l, float a, float b) {
+    if (!l.rectTexture) return glm::vec3(1.0f);
+    const EnvironmentMap& img = *l.rectTexture;
+    int x = std::clamp(int(0.5f * (1.0f - a) * img.width), 0, img.width - 1);
+    int y = std::clamp(int(0.5f * (1.0f - b) * img.height), 0, img.height - 1);
+    return img.texels[size_t(y) * img.width + x];
+}
+
 float envPdf(const EnvironmentMap& env, const glm::vec3& dWorld) {
     glm::vec3 d = env.worldToLocal * dWorld;
     glm::vec2 uv = directionToLatLong(d);
@@ -168,8 +180,11 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
         case LightRecord::Kind::Rect:
         case LightRecord::Kind::Disk: {
             glm::vec3 q;
+            glm::vec3 texel(1.0f);
             if (l.kind == LightRecord::Kind::Rect) {
-                q = l.center + (2.0f * u.x - 1.0f) * l.axisU + (2.0f * u.y - 1.0f) * l.axisV;
+                const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
+                q = l.center + a * l.axisU + b * l.axisV;
+                texel = rectTexel(l, a, b);
             } else {
                 glm::vec2 dsk = concentricDisk(u);
                 q = l.center + dsk.x * l.axisU + dsk.y * l.axisV;
@@ -182,7 +197,7 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             if (cosL <= 0.0f) return false;  // one-sided: p is behind the emitter
             out->pdf = toSolidAngle(1.0f / l.area, dist, cosL);
             out->distance = dist;
-            out->Li = l.radiance;
+            out->Li = l.radiance * texel;
             return out->pdf > 0.0f;
         }
         case LightRecord::Kind::Mesh: {
@@ -277,7 +292,7 @@ bool intersectUnshaped(const LightRecord& l, const glm::vec3& o, const glm::vec3
             bool inside = l.kind == LightRecord::Kind::Rect ? (std::abs(a) <= 1.0f && std::abs(b) <= 1.0f)
                                                             : (a * a + b * b <= 1.0f);
             if (!inside) return false;
-            *Le = l.radiance;
+            *Le = l.kind == LightRecord::Kind::Rect ? l.radiance * rectTexel(l, a, b) : l.radiance;
             *pdf = toSolidAngle(1.0f / l.area, t, -denom);
             return true;
         }

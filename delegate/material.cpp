@@ -19,6 +19,7 @@ void Material::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits
             delegate->getMaterialResource(id()), *param->textureCache(), &notes));
         _record.constant = program->constantResult();
         _record.program = program->isConstant() ? nullptr : program;
+        _record.mayBePartlyPresent = program->mayBePartlyPresent();
         for (const auto& n : notes) param->warn(id(), n);
         param->markTablesDirty();
     }

@@ -74,14 +74,17 @@ RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* pa
     if (auto c = constantDisplayColor(delegate, id())) _record.displayColor = *c;
 
     RTCGeometry geom = rtcNewGeometry(param->device(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3),
-        _record.points.size()));
-    std::memcpy(v, _record.points.data(), _record.points.size() * sizeof(glm::vec3));
-    auto* t = static_cast<glm::uvec3*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3),
-        _record.triangles.size()));
-    std::memcpy(t, _record.triangles.data(), _record.triangles.size() * sizeof(glm::uvec3));
+    // Embree reads the record's own arrays (no copy: 12 bytes per triangle and per vertex
+    // saved). They stay unchanged until the next rebuildGeometry, which replaces this geometry.
+    // Embree reads vertices with 16-byte loads: one spare element keeps the last load inside
+    // the allocation (rtcSetSharedGeometryBuffer, Embree 3.13 API docs).
+    _record.points.reserve(_record.points.size() + 1);
+    _record.triangles.reserve(_record.triangles.size() + 1);
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                               _record.points.data(), 0, sizeof(glm::vec3), _record.points.size());
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               _record.triangles.data(), 0, sizeof(glm::uvec3),
+                               _record.triangles.size());
     param->meshesRebuilt++;
     return geom;
 }

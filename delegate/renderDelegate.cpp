@@ -14,6 +14,8 @@
 #include "delegate/renderBuffer.h"
 #include "delegate/renderPass.h"
 #include "delegate/sphere.h"
+#include "delegate/points.h"
+#include "delegate/curves.h"
 
 namespace principled::embree {
 
@@ -34,7 +36,7 @@ EmbreeRenderDelegate::EmbreeRenderDelegate() {
 EmbreeRenderDelegate::~EmbreeRenderDelegate() { rtcReleaseScene(_scene); }
 
 const std::vector<Token>& EmbreeRenderDelegate::supportedRprimTypes() const {
-    static const std::vector<Token> t{tokens::mesh(), tokens::sphere()};
+    static const std::vector<Token> t{tokens::mesh(), tokens::sphere(), tokens::pointsPrim(), tokens::basisCurves()};
     return t;
 }
 const std::vector<Token>& EmbreeRenderDelegate::supportedSprimTypes() const {
@@ -52,6 +54,8 @@ const std::vector<Token>& EmbreeRenderDelegate::supportedBprimTypes() const {
 std::unique_ptr<Rprim> EmbreeRenderDelegate::createRprim(const Token& typeId, const Path& id) {
     if (typeId == tokens::mesh()) return std::make_unique<Mesh>(id);
     if (typeId == tokens::sphere()) return std::make_unique<Sphere>(id);
+    if (typeId == tokens::pointsPrim()) return std::make_unique<Points>(id);
+    if (typeId == tokens::basisCurves()) return std::make_unique<BasisCurves>(id);
     return nullptr;
 }
 
@@ -85,10 +89,12 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
         std::vector<MaterialSource*> mats(_param->materials().begin(), _param->materials().end());
         std::sort(mats.begin(), mats.end(), [](auto* a, auto* b) { return a->materialId() < b->materialId(); });
         _snapshot.materials.clear();
+        _snapshot.anyPartlyPresent = false;
         std::unordered_map<Path, int> index;
         for (MaterialSource* m : mats) {
             index[m->materialId()] = static_cast<int>(_snapshot.materials.size());
             _snapshot.materials.push_back(m->record());
+            _snapshot.anyPartlyPresent |= m->record().mayBePartlyPresent;
         }
         for (GeometrySource* g : _param->geometry()) g->bindMaterials(index);
         std::vector<LightSource*> lights;
@@ -208,7 +214,15 @@ void EmbreeRenderDelegate::buildLightDistribution() {
                 p = lum(L) * kPi * kPi * R * R;
                 break;
             }
-            default: p = lum(l.radiance) * kPi * l.area;  // one-sided Lambertian emitter
+            default: {
+                glm::vec3 L = l.radiance;  // one-sided Lambertian emitter
+                if (l.rectTexture && !l.rectTexture->texels.empty()) {
+                    glm::dvec3 sum(0.0);
+                    for (const auto& t : l.rectTexture->texels) sum += glm::dvec3(t);
+                    L *= glm::vec3(sum / double(l.rectTexture->texels.size()));
+                }
+                p = lum(L) * kPi * l.area;
+            }
         }
         power[i] = std::isfinite(p) && p > 0.0f ? p : 0.0f;
         total += power[i];
@@ -257,6 +271,11 @@ EmbreeRenderDelegate::Summary EmbreeRenderDelegate::summary() const {
         if (g->instanceId() == RTC_INVALID_GEOMETRY_ID && (!ids || ids->empty())) continue;
         if (r->kind == GeometryRecord::Kind::Sphere) {
             ++out.spheres;
+        } else if (r->kind == GeometryRecord::Kind::Points) {
+            out.points += r->points.size();
+        } else if (r->kind == GeometryRecord::Kind::Curves) {
+            ++out.curvePrims;
+            out.curveSegments += r->triangleFace.size();
         } else {
             ++out.meshes;
             out.triangles += r->triangles.size();

@@ -44,6 +44,7 @@ public:
     /// What the committed scene holds, for `principled info` and hosts' scene statistics.
     struct Summary {
         size_t meshes = 0, spheres = 0, triangles = 0, instances = 0, instancers = 0;
+        size_t points = 0, curvePrims = 0, curveSegments = 0;
         std::map<std::string, size_t> lightsByKind;
         /// Material path -> the lobes its (constant) parameters use, e.g. "diffuse+specular";
         /// "textured" when they vary over the surface.

@@ -22,6 +22,7 @@ namespace principled::embree {
 struct MaterialRecord {
     shading::ShadedMaterial constant;                        ///< used when program is null
     std::shared_ptr<const shading::MaterialProgram> program;  ///< non-null when textured
+    bool mayBePartlyPresent = false;  ///< opacity < 1 somewhere: shadow rays must evaluate it
 };
 
 /// One primvar of a mesh, expanded to three values per triangle (or one value if constant).
@@ -29,13 +30,16 @@ struct PrimvarChannel {
     hd::Token name;
     int components = 0;
     bool constant = false;
+    bool perPrimitive = false;  ///< one value per Embree primitive (a point, a curve segment)
     std::vector<float> data;
 };
 
 /// One rprim's geometry as the integrator sees it. Owned by the rprim; the Embree instance of
 /// the rprim carries a pointer to it as user data.
 struct GeometryRecord {
-    enum class Kind : uint8_t { Triangles, Sphere };
+    /// Points are Embree sphere points, Curves Embree round curves: their hits carry Embree's
+    /// geometric normal; triangleFace maps each primitive to its point or curve.
+    enum class Kind : uint8_t { Triangles, Sphere, Points, Curves };
     Kind kind = Kind::Triangles;
     int primId = -1;
     int materialIndex = -1;  ///< into SceneSnapshot::materials; -1 = use displayColor
@@ -103,6 +107,9 @@ struct LightRecord {
     float area = 0.0f;
     LightShaping shaping;                ///< sphere/rect/disk/cylinder: UsdLux ShapingAPI cone
     std::shared_ptr<const EnvironmentMap> environment;  ///< dome texture (null: constant)
+    /// Rect light texture:file (texels only; null: constant). Texel (0, 0), the image's top
+    /// left, sits at the light's (+X, +Y) corner.
+    std::shared_ptr<const EnvironmentMap> rectTexture;
     float pickProbability = 1.0f;  ///< chance next-event estimation picks this light
     // Mesh lights (emissive geometry with a constant emission): the triangles that emit, with
     // a CDF over their world-space areas. Emission is two-sided, as it is shaded.
@@ -123,6 +130,9 @@ struct SceneSnapshot {
     std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
     std::vector<float> lightCdf;                      ///< lights.size() + 1 entries, by power
     bool usingDefaultLight = false;                   ///< the scene had no light
+    /// Some material can be partly present (opacity, cutouts): shadow rays then look at
+    /// each surface they cross instead of stopping at the first.
+    bool anyPartlyPresent = false;
 };
 
 }  // namespace principled::embree

@@ -13,6 +13,7 @@
 #include "delegate/renderDelegate.h"
 #include "delegate/renderPass.h"
 #include "scene_adapter/usda/stage.h"
+#include "scene_adapter/stageEditor.h"
 #include "scene_adapter/usdSceneDelegate.h"
 
 namespace principled::host {
@@ -42,18 +43,15 @@ RenderSession::~RenderSession() {
     _pass.reset();
     if (_index) _index->clear();
     _index.reset();
+    _editor.reset();
     _sceneDelegate.reset();
-    _delegate.reset();
+    _ownedDelegate.reset();
 }
 
-void RenderSession::setup() {
-    if (_options.width <= 0 || _options.height <= 0 || _options.width > 32768 ||
-        _options.height > 32768)
-        throw UserError("resolution must be between 1x1 and 32768x32768");
+void RenderSession::applySettings() {
     if (_options.samplesPerPixel <= 0) throw UserError("samples per pixel must be at least 1");
     if (_options.shadingModel != "disney" && _options.shadingModel != "ue4")
         throw UserError("shading model must be 'disney' or 'ue4', not '" + _options.shadingModel + "'");
-    _delegate = std::make_unique<embree::EmbreeRenderDelegate>();
     _delegate->setRenderSetting(Token("convergedSamplesPerPixel"), Value(_options.samplesPerPixel));
     _delegate->setRenderSetting(Token("seed"), Value(_options.seed));
     _delegate->setRenderSetting(Token("maxDepth"), Value(std::max(0, _options.maxDepth)));
@@ -90,43 +88,27 @@ void RenderSession::setup() {
                             ", not '" + text + "'");
         _delegate->setRenderSetting(Token(key), v);
     }
-    _index = std::make_unique<RenderIndex>(_delegate.get());
+}
+
+void RenderSession::setup() {
+    if (_options.width <= 0 || _options.height <= 0 || _options.width > 32768 ||
+        _options.height > 32768)
+        throw UserError("resolution must be between 1x1 and 32768x32768");
+    if (_options.renderDelegate) {
+        _delegate = _options.renderDelegate;  // the host's settings stand
+    } else {
+        _ownedDelegate = std::make_unique<embree::EmbreeRenderDelegate>();
+        _delegate = _ownedDelegate.get();
+        applySettings();
+    }
+    _index = std::make_unique<RenderIndex>(_delegate);
     adapter::AdapterOptions ao;
     ao.time = _options.time;
     _sceneDelegate = std::make_unique<adapter::UsdSceneDelegate>(*_stage, ao);
     _sceneDelegate->populate(_index.get());
+    _editor = std::make_unique<adapter::StageEditor>(*_stage, *_sceneDelegate, *_index);
+    chooseCamera(_options.camera);
 
-    const auto& cams = _sceneDelegate->cameras();
-    if (!_options.camera.empty()) {
-        if (std::find(cams.begin(), cams.end(), Path(_options.camera)) == cams.end()) {
-            std::string list;
-            for (const auto& c : cams) list += (list.empty() ? "" : ", ") + c.str();
-            throw UserError("camera '" + _options.camera + "' not found in the stage" +
-                            (list.empty() ? " (it has no cameras)" : "; cameras: " + list));
-        }
-        _cameraPath = _options.camera;
-    } else if (!cams.empty()) {
-        _cameraPath = cams.front().str();
-    } else {
-        _cameraPath = _sceneDelegate
-                          ->addDefaultCamera(_index.get(),
-                                             double(_options.width) / double(_options.height))
-                          .str();
-    }
-    // Adaptive subdivision measures meshes from the render camera.
-    if (auto* camera = static_cast<hd::Camera*>(nullptr); camera == nullptr) {
-        Path cam(_cameraPath);
-        glm::dmat4 xf = _sceneDelegate->getTransform(cam);
-        auto param = [&](const char* n, float fallback) {
-            return getFloat(_sceneDelegate->getCameraParamValue(cam, Token(n))).value_or(fallback);
-        };
-        hd::Camera probe(cam);
-        probe.set(xf, param("focalLength", 5.0f), param("horizontalAperture", 2.0955f),
-                  param("verticalAperture", 1.52908f));
-        glm::vec4 w = probe.screenWindow(double(_options.width) / double(_options.height));
-        float vfov = 2.0f * std::atan(0.5f * (w.w - w.z));
-        _delegate->setDicingView(glm::vec3(xf[3]), vfov, _options.height);
-    }
     std::vector<std::string> names{"color"};
     for (const auto& a : _options.aovs) {
         if (a == "all") {
@@ -139,21 +121,89 @@ void RenderSession::setup() {
             names.push_back(a);
         }
     }
-    for (const auto& name : names) {
-        if (std::any_of(_buffers.begin(), _buffers.end(), [&](auto& b) { return b.first == name; }))
-            continue;
-        Path bufferId("/__principled/aov/" + name);
-        _index->insertBprim(tokens::renderBuffer(), _sceneDelegate.get(), bufferId);
-        auto* buf = static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), bufferId));
-        AovDescriptor d = _delegate->defaultAovDescriptor(Token(name));
-        buf->allocate(_options.width, _options.height, d.format, d.multiSampled);
-        _buffers.emplace_back(name, buf);
-    }
+    for (const auto& name : names) bindAov(name);
     _color = _buffers.front().second;
     _index->sync();
     _pass = _delegate->createRenderPass(_index.get());
     if (_options.sampleRangeEnd > _options.sampleRangeFirst)
         pass()->setSampleRange(_options.sampleRangeFirst, _options.sampleRangeEnd);
+}
+
+const std::vector<Path>& RenderSession::cameras() const { return _sceneDelegate->cameras(); }
+
+void RenderSession::chooseCamera(const std::string& request) {
+    const auto& cams = _sceneDelegate->cameras();
+    if (!request.empty()) {
+        if (std::find(cams.begin(), cams.end(), Path(request)) == cams.end()) {
+            std::string list;
+            for (const auto& c : cams) list += (list.empty() ? "" : ", ") + c.str();
+            throw UserError("camera '" + request + "' not found in the stage" +
+                            (list.empty() ? " (it has no cameras)" : "; cameras: " + list));
+        }
+        _cameraPath = request;
+    } else if (!cams.empty()) {
+        _cameraPath = cams.front().str();
+    } else {
+        _cameraPath = _sceneDelegate
+                          ->addDefaultCamera(_index.get(),
+                                             double(_options.width) / double(_options.height))
+                          .str();
+    }
+    // Adaptive subdivision measures meshes from the render camera.
+    Path cam(_cameraPath);
+    glm::dmat4 xf = _sceneDelegate->getTransform(cam);
+    auto param = [&](const char* n, float fallback) {
+        return getFloat(_sceneDelegate->getCameraParamValue(cam, Token(n))).value_or(fallback);
+    };
+    hd::Camera probe(cam);
+    probe.set(xf, param("focalLength", 5.0f), param("horizontalAperture", 2.0955f),
+              param("verticalAperture", 1.52908f));
+    glm::vec4 w = probe.screenWindow(double(_options.width) / double(_options.height));
+    float vfov = 2.0f * std::atan(0.5f * (w.w - w.z));
+    _delegate->setDicingView(glm::vec3(xf[3]), vfov, _options.height);
+}
+
+void RenderSession::setCamera(const std::string& primPath) {
+    chooseCamera(primPath);
+    _options.camera = primPath;
+}
+
+embree::EmbreeRenderBuffer* RenderSession::allocate(const std::string& name) {
+    Path bufferId("/__principled/aov/" + name);
+    auto* buf = static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), bufferId));
+    if (!buf) {
+        _index->insertBprim(tokens::renderBuffer(), _sceneDelegate.get(), bufferId);
+        buf = static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), bufferId));
+    }
+    if (!buf) throw std::runtime_error("could not create a render buffer for AOV '" + name + "'");
+    AovDescriptor d = _delegate->defaultAovDescriptor(Token(name));
+    buf->allocate(_options.width, _options.height, d.format, d.multiSampled);
+    return buf;
+}
+
+void RenderSession::bindAov(const std::string& name) {
+    if (std::any_of(_buffers.begin(), _buffers.end(), [&](auto& b) { return b.first == name; }))
+        return;
+    if (_delegate->defaultAovDescriptor(Token(name)).format == Format::Invalid)
+        throw UserError("unknown AOV '" + name + "'");
+    _buffers.emplace_back(name, allocate(name));
+}
+
+void RenderSession::unbindAov(const std::string& name) {
+    if (name == "color") return;
+    auto it = std::find_if(_buffers.begin(), _buffers.end(), [&](auto& b) { return b.first == name; });
+    if (it == _buffers.end()) return;
+    _buffers.erase(it);
+    _index->removeBprim(Path("/__principled/aov/" + name));
+}
+
+void RenderSession::setResolution(int width, int height) {
+    if (width <= 0 || height <= 0 || width > 32768 || height > 32768)
+        throw UserError("resolution must be between 1x1 and 32768x32768");
+    _options.width = width;
+    _options.height = height;
+    for (auto& [name, buf] : _buffers) buf = allocate(name);
+    _color = _buffers.front().second;
 }
 
 bool RenderSession::step() {

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "delegate/hd/path.h"
+
 namespace principled::usd {
 class Stage;
 }
@@ -20,8 +22,9 @@ class RenderPass;
 class RenderDelegate;
 }  // namespace principled::hd
 namespace principled::adapter {
+class StageEditor;
 class UsdSceneDelegate;
-}
+}  // namespace principled::adapter
 namespace principled::embree {
 class EmbreeRenderBuffer;
 class EmbreeRenderDelegate;
@@ -55,6 +58,10 @@ struct SessionOptions {
     /// AOVs to render besides color ("normal", "primId", ... or "all").
     std::vector<std::string> aovs;
     double time = std::numeric_limits<double>::quiet_NaN();
+    /// A render delegate the host keeps across sessions (the C ABI's, whose settings outlive a
+    /// stage): its settings are used as they are and the setting fields above are ignored.
+    /// nullptr: the session creates and owns one configured from these options.
+    embree::EmbreeRenderDelegate* renderDelegate = nullptr;
 };
 
 class RenderSession {
@@ -94,20 +101,41 @@ public:
     embree::EmbreeRenderPass* pass() const;
     hd::RenderIndex* index() const { return _index.get(); }
     const usd::Stage& stage() const { return *_stage; }
-    embree::EmbreeRenderDelegate* delegate() const { return _delegate.get(); }
+    embree::EmbreeRenderDelegate* delegate() const { return _delegate; }
     /// The render buffer of an AOV (nullptr if not bound).
     embree::EmbreeRenderBuffer* buffer(const std::string& aov) const;
     const std::string& cameraPath() const { return _cameraPath; }
+    /// The stage's camera prims (a framing camera is added only when it has none).
+    const std::vector<hd::Path>& cameras() const;
+    /// Renders through camera `primPath` from the next step ("": the first camera, else the
+    /// framing camera). UserError naming the cameras when it is not one.
+    void setCamera(const std::string& primPath);
+    /// New image size (1..32768 each); every bound buffer is reallocated.
+    void setResolution(int width, int height);
+    /// Binds one more AOV (no-op when bound; UserError for an unknown name) or unbinds one
+    /// (color stays bound).
+    void bindAov(const std::string& name);
+    void unbindAov(const std::string& name);
+
+    /// Host edits of the open stage (set attributes, transforms, add/remove prims, bindings):
+    /// each marks only the dirty bits it implies; the next step() syncs just those.
+    adapter::StageEditor& editor() { return *_editor; }
+    adapter::UsdSceneDelegate& sceneDelegate() const { return *_sceneDelegate; }
 
 private:
     RenderSession(std::unique_ptr<usd::Stage> stage, const SessionOptions& options);
     void setup();
+    void applySettings();
+    void chooseCamera(const std::string& request);
+    embree::EmbreeRenderBuffer* allocate(const std::string& name);
 
     SessionOptions _options;
     std::unique_ptr<usd::Stage> _stage;
-    std::unique_ptr<embree::EmbreeRenderDelegate> _delegate;
+    std::unique_ptr<embree::EmbreeRenderDelegate> _ownedDelegate;
+    embree::EmbreeRenderDelegate* _delegate = nullptr;
     std::unique_ptr<hd::RenderIndex> _index;
     std::unique_ptr<adapter::UsdSceneDelegate> _sceneDelegate;
+    std::unique_ptr<adapter::StageEditor> _editor;
     std::unique_ptr<hd::RenderPass> _pass;
     embree::EmbreeRenderBuffer* _color = nullptr;
     std::vector<std::pair<std::string, embree::EmbreeRenderBuffer*>> _buffers;

@@ -102,6 +102,8 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     bool isRprim = false;
     if (type == "Mesh") hdType = tokens::mesh(), isRprim = true;
     else if (type == "Sphere") hdType = tokens::sphere(), isRprim = true;
+    else if (type == "Points") hdType = tokens::pointsPrim(), isRprim = true;
+    else if (type == "BasisCurves") hdType = tokens::basisCurves(), isRprim = true;
     else if (isImplicitShape(type)) hdType = tokens::mesh(), isRprim = true;
     else if (type == "PointInstancer") {
         // Its prototypes are drawn only through it; nothing below it is drawn directly.
@@ -442,7 +444,7 @@ Path UsdSceneDelegate::addDefaultCamera(RenderIndex* index, double aspect) {
     for (const auto& [id, e] : _entries) {
         if (!e.instancer.empty()) {
             growInstancedBounds(id, e, grow);
-        } else if (e.type == tokens::mesh()) {
+        } else if (e.type == tokens::mesh() || e.type == tokens::pointsPrim() || e.type == tokens::basisCurves()) {
             Value v = get(id, tokens::points());
             if (auto* pts = getIf<std::vector<glm::vec3>>(v))
                 for (const auto& p : *pts) grow(e.world, glm::dvec3(p));

@@ -69,6 +69,29 @@ public:
     hd::Value getLightParamValue(const hd::Path& id, const hd::Token& param) const override;
     hd::Value getCameraParamValue(const hd::Path& id, const hd::Token& param) const override;
 
+    // ---- Change processing (usdSceneDelegateEdits.cpp) --------------------------------------
+    // After the stage changed (usd::StageEdit, driven by adapter::StageEditor), these keep the
+    // index in step, like UsdImaging's ObjectsChanged handling: each marks exactly the dirty
+    // bits the change implies on the prims it affects, or inserts/removes index prims.
+
+    /// `attribute` of the prim at `primPath` has a new value.
+    void attributeChanged(const std::string& primPath, const std::string& attribute,
+                          hd::RenderIndex* index);
+    /// Relationship `name` of the prim at `primPath` has new targets.
+    void relationshipChanged(const std::string& primPath, const std::string& name,
+                             hd::RenderIndex* index);
+    /// A prim was defined at `path` (empty: no children yet).
+    void primAdded(const std::string& path, hd::RenderIndex* index);
+    /// The prim at `path` and its subtree are about to leave the stage: removes their index
+    /// prims while the stage objects are still in place.
+    void primRemoving(const std::string& path, hd::RenderIndex* index);
+    /// ...and have left it: rebinds prims whose material went away (to the default material),
+    /// re-populates instancers that drew it.
+    void primRemoved(const std::string& path, hd::RenderIndex* index);
+    /// The instanceable prim whose subtree holds `path` (an instance proxy, read-only as in
+    /// USD), or "" when there is none.
+    std::string enclosingInstance(const std::string& path) const;
+
 private:
     struct Entry {
         const usd::Prim* prim = nullptr;
@@ -101,6 +124,26 @@ private:
     void growInstancedBounds(const hd::Path& id, const Entry& e,
                              const std::function<void(const glm::dmat4&, const glm::dvec3&)>& grow) const;
 
+    // Change processing helpers (usdSceneDelegateEdits.cpp).
+    struct Ancestry {
+        glm::dmat4 parentWorld{1.0};
+        bool parentVisible = true;
+        bool drawn = true;                          ///< no ancestor hides the subtree (purpose)
+        const usd::Prim* pointInstancer = nullptr;  ///< strict ancestor PointInstancer
+    };
+    Ancestry ancestry(const usd::Prim& prim) const;
+    std::vector<hd::Path> idsOf(const usd::Prim* prim) const;
+    void removeEntry(const hd::Path& id, hd::RenderIndex* index);
+    void resyncSubtree(const std::string& path, hd::RenderIndex* index);
+    void repopulate(hd::RenderIndex* index);
+    void transformChanged(const usd::Prim& prim, hd::RenderIndex* index);
+    void visibilityChanged(const usd::Prim& prim, hd::RenderIndex* index);
+    void rebind(const std::string& root, const std::string& material, hd::RenderIndex* index);
+    void materialNetworkChanged(const usd::Prim& prim, hd::DirtyBits bits, hd::RenderIndex* index);
+    /// Instancers that draw `path` or anything below it (as prototypes or by containing it).
+    std::vector<hd::Path> instancersDrawing(const std::string& path) const;
+    bool subtreeHasInstances(const std::string& path) const;
+
     const Entry* entry(const hd::Path& id) const;
     const usd::Prim* prim(const hd::Path& id) const;
     hd::Value attributeValue(const usd::Prim& prim, const std::string& name) const;
@@ -114,7 +157,12 @@ private:
     std::unordered_map<hd::Path, Entry> _entries;
     std::unordered_map<std::string, hd::Path> _instanceGroups;  ///< instance key -> instancer
     std::vector<hd::Path> _cameras;
+    std::vector<std::string> _instancePrims;  ///< instanceable prims drawn through a group
     std::vector<std::string> _warnings;
+    // Between primRemoving and primRemoved.
+    const usd::Prim* _removing = nullptr;
+    bool _removingHadInstances = false;
+    std::vector<hd::Path> _removingDrawnBy;
     hd::Path _defaultCamera;
     glm::dmat4 _defaultCameraXform{1.0};
     float _defaultCameraFocal = 5.0f;

@@ -137,7 +137,7 @@ std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
 // True when a subtree holds only what a prototype can draw (gprims, their materials and
 // grouping prims): instances holding lights, cameras or PointInstancers are expanded instead.
 static bool onlyPrototypeGeometry(const usd::Prim& prim) {
-    static const std::set<std::string> ok{"", "Xform", "Scope", "Mesh", "Sphere", "Cube", "Cylinder",
+    static const std::set<std::string> ok{"", "Xform", "Scope", "Mesh", "Sphere", "Points", "BasisCurves", "Cube", "Cylinder",
                                           "Cone", "Capsule", "Material", "Shader", "NodeGraph",
                                           "GeomSubset"};
     if (!ok.count(prim.typeName())) return false;
@@ -149,7 +149,8 @@ static bool onlyPrototypeGeometry(const usd::Prim& prim) {
 bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& world, bool visible,
                                      RenderIndex* index) {
     const std::string& type = prim.typeName();
-    if (type == "Mesh" || type == "Sphere" || type == "PointInstancer" || isImplicitShape(type))
+    if (type == "Mesh" || type == "Sphere" || type == "Points" || type == "BasisCurves" ||
+        type == "PointInstancer" || isImplicitShape(type))
         return false;  // an instanceable gprim is simply drawn
     if (!onlyPrototypeGeometry(prim)) return false;
     // Instances of one prototype share its BLAS unless an inherited binding differs.
@@ -169,6 +170,7 @@ bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& wo
             visitPrototype(*child, Path(child->path()), glm::dmat4(1.0), true, instancer, 0, index);
     }
     if (visible) _entries[it->second].instanceXforms->push_back(world);
+    _instancePrims.push_back(prim.path());
     return true;
 }
 
@@ -222,10 +224,14 @@ void UsdSceneDelegate::visitPrototype(const usd::Prim& prim, const Path& id, con
         return;
     }
     bool shape = isImplicitShape(type);
-    if ((type == "Mesh" || type == "Sphere" || shape) && prim.isDefined()) {
+    if ((type == "Mesh" || type == "Sphere" || type == "Points" || type == "BasisCurves" || shape) &&
+        prim.isDefined()) {
         Entry e;
         e.prim = &prim;
-        e.type = type == "Sphere" ? tokens::sphere() : tokens::mesh();
+        e.type = type == "Sphere"        ? tokens::sphere()
+                 : type == "Points"      ? tokens::pointsPrim()
+                 : type == "BasisCurves" ? tokens::basisCurves()
+                                         : tokens::mesh();
         e.world = rel;
         e.visible = visible;
         e.material = resolveMaterialBinding(prim);

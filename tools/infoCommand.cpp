@@ -48,6 +48,8 @@ int runInfo(const std::string& scene, const std::string& camera, int refineLevel
     std::printf("geometry: %zu meshes (%zu triangles after refinement), %zu spheres, %zu instances",
                 sum.meshes, sum.triangles, sum.spheres, sum.instances);
     if (sum.instancers) std::printf(" (%zu point instancers)", sum.instancers);
+    if (sum.points) std::printf(", %zu points", sum.points);
+    if (sum.curvePrims) std::printf(", %zu curves prims (%zu segments)", sum.curvePrims, sum.curveSegments);
     std::printf("\nmaterials: %zu\n", sum.materialLobes.size());
     for (const auto& [path, lobes] : sum.materialLobes) std::printf("  %s: %s\n", path.c_str(), lobes.c_str());
     std::printf("lights:");

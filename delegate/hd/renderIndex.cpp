@@ -126,22 +126,28 @@ Rprim* RenderIndex::rprimByPrimId(int id) const {
 void RenderIndex::sync() {
     RenderParam* param = _renderDelegate->renderParam();
     using K = ChangeTracker::Kind;
+    _lastSync = SyncRecord{};
     for (const Path& id : _tracker.dirtyIds(K::Bprim)) {
         auto& e = _bprims.at(id);
         DirtyBits bits = _tracker.dirtyBits(K::Bprim, id);
+        _lastSync.bprims.emplace_back(id, bits);
         e.prim->sync(e.sceneDelegate, param, &bits);
         _tracker.setClean(K::Bprim, id, bits);
     }
     for (const Path& id : _tracker.dirtyIds(K::Sprim)) {
         auto& e = _sprims.at(id);
         DirtyBits bits = _tracker.dirtyBits(K::Sprim, id);
+        _lastSync.sprims.emplace_back(id, bits);
         e.prim->sync(e.sceneDelegate, param, &bits);
         _tracker.setClean(K::Sprim, id, bits);
     }
     // Rprims in parallel: each touches only its own state (see Rprim::sync's contract).
     std::vector<Path> dirty = _tracker.dirtyIds(K::Rprim);
     std::vector<DirtyBits> bits(dirty.size());
-    for (size_t i = 0; i < dirty.size(); ++i) bits[i] = _tracker.dirtyBits(K::Rprim, dirty[i]);
+    for (size_t i = 0; i < dirty.size(); ++i) {
+        bits[i] = _tracker.dirtyBits(K::Rprim, dirty[i]);
+        _lastSync.rprims.emplace_back(dirty[i], bits[i]);
+    }
     tbb::parallel_for(size_t(0), dirty.size(), [&](size_t i) {
         auto& e = _rprims.at(dirty[i]);
         e.prim->sync(e.sceneDelegate, param, &bits[i]);

@@ -49,6 +49,13 @@ public:
     /// Syncs every dirty prim (bprims, then sprims, then rprims in parallel) and commits.
     void sync();
 
+    /// What the last sync() pulled: the ids of the prims it synced (path order) and the dirty
+    /// bits each had. Tests of incremental updates read it; cost is one entry per dirty prim.
+    struct SyncRecord {
+        std::vector<std::pair<Path, DirtyBits>> rprims, sprims, bprims;
+    };
+    const SyncRecord& lastSync() const { return _lastSync; }
+
     ChangeTracker& changeTracker() { return _tracker; }
     const ChangeTracker& changeTracker() const { return _tracker; }
     RenderDelegate* renderDelegate() const { return _renderDelegate; }
@@ -67,6 +74,7 @@ private:
     std::map<Path, Entry<Sprim>> _sprims;
     std::map<Path, Entry<Bprim>> _bprims;
     std::vector<Rprim*> _rprimsById;
+    SyncRecord _lastSync;
 };
 
 }  // namespace principled::hd

@@ -9,6 +9,9 @@ namespace principled::hd::tokens {
 // Rprim types.
 inline const Token& mesh() { static const Token t("mesh"); return t; }
 inline const Token& sphere() { static const Token t("sphere"); return t; }
+/// UsdGeomPoints' rprim type (Hydra's "points"; the same string as the points attribute).
+inline const Token& pointsPrim() { static const Token t("points"); return t; }
+inline const Token& basisCurves() { static const Token t("basisCurves"); return t; }
 // Sprim types.
 inline const Token& camera() { static const Token t("camera"); return t; }
 inline const Token& material() { static const Token t("material"); return t; }
@@ -25,6 +28,8 @@ inline const Token& renderBuffer() { static const Token t("renderBuffer"); retur
 inline const Token& points() { static const Token t("points"); return t; }
 inline const Token& normals() { static const Token t("normals"); return t; }
 inline const Token& radius() { static const Token t("radius"); return t; }
+inline const Token& widths() { static const Token t("widths"); return t; }
+inline const Token& curveVertexCounts() { static const Token t("curveVertexCounts"); return t; }
 inline const Token& displayColor() { static const Token t("displayColor"); return t; }
 
 // Instancer keys for SceneDelegate::get(instancerId, ...): per-instance arrays, Hydra's names.

@@ -490,4 +490,11 @@ ShadedMaterial MaterialProgram::evaluate(const ShadingContext& context) const {
     return mapPreviewSurface(p);
 }
 
+bool MaterialProgram::mayBePartlyPresent() const {
+    if (_constant.presence() < 1.0f) return true;
+    for (const Binding& b : _bindings)
+        if (b.slot == Slot::Opacity) return true;
+    return false;
+}
+
 }  // namespace principled::shading

@@ -51,6 +51,9 @@ class MaterialProgram {
     /// The result when isConstant() (otherwise the mapping of the constant inputs alone).
     const ShadedMaterial& constantResult() const { return _constant; }
 
+    /// False when every shading point is fully present (opacity 1, or a cutout that always
+    /// passes): shadow rays may then treat the surface as opaque without evaluating it.
+    bool mayBePartlyPresent() const;
     /// Primvar names the program reads (e.g. {"st"}): the mesh must keep them.
     const std::vector<hd::Token>& primvarsRead() const { return _primvarsRead; }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The host side of the C ABI (principled_c.h): finds renderers through the plugin registry and
 // forwards every call to the plugin's table, keeping the last error per handle.
+#include <cstddef>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -49,6 +50,17 @@ PrdStatus forward(PrdDelegate* d, const char* call, F&& f) {
     }
     return s;
 }
+
+/// forward() for calls a PRD_ABI_MINOR 0 plugin table does not have.
+template <typename F>
+PrdStatus forwardNew(PrdDelegate* d, const char* call, bool has, F&& f) {
+    if (d && !has) {
+        d->error = std::string(call) + ": the renderer plugin is too old for this call";
+        return PRD_ERROR_UNSUPPORTED;
+    }
+    return forward(d, call, std::forward<F>(f));
+}
+
 
 std::string registryDiagnostics;
 
@@ -154,13 +166,13 @@ PrdStatus prdCreateDelegateFromApi(const PrdRendererApi* api, const char* typeNa
     if (!out) return failNoHandle(PRD_ERROR_INVALID_ARGUMENT, "prdCreateDelegate: out is NULL");
     *out = nullptr;
     if (!api) return failNoHandle(PRD_ERROR_INVALID_ARGUMENT, "prdCreateDelegate: api is NULL");
-    if (api->abiVersion != PRD_ABI_VERSION || api->structSize < sizeof(PrdRendererApi))
+    if (api->abiVersion != PRD_ABI_VERSION || api->structSize < PRD_RENDERER_API_SIZE_V1_0)
         return failNoHandle(PRD_ERROR_PLUGIN,
                             "prdCreateDelegate: plugin table has ABI version " +
                                 std::to_string(api->abiVersion) + " and size " +
                                 std::to_string(api->structSize) + "; this host needs version " +
                                 std::to_string(PRD_ABI_VERSION) +
-                                " and size >= " + std::to_string(sizeof(PrdRendererApi)));
+                                " and size >= " + std::to_string(PRD_RENDERER_API_SIZE_V1_0));
     try {
         PrdSession* session = nullptr;
         const char* error = nullptr;
@@ -236,6 +248,46 @@ PrdStatus prdSetLocalTransform(PrdDelegate* d, const char* primPath, const doubl
         return a->setLocalTransform(s, primPath, matrix);
     });
 }
+// Calls added in PRD_ABI_MINOR 1: an older plugin's table ends before them.
+#define PRD_HAS(api, field) \
+    ((api)->structSize >= offsetof(PrdRendererApi, field) + sizeof((api)->field) && (api)->field)
+
+PrdStatus prdAddPrim(PrdDelegate* d, const char* primPath, const char* typeName) {
+    return forwardNew(d, "prdAddPrim", d && PRD_HAS(d->api, addPrim),
+                      [&](const PrdRendererApi* a, PrdSession* s) { return a->addPrim(s, primPath, typeName); });
+}
+PrdStatus prdRemovePrim(PrdDelegate* d, const char* primPath) {
+    return forwardNew(d, "prdRemovePrim", d && PRD_HAS(d->api, removePrim),
+                      [&](const PrdRendererApi* a, PrdSession* s) { return a->removePrim(s, primPath); });
+}
+PrdStatus prdBindMaterial(PrdDelegate* d, const char* primPath, const char* materialPath) {
+    return forwardNew(d, "prdBindMaterial", d && PRD_HAS(d->api, bindMaterial),
+                      [&](const PrdRendererApi* a, PrdSession* s) {
+                          return a->bindMaterial(s, primPath, materialPath);
+                      });
+}
+PrdStatus prdSetRelationship(PrdDelegate* d, const char* primPath, const char* name,
+                             const char* const* targets, size_t count) {
+    return forwardNew(d, "prdSetRelationship", d && PRD_HAS(d->api, setRelationship),
+                      [&](const PrdRendererApi* a, PrdSession* s) {
+                          return a->setRelationship(s, primPath, name, targets, count);
+                      });
+}
+PrdStatus prdConnectAttribute(PrdDelegate* d, const char* primPath, const char* attribute,
+                              const char* source) {
+    return forwardNew(d, "prdConnectAttribute", d && PRD_HAS(d->api, connectAttribute),
+                      [&](const PrdRendererApi* a, PrdSession* s) {
+                          return a->connectAttribute(s, primPath, attribute, source);
+                      });
+}
+PrdStatus prdSetAttributeTyped(PrdDelegate* d, const char* primPath, const char* attribute,
+                               const char* typeName, const double* values, size_t count) {
+    return forwardNew(d, "prdSetAttributeTyped", d && PRD_HAS(d->api, setAttributeTyped),
+                      [&](const PrdRendererApi* a, PrdSession* s) {
+                          return a->setAttributeTyped(s, primPath, attribute, typeName, values, count);
+                      });
+}
+
 PrdStatus prdSetSettingInt(PrdDelegate* d, const char* key, int64_t value) {
     return forward(d, "prdSetSettingInt", [&](const PrdRendererApi* a, PrdSession* s) {
         return a->setSettingInt(s, key, value);

@@ -95,6 +95,29 @@ PRD_API PrdStatus prdSetLocalTransform(PrdDelegate* delegate, const char* primPa
 PRD_API PrdStatus prdSetAttributeString(PrdDelegate* delegate, const char* primPath,
                                         const char* attribute, const char* value);
 
+/** Scene edits (PRD_ABI_MINOR 1; PRD_ERROR_UNSUPPORTED from an older plugin). Each marks only
+ *  the dirty bits it implies (docs/usda.md, "Host edits"); on failure nothing changed and
+ *  prdLastError names the prim path and what was expected. */
+/** Defines a prim ("Mesh", "Sphere", "Cube", "Xform", "Material", "Shader", "Camera",
+ *  "SphereLight", "PointInstancer", ...) whose parent exists; author its attributes next. */
+PRD_API PrdStatus prdAddPrim(PrdDelegate* delegate, const char* primPath, const char* typeName);
+/** Removes a prim and its subtree. Prims bound to a removed material use the default one. */
+PRD_API PrdStatus prdRemovePrim(PrdDelegate* delegate, const char* primPath);
+/** Binds a Material (material:binding) to a prim or GeomSubset; NULL or "" unbinds. */
+PRD_API PrdStatus prdBindMaterial(PrdDelegate* delegate, const char* primPath,
+                                  const char* materialPath);
+/** Sets the targets of a relationship (e.g. a PointInstancer's "prototypes"). */
+PRD_API PrdStatus prdSetRelationship(PrdDelegate* delegate, const char* primPath,
+                                     const char* name, const char* const* targets, size_t count);
+/** Connects a shading input/output to a source ("/Mat/Shader.outputs:surface"); "" disconnects. */
+PRD_API PrdStatus prdConnectAttribute(PrdDelegate* delegate, const char* primPath,
+                                      const char* attribute, const char* source);
+/** Like prdSetAttributeNumbers, creating the attribute with `typeName` ("float3[]",
+ *  "texCoord2f[]", "int") when it does not exist (an existing one must have that type). */
+PRD_API PrdStatus prdSetAttributeTyped(PrdDelegate* delegate, const char* primPath,
+                                       const char* attribute, const char* typeName,
+                                       const double* values, size_t count);
+
 /* ---- Host-supplied scenes ------------------------------------------------------------ */
 
 /** Builds a scene from host data (a DCC's meshes, materials, lights, cameras) as USDA text

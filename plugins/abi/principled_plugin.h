@@ -7,6 +7,8 @@
 #ifndef PRINCIPLED_PLUGIN_H
 #define PRINCIPLED_PLUGIN_H
 
+#include <stddef.h>
+
 #include "principled_types.h"
 
 #ifdef __cplusplus
@@ -64,7 +66,21 @@ typedef struct PrdRendererApi {
     PrdStatus (*statCount)(PrdSession* s, int* count);
     PrdStatus (*stat)(PrdSession* s, int index, const char** key, double* value);
     PrdStatus (*takeWarnings)(PrdSession* s, const char** text);
+
+    /* PRD_ABI_MINOR 1: scene edits beyond attribute values (a host checks structSize). */
+    PrdStatus (*addPrim)(PrdSession* s, const char* primPath, const char* typeName);
+    PrdStatus (*removePrim)(PrdSession* s, const char* primPath);
+    PrdStatus (*bindMaterial)(PrdSession* s, const char* primPath, const char* materialPath);
+    PrdStatus (*setRelationship)(PrdSession* s, const char* primPath, const char* name,
+                                 const char* const* targets, size_t count);
+    PrdStatus (*connectAttribute)(PrdSession* s, const char* primPath, const char* attribute,
+                                  const char* source);
+    PrdStatus (*setAttributeTyped)(PrdSession* s, const char* primPath, const char* attribute,
+                                   const char* typeName, const double* values, size_t count);
 } PrdRendererApi;
+
+/** Size of a PRD_ABI_MINOR 0 table (up to takeWarnings): the smallest a host accepts. */
+#define PRD_RENDERER_API_SIZE_V1_0 (offsetof(PrdRendererApi, addPrim))
 
 /** Signature of the entry point. */
 typedef const PrdRendererApi* (*PrdRendererPluginFn)(void);

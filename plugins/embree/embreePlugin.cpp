@@ -5,10 +5,12 @@
 
 #include <new>
 #include <string>
+#include <vector>
 
 #include "plugins/embree/embreeSession.h"
+#include "scene_adapter/stageEditor.h"
 
-using principled::plugins::EditValue;
+using principled::adapter::EditValue;
 using principled::plugins::EmbreeSession;
 using principled::plugins::SessionError;
 using principled::plugins::SettingInput;
@@ -104,15 +106,45 @@ PrdStatus setAttributeNumbers(PrdSession* s, const char* prim, const char* attr,
 }
 PrdStatus setAttributeString(PrdSession* s, const char* prim, const char* attr, const char* value) {
     return guard(s, [&](EmbreeSession& e) {
-        EditValue v;
-        v.isText = true;
-        v.text = need(value, "value");
-        e.setAttribute(need(prim, "primPath"), need(attr, "attribute"), v);
+        e.setAttribute(need(prim, "primPath"), need(attr, "attribute"),
+                       EditValue::text(need(value, "value")));
     });
 }
 PrdStatus setLocalTransform(PrdSession* s, const char* prim, const double matrix[16]) {
     return guard(s, [&](EmbreeSession& e) {
         e.setLocalTransform(need(prim, "primPath"), need(matrix, "matrix"));
+    });
+}
+PrdStatus addPrim(PrdSession* s, const char* prim, const char* type) {
+    return guard(s, [&](EmbreeSession& e) { e.addPrim(need(prim, "primPath"), need(type, "typeName")); });
+}
+PrdStatus removePrim(PrdSession* s, const char* prim) {
+    return guard(s, [&](EmbreeSession& e) { e.removePrim(need(prim, "primPath")); });
+}
+PrdStatus bindMaterial(PrdSession* s, const char* prim, const char* material) {
+    return guard(s, [&](EmbreeSession& e) { e.bindMaterial(need(prim, "primPath"), material ? material : ""); });
+}
+PrdStatus setRelationship(PrdSession* s, const char* prim, const char* name,
+                          const char* const* targets, size_t count) {
+    return guard(s, [&](EmbreeSession& e) {
+        if (count) need(targets, "targets");
+        std::vector<std::string> t;
+        for (size_t i = 0; i < count; ++i) t.emplace_back(need(targets[i], "a target"));
+        e.setRelationship(need(prim, "primPath"), need(name, "name"), t);
+    });
+}
+PrdStatus connectAttribute(PrdSession* s, const char* prim, const char* attr, const char* source) {
+    return guard(s, [&](EmbreeSession& e) {
+        e.connect(need(prim, "primPath"), need(attr, "attribute"), source ? source : "");
+    });
+}
+PrdStatus setAttributeTyped(PrdSession* s, const char* prim, const char* attr, const char* type,
+                            const double* values, size_t count) {
+    return guard(s, [&](EmbreeSession& e) {
+        if (count) need(values, "values");
+        EditValue v;
+        if (count) v.numbers.assign(values, values + count);
+        e.setAttribute(need(prim, "primPath"), need(attr, "attribute"), v, need(type, "typeName"));
     });
 }
 PrdStatus setSettingInt(PrdSession* s, const char* key, int64_t value) {
@@ -243,6 +275,12 @@ const PrdRendererApi kApi = {
     statCount,
     stat,
     takeWarnings,
+    addPrim,
+    removePrim,
+    bindMaterial,
+    setRelationship,
+    connectAttribute,
+    setAttributeTyped,
 };
 
 }  // namespace

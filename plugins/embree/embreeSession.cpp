@@ -7,13 +7,13 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "delegate/hd/renderIndex.h"
 #include "delegate/hd/tokens.h"
 #include "delegate/renderBuffer.h"
 #include "delegate/renderDelegate.h"
 #include "delegate/renderPass.h"
+#include "plugins/renderSession.h"
+#include "scene_adapter/stageEditor.h"
 #include "scene_adapter/usda/error.h"
-#include "scene_adapter/usda/stage.h"
 
 namespace principled::plugins {
 
@@ -108,18 +108,28 @@ const char* EmbreeSession::keep(const std::string& s) {
 }
 
 EmbreeSession::~EmbreeSession() {
-    closeStage();
+    _session.reset();  // before the delegate it renders with
 }
 
-void EmbreeSession::closeStage() {
-    _pass.reset();
-    if (_index) _index->clear();
-    _index.reset();
-    _buffers.clear();
-    _scene.reset();
-    _stage.reset();
-    _cameraPath.clear();
-    _adapterWarningsTaken = _stageWarningsTaken = 0;
+// ---- Stage ------------------------------------------------------------------------------
+
+template <typename F>
+void EmbreeSession::open(F&& makeSession) {
+    _session.reset();  // no half-built stage survives a failure
+    host::SessionOptions o;
+    o.width = _width;
+    o.height = _height;
+    o.camera = _cameraRequest;
+    o.renderDelegate = _delegate.get();
+    try {
+        std::unique_ptr<host::RenderSession> s = makeSession(o);
+        for (const std::string& name : _bound) s->bindAov(name);
+        _session = std::move(s);
+    } catch (const usd::Error& e) {
+        throw SessionError(PRD_ERROR_IO, e.what());
+    } catch (const host::UserError& e) {
+        throw SessionError(PRD_ERROR_NOT_FOUND, e.what());  // the requested camera
+    }
 }
 
 void EmbreeSession::openFile(const std::string& path) {
@@ -128,93 +138,83 @@ void EmbreeSession::openFile(const std::string& path) {
         throw SessionError(PRD_ERROR_IO, "cannot open '" + path + "': no such file");
     if (!std::filesystem::is_regular_file(path, ec))
         throw SessionError(PRD_ERROR_IO, "cannot open '" + path + "': not a regular file");
-    std::unique_ptr<usd::Stage> stage;
-    try {
-        stage = usd::Stage::open(path);
-    } catch (const usd::Error& e) {
-        throw SessionError(PRD_ERROR_IO, e.what());
-    }
-    open(std::move(stage));
+    open([&](const host::SessionOptions& o) { return host::RenderSession::openFile(path, o); });
 }
 
 void EmbreeSession::openString(const std::string& text, const std::string& displayName) {
-    std::unique_ptr<usd::Stage> stage;
-    try {
-        stage = usd::Stage::openString(text, displayName.empty() ? "<string>" : displayName);
-    } catch (const usd::Error& e) {
-        throw SessionError(PRD_ERROR_IO, e.what());
-    }
-    open(std::move(stage));
+    open([&](const host::SessionOptions& o) {
+        return host::RenderSession::openString(text, displayName.empty() ? "<string>" : displayName,
+                                               o);
+    });
 }
 
-void EmbreeSession::open(std::unique_ptr<usd::Stage> stage) {
-    closeStage();
-    try {
-        populate(std::move(stage));
-    } catch (...) {
-        closeStage();  // no half-built stage survives a failure
-        throw;
-    }
-}
-
-void EmbreeSession::populate(std::unique_ptr<usd::Stage> stage) {
-    _stage = std::move(stage);
-    _index = std::make_unique<RenderIndex>(_delegate.get());
-    _scene = std::make_unique<EditableSceneDelegate>(*_stage);
-    _scene->populate(_index.get());
-    const auto& cams = _scene->cameras();
-    if (!_cameraRequest.empty()) {
-        if (std::find(cams.begin(), cams.end(), Path(_cameraRequest)) == cams.end()) {
-            throw SessionError(PRD_ERROR_NOT_FOUND,
-                               "camera '" + _cameraRequest + "' not found in the stage" + cameraList());
-        }
-        _cameraPath = _cameraRequest;
-    } else if (!cams.empty()) {
-        _cameraPath = cams.front().str();
-    } else {
-        _cameraPath = _scene->addDefaultCamera(_index.get(), double(_width) / _height).str();
-    }
-    for (const std::string& name : _bound) allocateBuffer(name);
-    _index->sync();
-    _pass = _delegate->createRenderPass(_index.get());
-}
-
-std::string EmbreeSession::cameraList() const {
-    if (!_scene || _scene->cameras().empty()) return " (it has no cameras)";
-    std::string list;
-    for (const auto& c : _scene->cameras()) list += (list.empty() ? "" : ", ") + c.str();
-    return "; cameras: " + list;
-}
-
-void EmbreeSession::requireStage(const char* what) const {
-    if (!_stage)
+host::RenderSession& EmbreeSession::requireStage(const char* what) const {
+    if (!_session)
         throw SessionError(PRD_ERROR_NO_STAGE, std::string(what) +
                                                    " needs an open stage: call prdOpenStageFile "
                                                    "or prdOpenStageString first");
+    return *_session;
 }
 
-void EmbreeSession::setAttribute(const std::string& primPath, const std::string& attribute,
-                                 const EditValue& v) {
-    requireStage("editing an attribute");
-    EditResult r = _scene->setAttribute(_index.get(), primPath, attribute, v);
-    switch (r.code) {
-        case EditResult::Code::Applied:
-            return;
-        case EditResult::Code::NotFound:
-            throw SessionError(PRD_ERROR_NOT_FOUND, r.message);
-        case EditResult::Code::Unsupported:
-            throw SessionError(PRD_ERROR_UNSUPPORTED, r.message);
-        case EditResult::Code::BadValue:
-            throw SessionError(PRD_ERROR_INVALID_ARGUMENT, r.message);
+std::string EmbreeSession::cameraList() const {
+    if (!_session || _session->cameras().empty()) return " (it has no cameras)";
+    std::string list;
+    for (const auto& c : _session->cameras()) list += (list.empty() ? "" : ", ") + c.str();
+    return "; cameras: " + list;
+}
+
+// ---- Edits ------------------------------------------------------------------------------
+
+template <typename F>
+void EmbreeSession::edit(const char* what, F&& f) {
+    host::RenderSession& s = requireStage(what);
+    try {
+        f(s.editor());
+    } catch (const adapter::EditError& e) {
+        switch (e.code) {
+            case adapter::EditError::Code::NotFound:
+                throw SessionError(PRD_ERROR_NOT_FOUND, e.what());
+            case adapter::EditError::Code::Unsupported:
+                throw SessionError(PRD_ERROR_UNSUPPORTED, e.what());
+            case adapter::EditError::Code::BadValue:
+                throw SessionError(PRD_ERROR_INVALID_ARGUMENT, e.what());
+        }
     }
 }
 
+void EmbreeSession::setAttribute(const std::string& primPath, const std::string& attribute,
+                                 const adapter::EditValue& v, const std::string& typeName) {
+    edit("editing an attribute",
+         [&](adapter::StageEditor& e) { e.setAttribute(primPath, attribute, v, typeName); });
+}
+
 void EmbreeSession::setLocalTransform(const std::string& primPath, const double matrix[16]) {
-    requireStage("setting a transform");
-    EditResult r = _scene->setLocalTransform(_index.get(), primPath, matrix);
-    if (r.code == EditResult::Code::NotFound) throw SessionError(PRD_ERROR_NOT_FOUND, r.message);
-    if (r.code != EditResult::Code::Applied)
-        throw SessionError(PRD_ERROR_INVALID_ARGUMENT, r.message);
+    edit("setting a transform", [&](adapter::StageEditor& e) { e.setTransform(primPath, matrix); });
+}
+
+void EmbreeSession::addPrim(const std::string& primPath, const std::string& typeName) {
+    edit("adding a prim", [&](adapter::StageEditor& e) { e.addPrim(primPath, typeName); });
+}
+
+void EmbreeSession::removePrim(const std::string& primPath) {
+    edit("removing a prim", [&](adapter::StageEditor& e) { e.removePrim(primPath); });
+}
+
+void EmbreeSession::bindMaterial(const std::string& primPath, const std::string& materialPath) {
+    edit("binding a material",
+         [&](adapter::StageEditor& e) { e.bindMaterial(primPath, materialPath); });
+}
+
+void EmbreeSession::setRelationship(const std::string& primPath, const std::string& name,
+                                    const std::vector<std::string>& targets) {
+    edit("setting a relationship",
+         [&](adapter::StageEditor& e) { e.setRelationship(primPath, name, targets); });
+}
+
+void EmbreeSession::connect(const std::string& primPath, const std::string& attribute,
+                            const std::string& source) {
+    edit("connecting an attribute",
+         [&](adapter::StageEditor& e) { e.connect(primPath, attribute, source); });
 }
 
 // ---- Settings ---------------------------------------------------------------------------
@@ -295,28 +295,18 @@ const char* EmbreeSession::settingText(const std::string& key) {
 // ---- Camera, resolution, AOVs ------------------------------------------------------------
 
 void EmbreeSession::setCamera(const std::string& primPath) {
-    if (_stage) {
-        if (primPath.empty()) {
-            const auto& cams = _scene->cameras();
-            _cameraPath =
-                !cams.empty()
-                    ? cams.front().str()
-                    : _scene->addDefaultCamera(_index.get(), double(_width) / _height).str();
-        } else {
-            const auto& cams = _scene->cameras();
-            if (std::find(cams.begin(), cams.end(), Path(primPath)) == cams.end())
-                throw SessionError(
-                    PRD_ERROR_NOT_FOUND,
-                    "camera '" + primPath + "' not found in the stage" + cameraList());
-            _cameraPath = primPath;
+    if (_session) {
+        try {
+            _session->setCamera(primPath);
+        } catch (const host::UserError& e) {
+            throw SessionError(PRD_ERROR_NOT_FOUND, e.what());
         }
     }
     _cameraRequest = primPath;
 }
 
 const std::string& EmbreeSession::camera() const {
-    requireStage("prdGetCamera");
-    return _cameraPath;
+    return requireStage("prdGetCamera").cameraPath();
 }
 
 void EmbreeSession::setResolution(int width, int height) {
@@ -326,8 +316,7 @@ void EmbreeSession::setResolution(int width, int height) {
                                                            " must be between 1x1 and 32768x32768");
     _width = width;
     _height = height;
-    if (_stage)
-        for (const std::string& name : _bound) allocateBuffer(name);
+    if (_session) _session->setResolution(width, height);
 }
 
 PrdAovInfo EmbreeSession::describeAov(const std::string& name) {
@@ -356,28 +345,11 @@ PrdAovInfo EmbreeSession::aovInfo(int index) const {
     return {a.name, a.format, a.channels, a.multiSampled};
 }
 
-void EmbreeSession::allocateBuffer(const std::string& name) {
-    Path id("/__principled/aov/" + name);
-    auto* buffer =
-        static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), id));
-    if (!buffer) {
-        _index->insertBprim(tokens::renderBuffer(), _scene.get(), id);
-        buffer =
-            static_cast<embree::EmbreeRenderBuffer*>(_index->bprim(tokens::renderBuffer(), id));
-    }
-    if (!buffer)
-        throw SessionError(PRD_ERROR_INTERNAL,
-                           "could not create a render buffer for AOV '" + name + "'");
-    AovDescriptor d = _delegate->defaultAovDescriptor(Token(name));
-    buffer->allocate(_width, _height, d.format, d.multiSampled);
-    _buffers[name] = buffer;
-}
-
 void EmbreeSession::bindAov(const std::string& name) {
     describeAov(name);  // throws for unknown names
     if (std::find(_bound.begin(), _bound.end(), name) != _bound.end()) return;
     _bound.push_back(name);
-    if (_stage) allocateBuffer(name);
+    if (_session) _session->bindAov(name);
 }
 
 void EmbreeSession::unbindAov(const std::string& name) {
@@ -385,31 +357,18 @@ void EmbreeSession::unbindAov(const std::string& name) {
     if (it == _bound.end())
         throw SessionError(PRD_ERROR_NOT_BOUND, "AOV '" + name + "' is not bound");
     _bound.erase(it);
-    if (_stage) {
-        _index->removeBprim(Path("/__principled/aov/" + name));
-        _buffers.erase(name);
-    }
+    if (_session) _session->unbindAov(name);
 }
 
 // ---- Rendering ---------------------------------------------------------------------------
 
 bool EmbreeSession::renderPass() {
-    requireStage("prdRenderPass");
-    _index->sync();  // no-op unless something was edited
-    RenderPassState state;
-    state.cameraId = Path(_cameraPath);
-    state.width = _width;
-    state.height = _height;
-    for (const std::string& name : _bound)
-        state.aovBindings.push_back({Token(name), _buffers.at(name)});
-    _pass->execute(state);
-    return _pass->isConverged();
+    return requireStage("prdRenderPass").step();
 }
 
 void EmbreeSession::progress(int* converged, int* completed, int* target) const {
-    auto* pass = static_cast<const embree::EmbreeRenderPass*>(_pass.get());
-    if (converged) *converged = pass && pass->isConverged() ? 1 : 0;
-    if (completed) *completed = pass ? pass->completedSamples() : 0;
+    if (converged) *converged = _session && _session->converged() ? 1 : 0;
+    if (completed) *completed = _session ? _session->completedSamples() : 0;
     if (target) *target = std::max(1, _delegate->samplesPerPixel());
 }
 
@@ -419,15 +378,16 @@ PrdBufferView EmbreeSession::mapAov(const std::string& name) {
         throw SessionError(PRD_ERROR_NOT_BOUND,
                            "AOV '" + name + "' is not bound: call prdBindAov first");
     }
-    requireStage("prdMapAov");
-    embree::EmbreeRenderBuffer* b = _buffers.at(name);
+    host::RenderSession& s = requireStage("prdMapAov");
+    embree::EmbreeRenderBuffer* b = s.buffer(name);
+    if (!b) throw SessionError(PRD_ERROR_INTERNAL, "AOV '" + name + "' has no render buffer");
     PrdBufferView view{};
     view.data = b->map();
     view.width = b->width();
     view.height = b->height();
     view.channels = componentCount(b->format());
     view.format = toPrd(b->format());
-    view.converged = _pass && _pass->isConverged() ? 1 : 0;
+    view.converged = s.converged() ? 1 : 0;
     return view;
 }
 
@@ -439,18 +399,12 @@ const std::vector<std::pair<std::string, double>>& EmbreeSession::snapshotStats(
 
 const char* EmbreeSession::takeWarnings() {
     _text.clear();
-    auto add = [&](const std::string& line) { _text += line + "\n"; };
-    if (_scene) {
-        const auto& w = _scene->warnings();
-        for (; _adapterWarningsTaken < w.size(); ++_adapterWarningsTaken)
-            add(w[_adapterWarningsTaken]);
-    }
-    for (const auto& w : _delegate->takeWarnings()) add(w);
-    if (_stage) {
-        const auto& w = _stage->warnings();
-        for (; _stageWarningsTaken < w.size(); ++_stageWarningsTaken)
-            add(w[_stageWarningsTaken].where.str() + ": " + w[_stageWarningsTaken].message);
-    }
+    std::vector<std::string> lines;
+    if (_session)
+        lines = _session->takeWarnings();
+    else
+        lines = _delegate->takeWarnings();
+    for (const auto& line : lines) _text += line + "\n";
     return _text.c_str();
 }
 

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // EmbreeSession: one Embree render delegate instance as the C ABI sees it: the delegate and
-// its settings, at most one open stage populated into a render index through an
-// EditableSceneDelegate, a camera, a resolution, AOV buffers, and the progressive pass. It is
-// RenderSession (plugins/renderSession.h) with everything a host changes after creation
-// exposed. Failures throw SessionError, which the C table turns into a status and message.
+// its settings (kept across stages), and at most one open stage as a host::RenderSession
+// (plugins/renderSession.h: index, scene adapter, camera, AOV buffers, progressive pass, and
+// the adapter::StageEditor for host edits). This layer only keeps what outlives a stage
+// (settings, camera request, resolution, AOV bindings) and turns every failure into
+// SessionError, which the C table turns into a status and message.
 #pragma once
 
 #include <map>
@@ -14,17 +15,14 @@
 #include <vector>
 
 #include "plugins/abi/principled_types.h"
-#include "plugins/embree/editableSceneDelegate.h"
 
-namespace principled::usd {
-class Stage;
+namespace principled::adapter {
+struct EditValue;
 }
-namespace principled::hd {
-class RenderIndex;
-class RenderPass;
-}  // namespace principled::hd
+namespace principled::host {
+class RenderSession;
+}
 namespace principled::embree {
-class EmbreeRenderBuffer;
 class EmbreeRenderDelegate;
 }  // namespace principled::embree
 
@@ -52,9 +50,18 @@ class EmbreeSession {
 
     void openFile(const std::string& path);
     void openString(const std::string& text, const std::string& displayName);
+
+    // Host edits (adapter::StageEditor on the open stage).
     void setAttribute(const std::string& primPath, const std::string& attribute,
-                      const EditValue& v);
+                      const adapter::EditValue& v, const std::string& typeName = "");
     void setLocalTransform(const std::string& primPath, const double matrix[16]);
+    void addPrim(const std::string& primPath, const std::string& typeName);
+    void removePrim(const std::string& primPath);
+    void bindMaterial(const std::string& primPath, const std::string& materialPath);
+    void setRelationship(const std::string& primPath, const std::string& name,
+                         const std::vector<std::string>& targets);
+    void connect(const std::string& primPath, const std::string& attribute,
+                 const std::string& source);
 
     void setSetting(const std::string& key, const SettingInput& value);
     int settingCount();
@@ -87,31 +94,26 @@ class EmbreeSession {
         int channels = 0;
         bool multiSampled = true;
     };
-    void open(std::unique_ptr<usd::Stage> stage);
-    void populate(std::unique_ptr<usd::Stage> stage);
-    void closeStage();
-    void requireStage(const char* what) const;
-    void allocateBuffer(const std::string& name);
+    template <typename F>
+    void open(F&& makeSession);
+    host::RenderSession& requireStage(const char* what) const;
+    template <typename F>
+    void edit(const char* what, F&& f);
     std::string cameraList() const;
     /// Stores `s` for the session's lifetime and returns its characters.
     const char* keep(const std::string& s);
 
+    // The delegate outlives stages, so settings set before or between opens are kept.
     std::unique_ptr<embree::EmbreeRenderDelegate> _delegate;
-    std::unique_ptr<usd::Stage> _stage;
-    std::unique_ptr<hd::RenderIndex> _index;
-    std::unique_ptr<EditableSceneDelegate> _scene;
-    std::unique_ptr<hd::RenderPass> _pass;
-    std::string _cameraRequest;  ///< empty: the default camera
-    std::string _cameraPath;     ///< the camera in use while a stage is open
+    std::unique_ptr<host::RenderSession> _session;  ///< the open stage, if any
+    std::string _cameraRequest;                     ///< empty: the default camera
     int _width = 640, _height = 360;
-    std::vector<std::string> _bound;                              ///< in bind order
-    std::map<std::string, embree::EmbreeRenderBuffer*> _buffers;  ///< owned by the index
+    std::vector<std::string> _bound;  ///< in bind order
     // Storage behind strings returned through the C ABI (declared before _aovs, which points in).
     std::vector<std::unique_ptr<std::string>> _strings;
     std::vector<Aov> _aovs;  ///< the probed AOVs, then any other name describeAov accepted
     std::string _text;
     std::vector<std::pair<std::string, double>> _stats;
-    size_t _adapterWarningsTaken = 0, _stageWarningsTaken = 0;
 };
 
 }  // namespace principled::plugins

@@ -363,6 +363,54 @@ light input updates light tables; points rebuild that mesh; a string sets a toke
             },
             py::arg("prim"), py::arg("matrix"),
             "Replaces a prim's local transform (16 numbers, USD order): instances move, no mesh rebuild.")
+        .def(
+            "set_attribute_typed",
+            [](Delegate& d, const std::string& prim, const std::string& attr,
+               const std::string& type, py::handle values) {
+                auto v = numbers(values);
+                check(prdSetAttributeTyped(d.h(), prim.c_str(), attr.c_str(), type.c_str(),
+                                           v.data(), v.size()),
+                      d.d);
+            },
+            py::arg("prim"), py::arg("attribute"), py::arg("type_name"), py::arg("value"),
+            "Like set_attribute, creating the attribute with a USD type ('texCoord2f[]') if absent.")
+        .def(
+            "add_prim",
+            [](Delegate& d, const std::string& prim, const std::string& type) {
+                check(prdAddPrim(d.h(), prim.c_str(), type.c_str()), d.d);
+            },
+            py::arg("prim"), py::arg("type_name"),
+            "Defines a prim (Mesh, Sphere, Cube, Xform, Material, Shader, Camera, lights, "
+            "PointInstancer...) in the open stage; author its attributes next.")
+        .def(
+            "remove_prim",
+            [](Delegate& d, const std::string& prim) { check(prdRemovePrim(d.h(), prim.c_str()), d.d); },
+            py::arg("prim"),
+            "Removes a prim and its subtree; prims bound to a removed material use the default one.")
+        .def(
+            "bind_material",
+            [](Delegate& d, const std::string& prim, const std::string& material) {
+                check(prdBindMaterial(d.h(), prim.c_str(), material.c_str()), d.d);
+            },
+            py::arg("prim"), py::arg("material"),
+            "Binds a Material to a prim or GeomSubset ('' unbinds): only that prim is re-synced.")
+        .def(
+            "set_relationship",
+            [](Delegate& d, const std::string& prim, const std::string& name,
+               const std::vector<std::string>& targets) {
+                std::vector<const char*> t;
+                for (const auto& x : targets) t.push_back(x.c_str());
+                check(prdSetRelationship(d.h(), prim.c_str(), name.c_str(), t.data(), t.size()), d.d);
+            },
+            py::arg("prim"), py::arg("name"), py::arg("targets"),
+            "Sets a relationship's targets (e.g. a PointInstancer's 'prototypes').")
+        .def(
+            "connect",
+            [](Delegate& d, const std::string& prim, const std::string& attr, const std::string& source) {
+                check(prdConnectAttribute(d.h(), prim.c_str(), attr.c_str(), source.c_str()), d.d);
+            },
+            py::arg("prim"), py::arg("attribute"), py::arg("source"),
+            "Connects a shading input/output to '/Mat/Shader.outputs:name' ('' disconnects).")
         // Settings
         .def(
             "settings",

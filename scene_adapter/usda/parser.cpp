@@ -78,7 +78,9 @@ std::unique_ptr<Layer> Parser::parse() {
     return layer;
 }
 
-void Parser::parseLayerMetadata(Layer& layer) {
+template <class Entry>
+void Parser::parseMetadataBlock(Dictionary& metadata, const char* docKey, std::string_view expected,
+                                Entry&& entry) {
     DepthGuard guard(*this);
     expect('(');
     for (;;) {
@@ -93,18 +95,28 @@ void Parser::parseLayerMetadata(Layer& layer) {
         }
         if (t.kind == TokenKind::String) {
             SourceLocation where = here();
-            layer.metadata["doc"] = Value::string("string", unescapeString(next().text), where);
+            metadata[docKey] = Value::string("string", unescapeString(next().text), where);
             continue;
         }
-        if (listOpKeyword(t)) next();
-        Token key = expectIdent("a layer metadata name or ')'");
-        expect('=');
-        if (key.text == "subLayers") {
-            parseSubLayers(layer);
-        } else {
-            layer.metadata[std::string(key.text)] = parseGenericValue();
+        ListOpKind op = ListOpKind::Explicit;
+        if (auto k = listOpKeyword(t)) {
+            op = *k;
+            next();
         }
+        Token key = expectIdent(expected);
+        expect('=');
+        entry(op, key.text);
     }
+}
+
+void Parser::parseLayerMetadata(Layer& layer) {
+    parseMetadataBlock(layer.metadata, "doc", "a layer metadata name or ')'",
+                       [&](ListOpKind, std::string_view key) {
+                           if (key == "subLayers")
+                               parseSubLayers(layer);
+                           else
+                               layer.metadata[std::string(key)] = parseGenericValue();
+                       });
 }
 
 void Parser::parseSubLayers(Layer& layer) {
@@ -174,55 +186,33 @@ std::unique_ptr<PrimSpec> Parser::parsePrim(const SiblingNames& seen) {
 }
 
 void Parser::parsePrimMetadata(PrimSpec& spec) {
-    DepthGuard guard(*this);
-    expect('(');
-    for (;;) {
-        const Token& t = peek();
-        if (t.is(')')) {
-            next();
-            return;
+    parseMetadataBlock(spec.metadata, "documentation", "a prim metadata name or ')'",
+                       [&](ListOpKind op, std::string_view k) { parsePrimMetadataEntry(spec, op, k); });
+}
+
+void Parser::parsePrimMetadataEntry(PrimSpec& spec, ListOpKind op, std::string_view k) {
+    if (k == "references") {
+        spec.references.set(op, parseReferenceList());
+    } else if (k == "payload") {
+        spec.payloads.set(op, parseReferenceList());
+    } else if (k == "inherits") {
+        spec.inherits.set(op, parsePathList());
+    } else if (k == "specializes") {
+        spec.specializes.set(op, parsePathList());
+    } else if (k == "variantSets") {
+        spec.variantSetNames.set(op, parseStringList());
+    } else if (k == "apiSchemas") {
+        spec.apiSchemas.set(op, parseStringList());
+    } else if (k == "variants") {
+        SourceLocation where = here();
+        Dictionary d = parseDictionary();
+        for (const auto& [name, v] : d) {
+            if (auto s = v.getString()) spec.variantSelections[name] = *s;
         }
-        if (t.is(';')) {
-            next();
-            continue;
-        }
-        if (t.kind == TokenKind::String) {
-            SourceLocation where = here();
-            spec.metadata["documentation"] =
-                Value::string("string", unescapeString(next().text), where);
-            continue;
-        }
-        ListOpKind op = ListOpKind::Explicit;
-        if (auto k = listOpKeyword(t)) {
-            op = *k;
-            next();
-        }
-        Token key = expectIdent("a prim metadata name or ')'");
-        expect('=');
-        std::string_view k = key.text;
-        if (k == "references") {
-            spec.references.set(op, parseReferenceList());
-        } else if (k == "payload") {
-            spec.payloads.set(op, parseReferenceList());
-        } else if (k == "inherits") {
-            spec.inherits.set(op, parsePathList());
-        } else if (k == "specializes") {
-            spec.specializes.set(op, parsePathList());
-        } else if (k == "variantSets") {
-            spec.variantSetNames.set(op, parseStringList());
-        } else if (k == "apiSchemas") {
-            spec.apiSchemas.set(op, parseStringList());
-        } else if (k == "variants") {
-            SourceLocation where = here();
-            Dictionary d = parseDictionary();
-            for (const auto& [name, v] : d) {
-                if (auto s = v.getString()) spec.variantSelections[name] = *s;
-            }
-            spec.metadata["variants"] = Value::dictionary(std::move(d), where);
-        } else {
-            std::string name(k == "doc" ? std::string_view("documentation") : k);
-            spec.metadata[name] = parseGenericValue();
-        }
+        spec.metadata["variants"] = Value::dictionary(std::move(d), where);
+    } else {
+        std::string name(k == "doc" ? std::string_view("documentation") : k);
+        spec.metadata[name] = parseGenericValue();
     }
 }
 
@@ -405,29 +395,11 @@ void Parser::parseRelationship(PrimSpec& spec, std::optional<ListOpKind> op, boo
 }
 
 void Parser::parsePropertyMetadata(Dictionary& metadata) {
-    DepthGuard guard(*this);
-    expect('(');
-    for (;;) {
-        const Token& t = peek();
-        if (t.is(')')) {
-            next();
-            return;
-        }
-        if (t.is(';')) {
-            next();
-            continue;
-        }
-        if (t.kind == TokenKind::String) {
-            SourceLocation where = here();
-            metadata["documentation"] = Value::string("string", unescapeString(next().text), where);
-            continue;
-        }
-        if (listOpKeyword(t)) next();
-        Token key = expectIdent("a property metadata name or ')'");
-        expect('=');
-        std::string name(key.text == "doc" ? std::string_view("documentation") : key.text);
-        metadata[name] = parseGenericValue();
-    }
+    parseMetadataBlock(metadata, "documentation", "a property metadata name or ')'",
+                       [&](ListOpKind, std::string_view key) {
+                           std::string name(key == "doc" ? std::string_view("documentation") : key);
+                           metadata[name] = parseGenericValue();
+                       });
 }
 
 void Parser::parseTimeSamples(AttributeSpec& attr, const ValueType* type) {

@@ -60,6 +60,11 @@ private:
     }
     static std::optional<ListOpKind> listOpKeyword(const Token& t);
 
+    /// One parenthesised metadata block `( "doc" key = value ... )`: a bare string is stored in
+    /// metadata[docKey]; for each `[listop] key =`, entry(op, key) parses the value.
+    template <class Entry>
+    void parseMetadataBlock(Dictionary& metadata, const char* docKey, std::string_view expected,
+                            Entry&& entry);
     void parseLayerMetadata(Layer& layer);
     void parseSubLayers(Layer& layer);
     /// Names of the prims parsed so far in one body (views of their names).
@@ -68,6 +73,7 @@ private:
     void addPrim(std::vector<std::unique_ptr<PrimSpec>>& siblings, SiblingNames& seen,
                  std::unique_ptr<PrimSpec> prim);
     void parsePrimMetadata(PrimSpec& spec);
+    void parsePrimMetadataEntry(PrimSpec& spec, ListOpKind op, std::string_view key);
     void parsePrimBody(PrimSpec& spec);
     void parseVariantSet(PrimSpec& spec);
     void parseReorder(std::optional<std::vector<std::string>>& names, bool root);

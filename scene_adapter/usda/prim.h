@@ -17,6 +17,7 @@
 namespace principled::usd {
 
 class Composer;
+class StageEdit;
 
 /// "Default time": the attribute's default value (see Attribute::get).
 inline constexpr double kDefaultTime = std::numeric_limits<double>::quiet_NaN();
@@ -52,6 +53,7 @@ public:
 
 private:
     friend class Composer;
+    friend class StageEdit;
     std::string _name, _typeName;
     bool _isArray = false, _uniform = false, _custom = false;
     std::optional<Value> _default;
@@ -71,6 +73,7 @@ public:
 
 private:
     friend class Composer;
+    friend class StageEdit;
     std::string _name;
     std::vector<std::string> _targets;
     Dictionary _metadata;
@@ -115,6 +118,7 @@ public:
 
 private:
     friend class Composer;
+    friend class StageEdit;
     std::string _path, _name, _typeName;
     bool _active = true, _abstract = false, _defined = false;
     const Prim* _parent = nullptr;

@@ -74,6 +74,7 @@ public:
 
 private:
     friend class Composer;
+    friend class StageEdit;
     Stage() = default;
     std::vector<std::unique_ptr<Prim>> _prims;
     std::unordered_map<std::string, const Prim*> _index;

@@ -9,69 +9,29 @@
 
 #include "delegate/colorTemperature.h"
 #include "plugins/renderSession.h"
+#include "tests/support/lambertPlaneScene.h"
 
 using namespace principled;
+using principled::test::planeScene;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A Lambert plane (y = 0, facing +Y) seen by a tiny orthographic camera aimed at the origin,
-// tilted by `tilt` degrees from straight down (so it can look past a light in the way), plus
-// the given light prims. Render with the UE4 model so the diffuse is exactly Lambertian at
-// any view angle.
-std::string planeScene(double albedo, const std::string& lights, double tilt = 0.0) {
-    double rad = tilt * kPi / 180.0;
-    char head[2048];
-    std::snprintf(head, sizeof head, R"(#usda 1.0
-def Mesh "Plane" (prepend apiSchemas = ["MaterialBindingAPI"])
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
-    rel material:binding = </Mat>
-}
-def Material "Mat"
-{
-    token outputs:surface.connect = </Mat/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (%g, %g, %g)
-        float inputs:ior = 1
-        float inputs:roughness = 1
-        token outputs:surface
-    }
-}
-def Camera "Cam"
-{
-    token projection = "orthographic"
-    float horizontalAperture = 0.01
-    float verticalAperture = 0.01
-    float2 clippingRange = (0.001, 1000)
-    double3 xformOp:translate = (0, %g, %g)
-    float xformOp:rotateX = %g
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
-)",
-                  albedo, albedo, albedo, 50.0 * std::cos(rad), 50.0 * std::sin(rad), -90.0 + tilt);
-    return std::string(head) + lights;
+double render(const std::string& usda, int spp, std::map<std::string, std::string> settings = {}) {
+    return test::planeRadiance(usda, spp, std::move(settings));
 }
 
-double render(const std::string& usda, int spp, std::map<std::string, std::string> settings = {}) {
-    host::SessionOptions o;
-    o.width = o.height = 4;
-    o.samplesPerPixel = spp;
-    o.settings = std::move(settings);
-    o.settings["shadingModel"] = "ue4";
-    auto s = host::RenderSession::openString(usda, "lights.usda", o);
-    while (!s->step()) {
-    }
-    const float* c = s->color();
-    double sum = 0.0;
-    for (int i = 0; i < 16; ++i) sum += c[4 * i];
-    return sum / 16.0;
+// Writes a w x h linear RGB EXR (row 0 = the image's top) into the test's scratch directory.
+std::string writeExr(const std::string& name, int w, int h, const std::vector<float>& rgb) {
+    auto dir = std::filesystem::temp_directory_path() / "principled_lights_test";
+    std::filesystem::create_directories(dir);
+    std::string path = (dir / name).string();
+    auto out = OIIO::ImageOutput::create(path);
+    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+    if (!out || !out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb.data())) return "";
+    out->close();
+    return path;
 }
 
 }  // namespace
@@ -141,21 +101,13 @@ def RectLight "Panel"
 TEST(Lights, DomeTextureIsImportanceSampledAndMatchesTheConstantDome) {
     // A lat-long texture that is 2 in the upper half and 0 below: the upward-facing plane sees
     // radiance 2 over its whole hemisphere, so E = 2 pi and the plane's radiance is 2a.
-    auto dir = std::filesystem::temp_directory_path() / "principled_lights_test";
-    std::filesystem::create_directories(dir);
-    std::string path = (dir / "half.exr").string();
-    {
-        const int w = 64, h = 32;
-        std::vector<float> px(w * h * 3);
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x)
-                for (int c = 0; c < 3; ++c) px[(y * w + x) * 3 + c] = y < h / 2 ? 2.0f : 0.0f;
-        auto out = OIIO::ImageOutput::create(path);
-        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
-        ASSERT_TRUE(out->open(path, spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
-        out->close();
-    }
+    const int w = 64, h = 32;
+    std::vector<float> px(w * h * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) px[(y * w + x) * 3 + c] = y < h / 2 ? 2.0f : 0.0f;
+    std::string path = writeExr("half.exr", w, h, px);
+    ASSERT_FALSE(path.empty());
     double a = 0.5;
     std::string light = "def DomeLight \"Sky\"\n{\n    asset inputs:texture:file = @" + path + "@\n}\n";
     double mis = render(planeScene(a, light), 512);
@@ -219,4 +171,66 @@ def Material "Glow"
         double v = render(planeScene(a, quad, 45.0), nee[0] == '0' ? 4096 : 1024, {{"nee", nee}, {"mis", mis}});
         EXPECT_NEAR(v, reference, 0.03 * reference) << "nee " << nee << " mis " << mis;
     }
+}
+
+TEST(Lights, RectLightTextureReadsUprightAndUnmirroredFromTheLitSide) {
+    // A 2x2 texture (red, green / blue, white) on a 2x2 RectLight at the origin (emitting along
+    // -Z), seen head-on from its lit side by an orthographic camera at z = -5 whose frame is the
+    // light's seen from the front (right = -X, up = +Y): the image must look like the file,
+    // each quadrant at radiance intensity * texel.
+    std::string tex = writeExr("quadrants.exr", 2, 2, {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1});
+    ASSERT_FALSE(tex.empty());
+    std::string usda = R"(#usda 1.0
+def RectLight "Panel"
+{
+    float inputs:width = 2
+    float inputs:height = 2
+    float inputs:intensity = 3
+    asset inputs:texture:file = @)" + tex + R"(@
+}
+def Camera "Cam"
+{
+    token projection = "orthographic"
+    float horizontalAperture = 20
+    float verticalAperture = 20
+    double3 xformOp:translate = (0, 0, -5)
+    float xformOp:rotateY = 180
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateY"]
+}
+)";
+    host::SessionOptions o;
+    o.width = o.height = 4;
+    o.samplesPerPixel = 4;
+    auto s = host::RenderSession::openString(usda, "rect_texture.usda", o);
+    while (!s->step()) {
+    }
+    const float* c = s->color();
+    auto px = [&](int x, int y) { return glm::vec3(c[4 * (y * 4 + x)], c[4 * (y * 4 + x) + 1], c[4 * (y * 4 + x) + 2]); };
+    const glm::vec3 expected[2][2] = {{{3, 0, 0}, {0, 3, 0}}, {{0, 0, 3}, {3, 3, 3}}};  // [row][column]
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(px(x, y)[k], expected[y / 2][x / 2][k], 1e-4) << "pixel " << x << "," << y;
+}
+
+TEST(Lights, RectLightTextureScalesTheIrradianceItDelivers) {
+    // The far-field panel of RectLightMatchesTheDiskOfEqualAreaFarAway with a uniform 0.25
+    // texture delivers a quarter of the irradiance (NEE weights each sample by its texel).
+    std::string tex = writeExr("quarter.exr", 4, 4, std::vector<float>(48, 0.25f));
+    ASSERT_FALSE(tex.empty());
+    double a = 0.5, L = 100.0, A = 0.04, dist = 10.0;
+    std::string light = R"(
+def RectLight "Panel"
+{
+    float inputs:width = 0.2
+    float inputs:height = 0.2
+    float inputs:intensity = 100
+    asset inputs:texture:file = @)" + tex + R"(@
+    double3 xformOp:translate = (0, 10, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+    double expected = 0.25 * a * (L * A / (dist * dist)) / kPi;
+    EXPECT_NEAR(render(planeScene(a, light), 256), expected, 0.01 * expected);
 }

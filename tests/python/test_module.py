@@ -162,6 +162,45 @@ class ModuleTest(unittest.TestCase):
             dark = d.aov("color", copy=True)
             self.assertAlmostEqual(float(dark[5, 5, 0]) / float(red[5, 5, 0]), 0.5, delta=0.05)
 
+    def test_add_remove_and_rebind(self):
+        with self.make(spp=2) as d:
+            d.open_builder(plane_scene(two_meshes=False))
+            d.render()
+            plane_id = int(d.aov("primId")[32, 32, 0])
+            # A red quad added at z=1 over the centre, with a material made through the module.
+            d.add_prim("/World/Looks/Red", "Material")
+            d.add_prim("/World/Looks/Red/S", "Shader")
+            d.set_attribute("/World/Looks/Red/S", "info:id", "UsdPreviewSurface")
+            d.set_attribute("/World/Looks/Red/S", "inputs:diffuseColor", (1.0, 0.0, 0.0))
+            d.connect("/World/Looks/Red", "outputs:surface", "/World/Looks/Red/S.outputs:surface")
+            d.add_prim("/World/Quad", "Mesh")
+            d.set_attribute("/World/Quad", "points",
+                            [-0.5, -0.5, 1, 0.5, -0.5, 1, 0.5, 0.5, 1, -0.5, 0.5, 1])
+            d.set_attribute("/World/Quad", "faceVertexCounts", [4])
+            d.set_attribute("/World/Quad", "faceVertexIndices", [0, 1, 2, 3])
+            d.bind_material("/World/Quad", "/World/Looks/Red")
+            d.render()
+            quad_id = int(d.aov("primId")[32, 32, 0])
+            self.assertNotEqual(quad_id, plane_id)
+            red = d.aov("color", copy=True)
+            self.assertGreater(red[32, 32, 0], 5 * red[32, 32, 1])
+            # Rebinding the plane to red only re-syncs the plane.
+            before = d.stats()["blasBuilds"]
+            d.bind_material("/World/Plane/Geom", "/World/Looks/Red")
+            d.render()
+            self.assertEqual(d.stats()["blasBuilds"], before)
+            self.assertGreater(d.aov("color")[5, 5, 0], 5 * d.aov("color")[5, 5, 1])
+            # Removing the quad: its primId disappears.
+            d.remove_prim("/World/Quad")
+            d.render()
+            self.assertNotIn(quad_id, set(np.unique(d.aov("primId"))))
+            with self.assertRaises(principled.Error) as e:
+                d.remove_prim("/World/Quad")
+            self.assertIn("/World/Quad", str(e.exception))
+            with self.assertRaises(principled.Error) as e:
+                d.bind_material("/World/Plane/Geom", "/World/Sun")
+            self.assertIn("expected a Material", str(e.exception))
+
     def test_texture_and_usda_roundtrip(self):
         with tempfile.TemporaryDirectory() as tmp:
             # A 2x1 texture: left half green, right half blue, as a binary PPM is not read by

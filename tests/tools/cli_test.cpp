@@ -154,3 +154,24 @@ TEST(Cli, InfoDescribesTheStageAndFailsOnBadInput) {
     EXPECT_EQ(bad.status, 1);
     EXPECT_NE(bad.output.find("broken.usda:"), std::string::npos) << bad.output;
 }
+
+TEST(Cli, AssembledShotOfLayersReferencesPayloadsAndInstancesRendersInOneCommand) {
+    // scenes/assembly: sublayers, an instanceable referenced crate (creased subdivision,
+    // texture through a path relative to its own layer), a payload with a textured cutout and
+    // a PointInstancer whose prototype is a reference.
+    std::string shot = std::string(PRINCIPLED_SOURCE_DIR) + "/scenes/assembly/shot.usda";
+    Result info = run("info " + shot);
+    ASSERT_EQ(info.status, 0) << info.output;
+    EXPECT_NE(info.output.find("layers: 6"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("Mesh                 5"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("PointInstancer       1"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("/World/Plant/Looks/Leaf: textured"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("warnings: 0"), std::string::npos) << info.output;
+    fs::path out = tempDir() / "shot.exr";
+    Result r = run("render " + shot + " -o " + out.string() + " --res 96x64 --spp 4 --aov primId");  // not -q: warnings would show
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("arning"), std::string::npos) << r.output;
+    auto [finite, mean] = exrStats(out.string());
+    EXPECT_TRUE(finite);
+    EXPECT_GT(mean, 0.05);
+}

@@ -319,29 +319,81 @@ TEST_F(AbiTest, PointsEditRebuildsThatMesh) {
 TEST_F(AbiTest, EditErrorsAreStatusesWithMessages) {
     const double one = 1.0, two[2] = {1, 2};
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Nope", "inputs:x", &one, 1), PRD_ERROR_NOT_FOUND);
-    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: no prim at '/World/Nope'");
+    EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: setAttribute: no prim at '/World/Nope'");
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "xformOp:translate", &one, 1),
               PRD_ERROR_UNSUPPORTED);
     EXPECT_STREQ(prdLastError(d),
                  "prdSetAttributeNumbers: 'xformOp:translate' is not in the xformOpOrder of "
-                 "'/World/Plane' (adding ops is not supported; use prdSetLocalTransform)");
+                 "'/World/Plane' (author xformOpOrder first, or replace the whole transform)");
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Cam", "xformOp:translate", &one, 1),
               PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_STREQ(prdLastError(d),
-                 "prdSetAttributeNumbers: '/World/Cam.xformOp:translate': expected 3 numbers "
-                 "for a 3-vector or color, got 1");
-    EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "faceVertexCounts", &one, 1),
-              PRD_ERROR_UNSUPPORTED);
+                 "prdSetAttributeNumbers: /World/Cam.xformOp:translate: expected double3, got 1 "
+                 "number");
+    EXPECT_EQ(prdSetAttributeString(d, "/World/Plane", "faceVertexCounts", "x"),
+              PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Mat/S", "inputs:diffuseColor", two, 2),
               PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_STREQ(prdLastError(d),
-                 "prdSetAttributeNumbers: '/World/Mat/S.inputs:diffuseColor': expected 3 "
-                 "numbers for a 3-vector or color, got 2");
+                 "prdSetAttributeNumbers: /World/Mat/S.inputs:diffuseColor: expected color3f, got "
+                 "2 numbers");
     EXPECT_EQ(prdSetAttributeString(d, "/World/Mat/S", "inputs:roughness", "rough"),
               PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(prdSetAttributeNumbers(d, "/World/Plane", "points", nullptr, 3),
               PRD_ERROR_INVALID_ARGUMENT);
     EXPECT_STREQ(prdLastError(d), "prdSetAttributeNumbers: values is NULL");
+}
+
+TEST_F(AbiTest, AddBindAndRemovePrims) {
+    renderToConvergence();
+    double left = halves().first;
+    // A second quad in the right half, with a red material built through the ABI.
+    ASSERT_EQ(prdAddPrim(d, "/World/Red", "Material"), PRD_OK) << prdLastError(d);
+    ASSERT_EQ(prdAddPrim(d, "/World/Red/S", "Shader"), PRD_OK) << prdLastError(d);
+    ASSERT_EQ(prdSetAttributeString(d, "/World/Red/S", "info:id", "UsdPreviewSurface"), PRD_OK)
+        << prdLastError(d);
+    const double red[3] = {1, 0, 0}, ior = 1;
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Red/S", "inputs:diffuseColor", red, 3), PRD_OK);
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Red/S", "inputs:ior", &ior, 1), PRD_OK);
+    ASSERT_EQ(prdConnectAttribute(d, "/World/Red", "outputs:surface", "/World/Red/S.outputs:surface"),
+              PRD_OK) << prdLastError(d);
+    ASSERT_EQ(prdAddPrim(d, "/World/Quad", "Mesh"), PRD_OK) << prdLastError(d);
+    const double pts[12] = {0, -10, 0, 10, -10, 0, 10, 10, 0, 0, 10, 0};
+    const double counts[1] = {4}, indices[4] = {0, 1, 2, 3};
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Quad", "points", pts, 12), PRD_OK) << prdLastError(d);
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Quad", "faceVertexCounts", counts, 1), PRD_OK);
+    ASSERT_EQ(prdSetAttributeNumbers(d, "/World/Quad", "faceVertexIndices", indices, 4), PRD_OK);
+    ASSERT_EQ(prdBindMaterial(d, "/World/Quad", "/World/Red"), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    auto [l1, r1] = halves();
+    EXPECT_NEAR(l1, left, 1e-6);
+    EXPECT_NEAR(r1, 2.0 * left, 1e-3);  // red albedo 1 where the grey one is 0.5
+    // Rebinding the plane to the red material doubles the left half's red.
+    ASSERT_EQ(prdBindMaterial(d, "/World/Plane", "/World/Red"), PRD_OK);
+    renderToConvergence();
+    EXPECT_NEAR(halves().first, 2.0 * left, 1e-3);
+    // Removing the material: both fall back to the default material (no crash, still lit).
+    ASSERT_EQ(prdRemovePrim(d, "/World/Red"), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    EXPECT_GT(halves().first, 0.0);
+    ASSERT_EQ(prdRemovePrim(d, "/World/Quad"), PRD_OK);
+    renderToConvergence();
+    EXPECT_EQ(halves().second, 0.0);
+    // Errors name the prim and leave the scene alone.
+    EXPECT_EQ(prdAddPrim(d, "/World/Plane", "Mesh"), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_THAT(prdLastError(d), HasSubstr("/World/Plane"));
+    EXPECT_EQ(prdAddPrim(d, "/World/T", "Teapot"), PRD_ERROR_UNSUPPORTED);
+    EXPECT_EQ(prdRemovePrim(d, "/World/Quad"), PRD_ERROR_NOT_FOUND);
+    EXPECT_EQ(prdBindMaterial(d, "/World/Plane", "/World/Sun"), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_THAT(prdLastError(d), HasSubstr("expected a Material"));
+    const char* targets[1] = {"/World/Nope"};
+    EXPECT_EQ(prdSetRelationship(d, "/World/Plane", "material:binding", targets, 1),
+              PRD_ERROR_INVALID_ARGUMENT);
+    const double uv[4] = {0, 0, 1, 1};
+    EXPECT_EQ(prdSetAttributeTyped(d, "/World/Plane", "primvars:uv", "texCoord2f[]", uv, 4), PRD_OK)
+        << prdLastError(d);
+    EXPECT_EQ(prdSetAttributeTyped(d, "/World/Plane", "points", "float[]", uv, 4),
+              PRD_ERROR_INVALID_ARGUMENT);
 }
 
 TEST_F(AbiTest, CameraParameterEditChangesTheFraming) {

@@ -1,0 +1,95 @@
+// Shadows of partly present surfaces (UsdPreviewSurface opacity and opacityThreshold cutouts):
+// a Lambert plane under a 45-degree distant light, with blocker quads above it that throw
+// their shadow on the spot the camera sees. Direct light only, so each expected value is the
+// unblocked radiance times the product of (1 - presence) of the blockers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "plugins/renderSession.h"
+#include "tests/support/lambertPlaneScene.h"
+
+using namespace principled;
+
+namespace {
+
+// A 4 x 4 quad at height y, centred at x = -y: the light travels along (1, -1, 0), so its
+// shadow covers the origin. The camera's rays (straight down at x = 0) miss it.
+std::string blocker(const std::string& name, double y, const std::string& opacity) {
+    char buf[1024];
+    std::snprintf(buf, sizeof buf, R"(
+def Mesh "%s" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(%g, %g, -2), (%g, %g, 2), (%g, %g, 2), (%g, %g, -2)]
+    rel material:binding = </%sMat>
+}
+def Material "%sMat"
+{
+    token outputs:surface.connect = </%sMat/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        %s
+        token outputs:surface
+    }
+}
+)",
+                  name.c_str(), -y - 2, y, -y - 2, y, -y + 2, y, -y + 2, y, name.c_str(), name.c_str(),
+                  name.c_str(), opacity.c_str());
+    return buf;
+}
+
+const std::string kPlane = test::planeScene(0.5, R"(
+def DistantLight "Sun"
+{
+    float inputs:intensity = 2
+    float inputs:angle = 0  # a delta light: intensity is the irradiance it delivers head-on
+    # Its local -Z: down by rotateX, then tilted toward +X by rotateZ, so it travels (1, -1, 0).
+    float xformOp:rotateX = -90
+    float xformOp:rotateZ = 45
+    uniform token[] xformOpOrder = ["xformOp:rotateZ", "xformOp:rotateX"]
+}
+)");
+
+// Direct light only (maxDepth 1): the blockers' own reflections stay out.
+double render(const std::string& usda) { return test::planeRadiance(usda, 4, {}, 1); }
+
+}  // namespace
+
+TEST(Opacity, UnblockedPlaneSeesTheLight) {
+    // Lambert radiance albedo E cos(45) / pi: the reference the other tests divide by.
+    double lit = render(kPlane);
+    EXPECT_NEAR(lit, 0.5 * 2.0 * std::sqrt(0.5) / 3.14159265358979, 2e-3);
+}
+
+TEST(Opacity, OpaqueBlockerCastsAFullShadow) {
+    EXPECT_NEAR(render(kPlane + blocker("B", 5, "")), 0.0, 1e-6);
+}
+
+TEST(Opacity, PartialOpacityLetsOneMinusOpacityThrough) {
+    double lit = render(kPlane);
+    double shadowed = render(kPlane + blocker("B", 5, "float inputs:opacity = 0.25"));
+    EXPECT_NEAR(shadowed / lit, 0.75, 1e-3);
+}
+
+TEST(Opacity, StackedLayersMultiply) {
+    double lit = render(kPlane);
+    double shadowed = render(kPlane + blocker("A", 5, "float inputs:opacity = 0.5") +
+                             blocker("B", 10, "float inputs:opacity = 0.6"));
+    EXPECT_NEAR(shadowed / lit, 0.5 * 0.4, 1e-3);
+}
+
+TEST(Opacity, CutoutBelowThresholdCastsNoShadowAndAboveAFullOne) {
+    double lit = render(kPlane);
+    double below = render(kPlane +
+                          blocker("B", 5, "float inputs:opacity = 0.2\n        float inputs:opacityThreshold = 0.5"));
+    EXPECT_NEAR(below / lit, 1.0, 1e-3);
+    double above = render(kPlane +
+                          blocker("B", 5, "float inputs:opacity = 0.8\n        float inputs:opacityThreshold = 0.5"));
+    EXPECT_NEAR(above, 0.0, 1e-6);
+}

@@ -194,6 +194,23 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
             }
             glm::vec3 n = vector(xf, 0, 0, -1);
             _record.normal = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, -1);
+            // UsdLux ShapingAPI: enabled when any of its inputs is authored (the schema's
+            // fallbacks then apply: cone angle 90 degrees, softness 0, focus 0).
+            auto authored = [&](const char* name) {
+                return getFloat(delegate->getLightParamValue(id(), Token(name))).has_value();
+            };
+            if (authored("shaping:cone:angle") || authored("shaping:cone:softness") ||
+                authored("shaping:focus")) {
+                LightShaping& sh = _record.shaping;
+                sh.enabled = true;
+                sh.axis = _record.normal;
+                sh.coneAngle = std::clamp(scalar("shaping:cone:angle", 90.0f), 0.0f, 180.0f) * kPi / 180.0f;
+                sh.softness = std::clamp(scalar("shaping:cone:softness", 0.0f), 0.0f, 1.0f);
+                sh.focus = std::max(0.0f, scalar("shaping:focus", 0.0f));
+                sh.focusTint = finiteNonNegative(
+                    getVec3(delegate->getLightParamValue(id(), Token("shaping:focusTint")))
+                        .value_or(glm::vec3(0.0f)));
+            }
             // normalize: the power no longer depends on the size (divide by the world area).
             _record.radiance = normalize && _record.area > 0.0f ? scaled / _record.area : scaled;
             if (!(_record.area > 0.0f) || !std::isfinite(_record.area)) {

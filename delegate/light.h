@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Light: the UsdLux light sprims (distant and dome so far). Converts USD light units into the
-// radiance and irradiance the integrator samples (docs/lights.md).
+// Light: the UsdLux light sprims (distant, dome, sphere, rect, disk, cylinder; ShapingAPI cones).
+// Converts USD light units into the radiance and irradiance the integrator samples (docs/lights.md).
 #pragma once
 
 #include "delegate/hd/prim.h"

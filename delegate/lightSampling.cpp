@@ -154,8 +154,9 @@ glm::vec3 latLongToDirection(const glm::vec2& uv) {
     return {s * std::sin(phi), std::cos(theta), s * std::cos(phi)};
 }
 
-bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
-                 LightSample* out) {
+namespace {
+bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
+                    LightSample* out) {
     *out = LightSample();
     switch (l.kind) {
         case LightRecord::Kind::Distant: {
@@ -317,8 +318,22 @@ bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, 
     return false;
 }
 
-bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec3& d, float tmax,
-                        glm::vec3* Le, float* pdf) {
+}  // namespace
+
+bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
+                 LightSample* out) {
+    if (!sampleUnshaped(l, p, ng, u, out)) return false;
+    if (l.shaping.enabled) {
+        // The emission direction is from the sampled point toward p: -wi (the pdf is unchanged).
+        out->Li *= shapingFactor(l.shaping, -out->wi);
+        if (out->Li == glm::vec3(0.0f)) return false;
+    }
+    return true;
+}
+
+namespace {
+bool intersectUnshaped(const LightRecord& l, const glm::vec3& o, const glm::vec3& d, float tmax,
+                       glm::vec3* Le, float* pdf) {
     switch (l.kind) {
         case LightRecord::Kind::Sphere: {
             float t;
@@ -372,6 +387,15 @@ bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec
         }
         default: return false;
     }
+}
+
+}  // namespace
+
+bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec3& d, float tmax,
+                        glm::vec3* Le, float* pdf) {
+    if (!intersectUnshaped(l, o, d, tmax, Le, pdf)) return false;
+    if (l.shaping.enabled) *Le *= shapingFactor(l.shaping, -d);
+    return true;
 }
 
 bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::vec3& ng,

@@ -13,6 +13,7 @@
 #include "bsdf/bsdf.h"
 #include "delegate/distribution2d.h"
 #include "delegate/hd/token.h"
+#include "delegate/lightShaping.h"
 #include "delegate/shading/materialProgram.h"
 
 namespace principled::embree {
@@ -104,6 +105,7 @@ struct LightRecord {
     glm::vec3 normal{0, 0, -1};          ///< rect/disk: the side that emits
     float radius = 0.0f;                 ///< sphere, cylinder
     float area = 0.0f;
+    LightShaping shaping;                ///< sphere/rect/disk/cylinder: UsdLux ShapingAPI cone
     std::shared_ptr<const EnvironmentMap> environment;  ///< dome texture (null: constant)
     /// Rect light texture:file (texels only; null: constant). Texel (0, 0), the image's top
     /// left, sits at the light's (+X, +Y) corner.

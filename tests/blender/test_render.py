@@ -151,8 +151,8 @@ def test_conversions():
     pt = L()
     pt.type, pt.energy, pt.shadow_soft_size, pt.color = "POINT", 100.0, 0.1, (1, 1, 1)
     kind, p = export.light_params(pt, None)
-    intensity = p["radiance"][0] * math.pi * p["radius"] ** 2
-    check(kind == "sphere" and abs(intensity - 100.0 / (4 * math.pi)) < 1e-9,
+    intensity = p["intensity"] * math.pi * p["radius"] ** 2
+    check(kind == "point" and abs(intensity - 100.0 / (4 * math.pi)) < 1e-9,
           "point light intensity P/(4 pi)")
     ar = L()
     ar.type, ar.energy, ar.shape, ar.size, ar.size_y, ar.color = "AREA", 40.0, "RECTANGLE", 2.0, \

@@ -196,6 +196,27 @@ def material_params(material, textures):
     return inputs, links, warnings
 
 
+def spot_shaping(spot_size, spot_blend):
+    """Blender spot cone -> UsdLux ShapingAPI inputs (delegate/lightShaping.h).
+
+    spot_size is the full cone angle, so shaping:cone:angle = spot_size / 2. Cycles 3.4
+    (spot_light_attenuation) scales a spot by cos(t) * smoothstep((cos t - cos h) / m) inside
+    the cone, h = spot_size/2, m = spot_blend * (1 - cos h): the edge is a smoothstep in
+    cos t from cos h (0) to cos t_in = cos h + m (1). ShapingAPI's edge is a smoothstep in the
+    angle from h (1 - softness) (1) to h (0), so softness = 1 - t_in / h puts both ends of the
+    edge exactly where Cycles has them; between them the two smoothsteps differ (one in
+    cos t, one in t; docs/hosts.md gives the size). shaping:focus = 1 is Cycles' cos(t).
+    """
+    h = 0.5 * float(spot_size)
+    if h <= 0.0:
+        return {"angle": 0.0, "softness": 0.0, "focus": 1.0}
+    cos_h = math.cos(h)
+    blend = min(max(float(spot_blend), 0.0), 1.0)
+    t_in = math.acos(min(1.0, cos_h + blend * (1.0 - cos_h)))
+    return {"angle": math.degrees(h), "softness": min(max(1.0 - t_in / h, 0.0), 1.0),
+            "focus": 1.0}
+
+
 def light_params(light, obj_matrix):
     """Blender light -> (kind, params) following Cycles 3.4's units.
 
@@ -205,8 +226,8 @@ def light_params(light, obj_matrix):
     L = 2S / ((1 + sec(t/2)) pi sin^2(t/2)); t = 0 is a delta light with E = S.
     POINT / SPOT, power P (W), radius r: Cycles gives radiant intensity I = P/(4 pi) W/sr,
     i.e. a sphere of radius r with radiance L = P/(4 pi^2 r^2) (its far-field intensity is
-    L pi r^2); exported as an emissive sphere (r < 1 mm becomes 1 mm, I kept). The spot's
-    cone is not supported by the delegate: exported as a point light with a warning.
+    L pi r^2); exported as a UsdLux SphereLight of that radiance (r < 1 mm becomes 1 mm, I
+    kept). A spot adds the ShapingAPI cone of spot_shaping().
     AREA, power P (W), area A: Cycles' area-lamp radiance is P/(4A) (cycles-peer.md); exported
     as an emissive quad/disk of that radiance facing the light's -Z.
     """
@@ -223,7 +244,11 @@ def light_params(light, obj_matrix):
     if light.type in ("POINT", "SPOT"):
         r = max(float(light.shadow_soft_size), 1e-3)
         L = float(light.energy) / (4.0 * math.pi * math.pi * r * r)
-        return "sphere", {"radius": r, "radiance": [c * L for c in color]}
+        p = {"radius": r, "intensity": L, "color": color}
+        if light.type == "SPOT":
+            p["shaping"] = spot_shaping(light.spot_size, light.spot_blend)
+            return "spot", p
+        return "point", p
     if light.type == "AREA":
         sx = float(light.size)
         sy = float(light.size_y) if light.shape in ("RECTANGLE", "ELLIPSE") else sx
@@ -234,44 +259,104 @@ def light_params(light, obj_matrix):
     return None, {}
 
 
-def world_params(world):
-    """World -> dome radiance (color * strength). An Environment Texture is reduced to its
-    mean color (the delegate's dome light has no texture input yet; documented)."""
+# Blender's equirectangular lookup (Cycles 3.4 direction_to_equirectangular) takes the world
+# direction b to u = 0.5 - atan2(b.y, b.x)/(2 pi), v = 1 - acos(b.z)/pi (v = 1: the image's top
+# row, the zenith +Z). The delegate's dome (USD convention, delegate/lightSampling.h) takes its
+# local direction d to u = 0.5 - atan2(d.x, d.z)/(2 pi), v from the +Y pole. They agree when
+# b = (d.z, d.x, d.y): the dome's local X, Y, Z go to world +Y, +Z, +X (a rotation, det +1).
+# Column-vector matrix (local -> world):
+DOME_TO_BLENDER = ((0.0, 0.0, 1.0, 0.0),
+                   (1.0, 0.0, 0.0, 0.0),
+                   (0.0, 1.0, 0.0, 0.0),
+                   (0.0, 0.0, 0.0, 1.0))
+
+
+def _mapping_rotation(node, warnings):
+    """A Mapping node in front of the Environment Texture -> the rotation R it applies to the
+    lookup direction (lookup = R d for Point/Vector/Normal types, R^-1 d for Texture), or None
+    if it cannot be expressed as a dome rotation."""
+    from mathutils import Euler
+
+    rot_in = node.inputs["Rotation"]
+    if rot_in.is_linked:
+        warnings.append("world: Mapping rotation is linked; ignored")
+        return None
+    r = Euler([float(x) for x in rot_in.default_value], "XYZ").to_matrix()
+    scale = [float(x) for x in node.inputs["Scale"].default_value] if "Scale" in node.inputs else [1, 1, 1]
+    if min(scale) <= 0.0 or max(scale) - min(scale) > 1e-6:
+        warnings.append("world: Mapping scale is not uniform and positive; ignored")
+    if node.vector_type in ("POINT", "TEXTURE") and "Location" in node.inputs and \
+            any(abs(float(x)) > 1e-9 for x in node.inputs["Location"].default_value):
+        warnings.append("world: Mapping location has no effect on a direction here; ignored")
+    return r.transposed() if node.vector_type == "TEXTURE" else r
+
+
+def world_params(world, textures=None):
+    """World -> ({"color": dome colour, "texture": file or None, "matrix": 16 numbers or
+    None}, warnings).
+
+    Background colour x strength -> DomeLight inputs:color. An Environment Texture
+    (equirectangular) on the Background colour -> the dome's inputs:texture:file with
+    inputs:color = (strength, strength, strength) and the dome rotated by DOME_TO_BLENDER,
+    preceded by the inverse of a Mapping node's rotation (Cycles looks the image up at R d,
+    so the dome is turned by R^-1). `textures` (a TextureWriter) gives the image a file; a
+    missing image is a warning and the Background socket colour is used."""
     warnings = []
+    p = {"color": [0.0, 0.0, 0.0], "texture": None, "matrix": None}
     if world is None:
-        return [0.0, 0.0, 0.0], warnings
+        return p, warnings
     if not world.use_nodes or world.node_tree is None:
-        return [float(c) for c in world.color], warnings
+        p["color"] = [float(c) for c in world.color]
+        return p, warnings
     out = None
     for n in world.node_tree.nodes:
         if n.type == "OUTPUT_WORLD" and (n.is_active_output or out is None):
             out = n
     if out is None:
-        return [0.0, 0.0, 0.0], warnings
+        return p, warnings
     bg = _linked_node(out.inputs["Surface"])
     if bg is None or bg.type != "BACKGROUND":
         warnings.append("world: surface is not a Background node; black")
-        return [0.0, 0.0, 0.0], warnings
+        return p, warnings
+    if bg.inputs["Strength"].is_linked:
+        warnings.append("world: Strength is linked; using the socket value")
     strength = float(bg.inputs["Strength"].default_value)
     src = _linked_node(bg.inputs["Color"])
-    if src is not None and src.type == "TEX_ENVIRONMENT" and src.image is not None:
-        img = src.image
-        px = np.empty(img.size[0] * img.size[1] * 4, np.float32)
-        img.pixels.foreach_get(px)
-        px = px.reshape(-1, 4)[:, :3]
-        if not img.is_float:  # stored sRGB values -> linear
-            px = np.where(px <= 0.04045, px / 12.92, ((px + 0.055) / 1.055) ** 2.4)
-        # Mean over the sphere: weight rows by cos(latitude).
-        h, w = img.size[1], img.size[0]
-        lat = (np.arange(h) + 0.5) / h * math.pi - math.pi / 2
-        wts = np.repeat(np.cos(lat), w)
-        mean = (px * wts[:, None]).sum(axis=0) / wts.sum()
-        warnings.append("world: Environment Texture rendered as its mean color (dome-light "
-                        "textures are not supported by the delegate yet)")
-        return [float(c) * strength for c in mean], warnings
+    socket_color = [float(c) * strength for c in bg.inputs["Color"].default_value[:3]]
+    if src is not None and src.type == "TEX_ENVIRONMENT":
+        if src.image is None:
+            warnings.append("world: Environment Texture without an image; using the socket value")
+        elif src.projection != "EQUIRECTANGULAR":
+            warnings.append(f"world: {src.projection} projection not supported (equirectangular "
+                            "only); using the socket value")
+        elif textures is not None:
+            try:
+                file = textures.file_for(src.image)
+            except Exception as e:
+                warnings.append(f"world: image '{src.image.name}': {e}; using the socket value")
+                file = None
+            if file is not None:
+                from mathutils import Matrix
+
+                m = Matrix(DOME_TO_BLENDER)
+                vec = _linked_node(src.inputs["Vector"])
+                if vec is not None and vec.type == "MAPPING":
+                    r = _mapping_rotation(vec, warnings)
+                    if r is not None:
+                        m = r.transposed().to_4x4() @ m
+                elif vec is not None and vec.type != "TEX_COORD":
+                    warnings.append(f"world: Environment Texture vector from '{vec.type}'; "
+                                    "using the view direction")
+                p.update(color=[strength] * 3, texture=file, matrix=usd_matrix(m))
+                return p, warnings
+        else:
+            p["texture"] = "?"  # there is one; the caller has no TextureWriter (rebuild)
+        p["color"] = socket_color
+        return p, warnings
     if src is not None:
         warnings.append(f"world: Color linked to '{src.type}'; using the socket value")
-    return [float(c) * strength for c in bg.inputs["Color"].default_value[:3]], warnings
+    p["color"] = socket_color
+    return p, warnings
 
 
 def camera_params(cam_data, width, height):
@@ -365,6 +450,7 @@ class SceneExport:
         self.camera_path = None
         self.view_camera = view_camera  # (matrix, params) for a viewport camera
         self.meshes = {}          # mesh cache: evaluated object name -> MeshData
+        self.world_texture = None  # the dome's texture file, if the world has one
         self._names = set()
 
     def _unique(self, base):
@@ -462,11 +548,17 @@ class SceneExport:
             self._camera_params(b, "/World/ViewCamera", mw, params)
         elif self.camera_path is None:
             self.warnings.append("no active camera: the delegate frames the scene")
-        color, warns = world_params(self.depsgraph.scene.world)
+        wp, warns = world_params(self.depsgraph.scene.world, self.textures)
         self.warnings += warns
-        b.add_prim("/World/Environment", "DomeLight")
-        b.set_attribute("/World/Environment", "color3f", "inputs:color", color)
-        b.set_attribute("/World/Environment", "float", "inputs:intensity", 1.0)
+        dome = "/World/Environment"
+        b.add_prim(dome, "DomeLight")
+        b.set_attribute(dome, "color3f", "inputs:color", wp["color"])
+        b.set_attribute(dome, "float", "inputs:intensity", 1.0)
+        if wp["texture"]:
+            b.set_attribute_string(dome, "asset", "inputs:texture:file", wp["texture"])
+            b.set_attribute_string(dome, "token", "inputs:texture:format", "latlong")
+            b.set_transform(dome, wp["matrix"])
+        self.world_texture = wp["texture"]
         return b
 
     def _camera(self, b, mw, cam_data):
@@ -506,9 +598,25 @@ class SceneExport:
         if kind is None:
             self.warnings.append(f"light '{name}': type {light.type} not supported")
             return
-        if light.type == "SPOT":
-            self.warnings.append(f"light '{name}': spot cone not supported by the delegate; "
-                                 "rendered as a point light of the same power")
+        if kind in ("point", "spot"):
+            from mathutils import Matrix
+
+            # A SphereLight emits along its local -Z (the cone axis), like Blender's spot.
+            loc, rot, _ = mw.decompose()
+            b.add_prim(xf, "SphereLight")
+            b.set_transform(xf, usd_matrix(Matrix.Translation(loc) @ rot.to_matrix().to_4x4()))
+            b.set_attribute(xf, "float", "inputs:radius", lp["radius"])
+            b.set_attribute(xf, "float", "inputs:intensity", lp["intensity"])
+            b.set_attribute(xf, "color3f", "inputs:color", lp["color"])
+            if kind == "spot":
+                sh = lp["shaping"]
+                b.set_attribute(xf, "float", "inputs:shaping:cone:angle", sh["angle"])
+                b.set_attribute(xf, "float", "inputs:shaping:cone:softness", sh["softness"])
+                b.set_attribute(xf, "float", "inputs:shaping:focus", sh["focus"])
+                if getattr(light, "use_square", False):
+                    self.warnings.append(f"light '{name}': square spot rendered as a round cone")
+            self.lights[name] = (kind, xf, [xf])
+            return
         b.add_prim(xf, "Xform")
         b.set_transform(xf, usd_matrix(mw))
         mat = "/World/Looks/" + self._unique(usd_name(name, "Light") + "_Emission")
@@ -517,23 +625,18 @@ class SceneExport:
         b.set_material_input(mat, "specular", 0.0)
         b.set_material_input(mat, "emissiveColor", lp["radiance"])
         geom = xf + "/Emitter"
-        if kind == "sphere":
-            b.add_prim(geom, "Sphere")
-            b.set_attribute(geom, "double", "radius", lp["radius"])
+        # Area light: an emissive quad or 32-gon.
+        sx, sy = lp["size"]
+        if lp["disk"]:
+            n = 32
+            ang = np.arange(n) * 2 * math.pi / n
+            pts = np.stack([0.5 * sx * np.cos(ang), -0.5 * sy * np.sin(ang),
+                            np.zeros(n)], axis=1).ravel()
+            b.add_mesh(geom, pts, [n], list(range(n)))
         else:
-            sx, sy = lp["size"]
-            if lp["disk"]:
-                n = 32
-                ang = np.arange(n) * 2 * math.pi / n
-                pts = np.stack([0.5 * sx * np.cos(ang), -0.5 * sy * np.sin(ang),
-                                np.zeros(n)], axis=1).ravel()
-                b.add_mesh(geom, pts, [n], list(range(n)))
-            else:
-                # Wound clockwise seen from +Z: the normal faces -Z, the emitting side.
-                pts = [-sx / 2, -sy / 2, 0, -sx / 2, sy / 2, 0, sx / 2, sy / 2, 0, sx / 2, -sy / 2, 0]
-                b.add_mesh(geom, pts, [4], [0, 1, 2, 3])
-            self.mesh_prims.append((geom, name, 0))
-        if kind == "sphere":
-            self.mesh_prims.append((geom, name, 0))
+            # Wound clockwise seen from +Z: the normal faces -Z, the emitting side.
+            pts = [-sx / 2, -sy / 2, 0, -sx / 2, sy / 2, 0, sx / 2, sy / 2, 0, sx / 2, -sy / 2, 0]
+            b.add_mesh(geom, pts, [4], [0, 1, 2, 3])
+        self.mesh_prims.append((geom, name, 0))
         b.bind_material(geom, mat)
         self.lights[name] = (kind, xf, [mat + "/Surface"])

@@ -120,9 +120,9 @@ class Session:
         """Applies depsgraph updates through the delegate's edit calls where it can.
 
         Material: every surface input is re-set (material tables only, no BVH build);
-        a change in which inputs are texture-linked rebuilds. Light: intensity/color/angle or
-        the emitter's radiance. Object transform only: set_transform on each of its instance
-        Xforms (no mesh rebuild). World color: the dome light's color. Anything else that
+        a change in which inputs are texture-linked rebuilds. Light: intensity/color/angle/
+        radius/cone or the area emitter's radiance. Object transform only: set_transform on each of its instance
+        Xforms (no mesh rebuild). World color: the dome light's color (a world texture: rebuild). Anything else that
         changes geometry or the set of objects: a full rebuild (the ABI cannot change
         topology or add prims yet). Returns a dict of what was done."""
         ex = self.export
@@ -154,8 +154,11 @@ class Session:
                         else:
                             done["lights"] += 1
             elif isinstance(idd, bpy.types.World):
-                color, _ = export.world_params(idd)
-                self.delegate.set_attribute("/World/Environment", "inputs:color", color)
+                wp, _ = export.world_params(idd)
+                if wp["texture"] or ex.world_texture:
+                    rebuild = True  # a texture (or its removal): the dome is re-exported
+                    continue
+                self.delegate.set_attribute("/World/Environment", "inputs:color", wp["color"])
                 done["world"] += 1
             elif isinstance(idd, bpy.types.Object):
                 if idd.type == "LIGHT" and u.is_updated_geometry and not u.is_updated_transform:
@@ -182,7 +185,7 @@ class Session:
                             continue
                         kind, xf, _ = entry
                         mw = obj.matrix_world
-                        if kind == "sun":
+                        if kind in ("sun", "point", "spot"):  # UsdLux lights: no scale
                             from mathutils import Matrix
 
                             loc, rot, _s = mw.decompose()
@@ -220,9 +223,15 @@ class Session:
             d.set_attribute(xf, "inputs:intensity", lp["intensity"])
             d.set_attribute(xf, "inputs:angle", lp["angle"])
             d.set_attribute(xf, "inputs:color", lp["color"])
-        elif kind == "sphere":
-            d.set_attribute(xf + "/Emitter", "radius", lp["radius"])
-            d.set_attribute(targets[0], "inputs:emissiveColor", lp["radiance"])
+        elif kind in ("point", "spot"):
+            d.set_attribute(xf, "inputs:radius", lp["radius"])
+            d.set_attribute(xf, "inputs:intensity", lp["intensity"])
+            d.set_attribute(xf, "inputs:color", lp["color"])
+            if kind == "spot":
+                sh = lp["shaping"]
+                d.set_attribute(xf, "inputs:shaping:cone:angle", sh["angle"])
+                d.set_attribute(xf, "inputs:shaping:cone:softness", sh["softness"])
+                d.set_attribute(xf, "inputs:shaping:focus", sh["focus"])
         else:
             d.set_attribute(targets[0], "inputs:emissiveColor", lp["radiance"])
         return True

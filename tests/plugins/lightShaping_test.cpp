@@ -1,0 +1,122 @@
+// UsdLux ShapingAPI (delegate/lightShaping.h): the cone falloff curve, and a shaped sphere light
+// rendered on a Lambertian plane against the unshaped closed form times the expected factor.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "delegate/lightShaping.h"
+#include "plugins/renderSession.h"
+
+using namespace principled;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+// A Lambert plane y = 0 (albedo a) seen straight down by a tiny orthographic camera at the origin,
+// and a sphere light of radius R, radiance L, at (x0, h, 0) aimed straight down (-Y), with the
+// given shaping inputs.
+std::string scene(double a, double x0, double h, double R, double L, const std::string& shaping) {
+    char text[4096];
+    std::snprintf(text, sizeof text, R"(#usda 1.0
+def Mesh "Plane" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
+    rel material:binding = </Mat>
+}
+def Material "Mat"
+{
+    token outputs:surface.connect = </Mat/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (%g, %g, %g)
+        float inputs:ior = 1
+        float inputs:roughness = 1
+        token outputs:surface
+    }
+}
+def Camera "Cam"
+{
+    token projection = "orthographic"
+    float horizontalAperture = 0.01
+    float verticalAperture = 0.01
+    float2 clippingRange = (0.001, 1000)
+    double3 xformOp:translate = (0, 50, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+def SphereLight "Spot"
+{
+    float inputs:radius = %g
+    float inputs:intensity = %g
+    %s
+    double3 xformOp:translate = (%g, %g, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)",
+                  a, a, a, R, L, shaping.c_str(), x0, h);
+    return text;
+}
+
+double render(const std::string& usda) {
+    host::SessionOptions o;
+    o.width = o.height = 4;
+    o.samplesPerPixel = 256;
+    o.settings["shadingModel"] = "ue4";
+    auto s = host::RenderSession::openString(usda, "shaping.usda", o);
+    while (!s->step()) {
+    }
+    const float* c = s->color();
+    double sum = 0.0;
+    for (int i = 0; i < 16; ++i) sum += c[4 * i];
+    return sum / 16.0;
+}
+
+}  // namespace
+
+TEST(LightShaping, ConeFalloffIsASmoothstepOverTheSoftFraction) {
+    float cone = float(40 * kDeg);
+    EXPECT_EQ(embree::coneFalloff(float(39.9 * kDeg), cone, 0.0f), 1.0f);  // hard edge
+    EXPECT_EQ(embree::coneFalloff(float(40.1 * kDeg), cone, 0.0f), 0.0f);
+    // softness 0.5: full inside 20 degrees, 0.5 at 30 (smoothstep midpoint), 0 from 40.
+    EXPECT_EQ(embree::coneFalloff(float(19.9 * kDeg), cone, 0.5f), 1.0f);
+    EXPECT_NEAR(embree::coneFalloff(float(30 * kDeg), cone, 0.5f), 0.5f, 1e-5f);
+    // 25 degrees is a quarter into the edge: 1 - smoothstep(0.25) = 1 - 0.15625.
+    EXPECT_NEAR(embree::coneFalloff(float(25 * kDeg), cone, 0.5f), 0.84375f, 1e-5f);
+    EXPECT_EQ(embree::coneFalloff(float(40 * kDeg), cone, 0.5f), 0.0f);
+    embree::LightShaping s;
+    s.enabled = true;
+    s.axis = glm::vec3(0, 0, -1);
+    s.coneAngle = float(kPi);
+    s.focus = 2.0f;
+    glm::vec3 w(std::sin(0.5f), 0.0f, -std::cos(0.5f));
+    EXPECT_NEAR(embree::shapingFactor(s, w).x, std::cos(0.5f) * std::cos(0.5f), 1e-5f);
+    s.enabled = false;
+    EXPECT_EQ(embree::shapingFactor(s, w), glm::vec3(1.0f));
+}
+
+TEST(LightShaping, ShapedSphereLightOnAPlane) {
+    // The point seen is 22.5 degrees off the light's axis (x0 = h tan 22.5). Unshaped, a small
+    // sphere gives E = pi L (R/d)^2 cos(theta_i) (theta_i = 22.5 too) and radiance a E / pi.
+    double a = 0.5, h = 3.0, R = 0.05, L = 4000.0, th = 22.5 * kDeg;
+    double x0 = h * std::tan(th), d = h / std::cos(th);
+    double unshaped = a * L * (R / d) * (R / d) * std::cos(th);
+    auto shaped = [&](const std::string& inputs) { return render(scene(a, x0, h, R, L, inputs)); };
+    EXPECT_NEAR(shaped(""), unshaped, 0.02 * unshaped);
+    EXPECT_NEAR(shaped("float inputs:shaping:cone:angle = 30"), unshaped, 0.02 * unshaped);
+    EXPECT_LT(shaped("float inputs:shaping:cone:angle = 20"), 1e-6);
+    // softness 0.5 on a 30-degree cone: the edge runs from 15 to 30 degrees, midpoint 22.5.
+    double half = shaped("float inputs:shaping:cone:angle = 30\n    float inputs:shaping:cone:softness = 0.5");
+    EXPECT_NEAR(half, 0.5 * unshaped, 0.03 * unshaped);
+    // focus 2 (cone fallback 90 degrees): cos^2 of the off-axis angle.
+    double focused = shaped("float inputs:shaping:focus = 2");
+    EXPECT_NEAR(focused, unshaped * std::cos(th) * std::cos(th), 0.02 * unshaped);
+}

@@ -1,3 +1,5 @@
+# What the tests need to know about an ASan build (scripts/sanitize, docs/sanitizers.md):
+# PRINCIPLED_ASAN: ON when CMAKE_CXX_FLAGS has -fsanitize=address.
 # PRINCIPLED_SANITIZER_PRELOAD: what a non-instrumented host process must LD_PRELOAD before it
 # can load one of our ASan-instrumented shared objects (the Python module inside
 # /usr/bin/python3): the ASan runtime, which must come first in the process ("ASan runtime does
@@ -7,7 +9,11 @@
 # Space-separated, as LD_PRELOAD takes it. Empty unless CMAKE_CXX_FLAGS has -fsanitize=address.
 # gcc only (libasan.so); docs/sanitizers.md.
 set(PRINCIPLED_SANITIZER_PRELOAD "")
-if(CMAKE_CXX_FLAGS MATCHES "-fsanitize=[^ ]*address" AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+set(PRINCIPLED_ASAN OFF)
+if(CMAKE_CXX_FLAGS MATCHES "-fsanitize=[^ ]*address")
+  set(PRINCIPLED_ASAN ON)
+endif()
+if(PRINCIPLED_ASAN AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libasan.so
                   OUTPUT_VARIABLE _principled_asan_rt OUTPUT_STRIP_TRAILING_WHITESPACE)
   execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libstdc++.so

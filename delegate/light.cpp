@@ -201,7 +201,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 _enabled = false;
             }
         }
-        param->markTablesDirty();
+        param->markLightsDirty();
     }
     *bits = SprimDirty::Clean;
 }
@@ -210,7 +210,7 @@ void Light::finalize(RenderParam* renderParam) {
     auto* param = static_cast<EmbreeRenderParam*>(renderParam);
     if (_registered) param->remove(static_cast<LightSource*>(this));
     _registered = false;
-    param->markTablesDirty();
+    param->markLightsDirty();
 }
 
 }  // namespace principled::embree

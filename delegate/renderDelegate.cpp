@@ -156,7 +156,7 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
     if (lightTable || meshLights) {
         _snapshot.lights = _sceneLights;
         for (size_t i = 0; i < _meshLights.size(); ++i) {
-            _meshLights[i].mesh->emissiveLight = int(_snapshot.lights.size());
+            _meshLightRecords[i]->emissiveLight = int(_snapshot.lights.size());
             _snapshot.lights.push_back(_meshLights[i]);
         }
         _snapshot.usingDefaultLight = false;
@@ -217,6 +217,7 @@ bool EmbreeRenderDelegate::mayEmit(const GeometryRecord* r) const {
 
 void EmbreeRenderDelegate::buildMeshLights() {
     _meshLights.clear();
+    _meshLightRecords.clear();
     // Triangle meshes whose material has a constant, non-zero emission become lights NEE can
     // sample (PointInstancer copies and textured emission are still found by BSDF sampling
     // only). Ordered by prim id, so the light list does not depend on pointer order.
@@ -261,6 +262,7 @@ void EmbreeRenderDelegate::buildMeshLights() {
         l.meshAreaCdf = std::move(cdf);
         l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
         _meshLights.push_back(std::move(l));
+        _meshLightRecords.push_back(r);
     }
 }
 

@@ -94,6 +94,7 @@ private:
     SceneSnapshot _snapshot;
     std::vector<LightRecord> _sceneLights;  ///< the UsdLux lights, sorted by path
     std::vector<LightRecord> _meshLights;   ///< emissive meshes, by prim id (after _sceneLights)
+    std::vector<GeometryRecord*> _meshLightRecords;  ///< the prim record of each mesh light
     std::unordered_map<hd::Path, int> _materialIndex;  ///< path -> index in _snapshot.materials
     std::vector<float> _lightPower;         ///< per light, without the R^2 of distant/dome
     std::vector<char> _lightPowerScales;    ///< 1: multiply by R^2

@@ -94,7 +94,8 @@ TEST(EditLatency, MaterialEditUpdatesOneRecordOnly) {
         [](adapter::StageEditor& e) {
             e.setAttribute("/World/Looks/Reference/Surface", "inputs:diffuseColor", EditValue::of({0.1, 0.6, 0.2}));
         },
-        replaced(defaultScene(), "(0.646, 0.415, 0.0177)", "(0.1, 0.6, 0.2)"));
+        replaced(defaultScene(), "color3f inputs:diffuseColor = (0.646, 0.415, 0.0177)",
+                 "color3f inputs:diffuseColor = (0.1, 0.6, 0.2)"));
     EXPECT_EQ(d["materialUpdates"], 1);
     for (const char* k : {"materialTableBuilds", "materialBindings", "lightTableBuilds", "meshLightBuilds",
                           "lightDistributionBuilds", "instanceTableBuilds", "topLevelCommits", "blasBuilds",

@@ -50,13 +50,13 @@ void GeometryPrim::sync(SceneDelegate* delegate, RenderParam* renderParam, Dirty
         _record.normalToWorld = glm::transpose(glm::inverse(glm::mat3(m)));
         _instance.setTransform(m);
         param->transformUpdates++;
-        param->markSceneDirty();
+        param->geometryChanged(this);
     }
     const bool drawnAlone = _instancer.empty() && !_badTransform;
     if (*bits & (RprimDirty::Visibility | RprimDirty::Transform)) {
         _visible = delegate->getVisible(id());
         _instance.setEnabled(_visible && drawnAlone);
-        param->markSceneDirty();
+        param->geometryChanged(this);
     }
     bool rebuilt = false;
     if (*bits & geometryBits()) {
@@ -69,15 +69,15 @@ void GeometryPrim::sync(SceneDelegate* delegate, RenderParam* renderParam, Dirty
             _instance.release();
         }
         rebuilt = true;
-        param->markSceneDirty();
+        param->geometryChanged(this);
         // Per-triangle GeomSubset materials follow the new triangles.
-        if (!_subsets.empty()) param->markTablesDirty();
+        if (!_subsets.empty()) param->bindingChanged(this);
     }
     if (*bits & RprimDirty::DoubleSided) _record.doubleSided = delegate->getDoubleSided(id());
     if (*bits & RprimDirty::MaterialId) {
         _materialId = delegate->getMaterialId(id());
         _subsets = delegate->getMaterialSubsets(id());
-        param->markTablesDirty();
+        param->bindingChanged(this);
     }
     constexpr DirtyBits kInstanceBits = RprimDirty::Transform | RprimDirty::Visibility |
                                         RprimDirty::Instancer | RprimDirty::InstanceIndex;
@@ -97,7 +97,7 @@ void GeometryPrim::syncInstances(SceneDelegate* delegate, EmbreeRenderParam* par
     _instances.rebuild(param->device(), param->scene(), _instance.blas(), &_record,
                        std::move(records));
     param->transformUpdates++;
-    param->markSceneDirty();
+    param->geometryChanged(this);
 }
 
 void GeometryPrim::bindMaterials(const std::unordered_map<Path, int>& materialIndex) {

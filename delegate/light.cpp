@@ -218,7 +218,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 _enabled = false;
             }
         }
-        param->markTablesDirty();
+        param->markLightsDirty();
     }
     *bits = SprimDirty::Clean;
 }
@@ -227,7 +227,7 @@ void Light::finalize(RenderParam* renderParam) {
     auto* param = static_cast<EmbreeRenderParam*>(renderParam);
     if (_registered) param->remove(static_cast<LightSource*>(this));
     _registered = false;
-    param->markTablesDirty();
+    param->markLightsDirty();
 }
 
 }  // namespace principled::embree

@@ -21,7 +21,7 @@ void Material::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits
         _record.program = program->isConstant() ? nullptr : program;
         _record.mayBePartlyPresent = program->mayBePartlyPresent();
         for (const auto& n : notes) param->warn(id(), n);
-        param->markTablesDirty();
+        param->materialChanged(this);  // its record, in place (a new material: its table too)
     }
     *bits = SprimDirty::Clean;
 }
@@ -29,8 +29,7 @@ void Material::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits
 void Material::finalize(RenderParam* renderParam) {
     auto* param = static_cast<EmbreeRenderParam*>(renderParam);
     if (_registered) param->remove(static_cast<MaterialSource*>(this));
-    _registered = false;
-    param->markTablesDirty();
+    _registered = false;  // remove() rebuilds the material table at the next commit
 }
 
 }  // namespace principled::embree

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <set>
 
 #include "delegate/aovs.h"
@@ -31,6 +33,10 @@ EmbreeRenderDelegate::EmbreeRenderDelegate() {
     for (const auto& d : renderSettingDescriptors()) _settings[d.key] = d.defaultValue;
     updateDicing();
     _snapshot.scene = _scene;
+    // Diagnostics and before/after benchmarks (bench/latency_bench): every commit rebuilds every
+    // table, as before incremental commits.
+    const char* full = std::getenv("PRINCIPLED_FULL_COMMIT");
+    _fullCommit = full && *full && std::string(full) != "0";
 }
 
 EmbreeRenderDelegate::~EmbreeRenderDelegate() { rtcReleaseScene(_scene); }
@@ -78,36 +84,81 @@ std::unique_ptr<RenderPass> EmbreeRenderDelegate::createRenderPass(RenderIndex* 
 }
 
 void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
-    bool sceneDirty = _param->takeSceneDirty();
-    bool tablesDirty = _param->takeTablesDirty();
-    if (sceneDirty) {
+    // Incremental (issue 7, edit latency): each table is rebuilt only when what it depends on
+    // changed. The result is what a full rebuild of the same scene gives, bit for bit (tables
+    // keep the same order and indices; the light distribution uses the same arithmetic).
+    EmbreeRenderParam::Changes c = _param->takeChanges();
+    if (!c.any()) return;
+    if (_fullCommit) c.all = true;
+    ++_contentVersion;
+    if (c.scene) {
         rtcCommitScene(_scene);
         ++_topCommits;
     }
-    if (tablesDirty) {
+    bool meshLights = c.all || c.materialSet || c.geometrySet;
+    if (c.all || c.materialSet) {
         // Materials sorted by path, so indices do not depend on pointer order.
         std::vector<MaterialSource*> mats(_param->materials().begin(), _param->materials().end());
         std::sort(mats.begin(), mats.end(), [](auto* a, auto* b) { return a->materialId() < b->materialId(); });
         _snapshot.materials.clear();
-        _snapshot.anyPartlyPresent = false;
-        std::unordered_map<Path, int> index;
+        _materialIndex.clear();
         for (MaterialSource* m : mats) {
-            index[m->materialId()] = static_cast<int>(_snapshot.materials.size());
+            _materialIndex[m->materialId()] = static_cast<int>(_snapshot.materials.size());
             _snapshot.materials.push_back(m->record());
-            _snapshot.anyPartlyPresent |= m->record().mayBePartlyPresent;
         }
-        for (GeometrySource* g : _param->geometry()) g->bindMaterials(index);
+        for (GeometrySource* g : _param->geometry()) g->bindMaterials(_materialIndex);
+        ++_materialTableBuilds;
+        _bindings += long(_param->geometry().size());
+    } else {
+        for (MaterialSource* m : c.materials) {
+            auto it = _materialIndex.find(m->materialId());
+            if (it == _materialIndex.end()) {  // not in the table (cannot happen): rebuild all
+                _param->markTablesDirty();
+                continue;
+            }
+            MaterialRecord& slot = _snapshot.materials[size_t(it->second)];
+            // Mesh lights come from constant emission: redo them only if it is or was there.
+            auto emits = [](const MaterialRecord& r) {
+                return !r.program && r.constant.emission != glm::vec3(0.0f);
+            };
+            if (emits(slot) || emits(m->record())) meshLights = true;
+            slot = m->record();
+            ++_materialUpdates;
+        }
+        for (GeometrySource* g : c.bindings) {
+            bool before = mayEmit(g->record());
+            g->bindMaterials(_materialIndex);
+            meshLights = meshLights || before || mayEmit(g->record());
+            ++_bindings;
+        }
+    }
+    if (c.all || c.materialSet || !c.materials.empty()) {
+        _snapshot.anyPartlyPresent = false;
+        for (const MaterialRecord& m : _snapshot.materials) _snapshot.anyPartlyPresent |= m.mayBePartlyPresent;
+    }
+    // A moved or rebuilt prim changes the mesh lights only if it is (or may become) one.
+    for (GeometrySource* g : c.geometry)
+        if (!meshLights && mayEmit(g->record())) meshLights = true;
+    bool lightTable = c.all || c.lights;
+    if (lightTable) {
         std::vector<LightSource*> lights;
         for (LightSource* l : _param->lights())
             if (l->enabled()) lights.push_back(l);
         std::sort(lights.begin(), lights.end(), [](auto* a, auto* b) { return a->lightId() < b->lightId(); });
         _sceneLights.clear();
         for (LightSource* l : lights) _sceneLights.push_back(l->record());
+        ++_lightTableBuilds;
     }
-    if (sceneDirty || tablesDirty) {
-        // Mesh lights depend on geometry (transforms, points) and materials: rebuild the list.
+    if (meshLights) {
+        buildMeshLights();
+        ++_meshLightBuilds;
+    }
+    if (lightTable || meshLights) {
         _snapshot.lights = _sceneLights;
-        addMeshLights();
+        for (size_t i = 0; i < _meshLights.size(); ++i) {
+            _meshLightRecords[i]->emissiveLight = int(_snapshot.lights.size());
+            _snapshot.lights.push_back(_meshLights[i]);
+        }
         _snapshot.usingDefaultLight = false;
         if (_snapshot.lights.empty() && intSetting("defaultLighting", 1) != 0) {
             // A scene without lights would render black; light it like an overcast sky
@@ -118,9 +169,18 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.lights.push_back(dome);
             _snapshot.usingDefaultLight = true;
         }
-        buildLightDistribution();
+        computeLightPower();
     }
-    if (sceneDirty || tablesDirty) {
+    if (lightTable || meshLights || c.scene) {
+        // The distribution depends on the scene's bounding sphere: redo it when that moved.
+        float R = sceneRadius();
+        if (lightTable || meshLights || R != _lightRadius) {
+            _lightRadius = R;
+            buildLightDistribution();
+            ++_lightDistributionBuilds;
+        }
+    }
+    if (c.scene || c.all || c.geometrySet) {
         _snapshot.geometryByInstance.clear();
         _snapshot.instanceByInstance.clear();
         for (GeometrySource* g : _param->geometry()) {
@@ -131,10 +191,33 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.geometryByInstance[id] = g->record();
         }
         addInstancerInstances();
+        ++_instanceTableBuilds;
+    }
+    // A material missing from the table asked for a full rebuild: do it now, not next frame.
+    if (_param->takeTablesDirty()) {
+        _param->markTablesDirty();
+        commitResources(nullptr);
     }
 }
 
-void EmbreeRenderDelegate::addMeshLights() {
+bool EmbreeRenderDelegate::mayEmit(const GeometryRecord* r) const {
+    // Whether this prim has a mesh light or any material it uses has constant emission.
+    if (r->emissiveLight >= 0) return true;
+    if (r->kind != GeometryRecord::Kind::Triangles) return false;
+    auto emits = [&](int mi) {
+        if (mi < 0 || mi >= int(_snapshot.materials.size())) return false;
+        const MaterialRecord& m = _snapshot.materials[size_t(mi)];
+        return !m.program && m.constant.emission != glm::vec3(0.0f);
+    };
+    if (emits(r->materialIndex)) return true;
+    for (int mi : r->triangleMaterial)
+        if (mi != r->materialIndex && emits(mi)) return true;
+    return false;
+}
+
+void EmbreeRenderDelegate::buildMeshLights() {
+    _meshLights.clear();
+    _meshLightRecords.clear();
     // Triangle meshes whose material has a constant, non-zero emission become lights NEE can
     // sample (PointInstancer copies and textured emission are still found by BSDF sampling
     // only). Ordered by prim id, so the light list does not depend on pointer order.
@@ -193,14 +276,12 @@ void EmbreeRenderDelegate::addMeshLights() {
         l.meshTriangles = std::move(tris);
         l.meshAreaCdf = std::move(cdf);
         l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
-        r->emissiveLight = int(_snapshot.lights.size());
-        _snapshot.lights.push_back(std::move(l));
+        _meshLights.push_back(std::move(l));
+        _meshLightRecords.push_back(r);
     }
 }
 
-void EmbreeRenderDelegate::buildLightDistribution() {
-    // Next-event estimation picks lights in proportion to the power they can deliver to the
-    // scene (its bounding sphere of radius R), mixed with 10% uniform so no light starves.
+float EmbreeRenderDelegate::sceneRadius() const {
     RTCBounds b;
     rtcGetSceneBounds(_scene, &b);
     float R = 1.0f;
@@ -209,16 +290,25 @@ void EmbreeRenderDelegate::buildLightDistribution() {
         R = std::max(1e-3f, 0.5f * glm::length(ext));
         if (!std::isfinite(R)) R = 1.0f;
     }
+    return R;
+}
+
+void EmbreeRenderDelegate::computeLightPower() {
+    // The power of each light without the scene radius: distant and dome lights deliver in
+    // proportion to R^2 (multiplied in buildLightDistribution, same arithmetic order as before),
+    // the others do not depend on it. Environment texels are summed here, once per light table.
     constexpr float kPi = 3.14159265358979323846f;
     auto lum = [](const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
-    auto& lights = _snapshot.lights;
-    std::vector<float> power(lights.size());
-    double total = 0.0;
+    const auto& lights = _snapshot.lights;
+    _lightPower.assign(lights.size(), 0.0f);
+    _lightPowerScales.assign(lights.size(), 0);
     for (size_t i = 0; i < lights.size(); ++i) {
         const LightRecord& l = lights[i];
-        float p = 0.0f;
         switch (l.kind) {
-            case LightRecord::Kind::Distant: p = lum(l.irradiance) * kPi * R * R; break;
+            case LightRecord::Kind::Distant:
+                _lightPower[i] = lum(l.irradiance) * kPi;
+                _lightPowerScales[i] = 1;
+                break;
             case LightRecord::Kind::Dome: {
                 glm::vec3 L = l.radiance;
                 if (l.environment && !l.environment->texels.empty()) {
@@ -226,7 +316,8 @@ void EmbreeRenderDelegate::buildLightDistribution() {
                     for (const auto& t : l.environment->texels) sum += glm::dvec3(t);
                     L = glm::vec3(sum / double(l.environment->texels.size())) * l.environment->scale;
                 }
-                p = lum(L) * kPi * kPi * R * R;
+                _lightPower[i] = lum(L) * kPi * kPi;
+                _lightPowerScales[i] = 1;
                 break;
             }
             default: {
@@ -236,9 +327,21 @@ void EmbreeRenderDelegate::buildLightDistribution() {
                     for (const auto& t : l.rectTexture->texels) sum += glm::dvec3(t);
                     L *= glm::vec3(sum / double(l.rectTexture->texels.size()));
                 }
-                p = lum(L) * kPi * l.area;
+                _lightPower[i] = lum(L) * kPi * l.area;
             }
         }
+    }
+}
+
+void EmbreeRenderDelegate::buildLightDistribution() {
+    // Next-event estimation picks lights in proportion to the power they can deliver to the
+    // scene (its bounding sphere of radius R), mixed with 10% uniform so no light starves.
+    const float R = _lightRadius;
+    auto& lights = _snapshot.lights;
+    std::vector<float> power(lights.size());
+    double total = 0.0;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        float p = _lightPowerScales[i] ? _lightPower[i] * R * R : _lightPower[i];
         power[i] = std::isfinite(p) && p > 0.0f ? p : 0.0f;
         total += power[i];
     }
@@ -453,6 +556,15 @@ std::map<std::string, double> EmbreeRenderDelegate::renderStats() const {
         {"meshesRebuilt", double(_param->meshesRebuilt.load())},
         {"transformUpdates", double(_param->transformUpdates.load())},
         {"topLevelCommits", double(_topCommits.load())},
+        // Commit work (tests of incremental edits): whole tables against in-place updates.
+        {"commits", double(_contentVersion.load() - 1)},
+        {"materialTableBuilds", double(_materialTableBuilds.load())},
+        {"materialUpdates", double(_materialUpdates.load())},
+        {"materialBindings", double(_bindings.load())},
+        {"lightTableBuilds", double(_lightTableBuilds.load())},
+        {"meshLightBuilds", double(_meshLightBuilds.load())},
+        {"lightDistributionBuilds", double(_lightDistributionBuilds.load())},
+        {"instanceTableBuilds", double(_instanceTableBuilds.load())},
         {"defaultLight", _snapshot.usingDefaultLight ? 1.0 : 0.0},
         {"lights", double(_snapshot.lights.size())},
         {"materials", double(_snapshot.materials.size())},

@@ -6,6 +6,8 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <unordered_map>
+#include <vector>
 
 #include "delegate/embreeDevice.h"
 #include "delegate/hd/renderDelegate.h"
@@ -38,6 +40,9 @@ public:
     void setRenderSetting(const hd::Token& key, const hd::Value& value) override;
     hd::Value renderSetting(const hd::Token& key) const override;
     unsigned renderSettingsVersion() const override { return _settingsVersion.load(); }
+    /// Bumped by every commit that changed what is rendered (the render pass restarts on it,
+    /// not on every edit the change tracker saw).
+    unsigned contentVersion() const { return _contentVersion.load(); }
 
     std::map<std::string, double> renderStats() const override;
 
@@ -76,7 +81,10 @@ private:
 
     void updateDicing();
     void buildLightDistribution();
-    void addMeshLights();
+    void buildMeshLights();
+    void computeLightPower();
+    float sceneRadius() const;
+    bool mayEmit(const GeometryRecord* r) const;
     void addInstancerInstances();
 
     EmbreeDevice _device;
@@ -85,6 +93,16 @@ private:
     std::unique_ptr<EmbreeRenderParam> _param;
     SceneSnapshot _snapshot;
     std::vector<LightRecord> _sceneLights;  ///< the UsdLux lights, sorted by path
+    std::vector<LightRecord> _meshLights;   ///< emissive meshes, by prim id (after _sceneLights)
+    std::vector<GeometryRecord*> _meshLightRecords;  ///< the prim record of each mesh light
+    std::unordered_map<hd::Path, int> _materialIndex;  ///< path -> index in _snapshot.materials
+    std::vector<float> _lightPower;         ///< per light, without the R^2 of distant/dome
+    std::vector<char> _lightPowerScales;    ///< 1: multiply by R^2
+    float _lightRadius = -1.0f;
+    bool _fullCommit = false;               ///< PRINCIPLED_FULL_COMMIT=1: rebuild all each commit             ///< scene radius of the last light distribution
+    std::atomic<unsigned> _contentVersion{1};
+    std::atomic<long> _materialTableBuilds{0}, _materialUpdates{0}, _bindings{0}, _lightTableBuilds{0},
+        _meshLightBuilds{0}, _lightDistributionBuilds{0}, _instanceTableBuilds{0};
     mutable std::mutex _settingsMutex;
     hd::RenderSettingsMap _settings;
     std::atomic<unsigned> _settingsVersion{1};

@@ -66,16 +66,73 @@ public:
     /// Something in the top-level scene changed: commit it before the next pass.
     void markSceneDirty() { _sceneDirty = true; }
     bool takeSceneDirty() { return _sceneDirty.exchange(false); }
-    /// Materials or lights changed: rebuild the tables before the next pass.
+    /// Anything may have changed (a setting such as defaultLighting): rebuild every table.
     void markTablesDirty() { _tablesDirty = true; }
     bool takeTablesDirty() { return _tablesDirty.exchange(false); }
 
-    void add(GeometrySource* p) { std::lock_guard<std::mutex> l(_mutex); _geometry.insert(p); }
-    void remove(GeometrySource* p) { std::lock_guard<std::mutex> l(_mutex); _geometry.erase(p); }
-    void add(LightSource* p) { std::lock_guard<std::mutex> l(_mutex); _lights.insert(p); }
-    void remove(LightSource* p) { std::lock_guard<std::mutex> l(_mutex); _lights.erase(p); }
-    void add(MaterialSource* p) { std::lock_guard<std::mutex> l(_mutex); _materials.insert(p); }
-    void remove(MaterialSource* p) { std::lock_guard<std::mutex> l(_mutex); _materials.erase(p); }
+    // Finer changes, so commitResources() redoes only what they affect (issue 7, edit latency).
+    /// A registered material's record changed in place (its path, hence its index, did not).
+    void materialChanged(MaterialSource* m) { std::lock_guard<std::mutex> l(_mutex); _changedMaterials.insert(m); }
+    /// A light was added, removed or changed: rebuild the light table (not the materials).
+    void markLightsDirty() { _lightsDirty = true; }
+    /// A prim's material binding (or its GeomSubsets' triangles) changed: rebind that prim.
+    void bindingChanged(GeometrySource* g) { std::lock_guard<std::mutex> l(_mutex); _changedBindings.insert(g); }
+    /// A prim's placement, visibility or geometry changed (the top level is re-committed).
+    void geometryChanged(GeometrySource* g) {
+        std::lock_guard<std::mutex> l(_mutex);
+        _changedGeometry.insert(g);
+        _sceneDirty = true;
+    }
+
+    /// What changed since the last commit (taken by commitResources()).
+    struct Changes {
+        bool scene = false, all = false, lights = false, materialSet = false, geometrySet = false;
+        std::set<MaterialSource*> materials;
+        std::set<GeometrySource*> bindings, geometry;
+        bool any() const {
+            return scene || all || lights || materialSet || geometrySet || !materials.empty() ||
+                   !bindings.empty() || !geometry.empty();
+        }
+    };
+    Changes takeChanges() {
+        std::lock_guard<std::mutex> l(_mutex);
+        Changes c;
+        c.scene = _sceneDirty.exchange(false);
+        c.all = _tablesDirty.exchange(false);
+        c.lights = _lightsDirty.exchange(false);
+        c.materialSet = std::exchange(_materialSetChanged, false);
+        c.geometrySet = std::exchange(_geometrySetChanged, false);
+        c.materials = std::exchange(_changedMaterials, {});
+        c.bindings = std::exchange(_changedBindings, {});
+        c.geometry = std::exchange(_changedGeometry, {});
+        return c;
+    }
+
+    void add(GeometrySource* p) {
+        std::lock_guard<std::mutex> l(_mutex);
+        _geometry.insert(p);
+        _geometrySetChanged = true;
+    }
+    void remove(GeometrySource* p) {
+        std::lock_guard<std::mutex> l(_mutex);
+        _geometry.erase(p);
+        _changedBindings.erase(p);
+        _changedGeometry.erase(p);
+        _geometrySetChanged = true;
+    }
+    void add(LightSource* p) { std::lock_guard<std::mutex> l(_mutex); _lights.insert(p); _lightsDirty = true; }
+    void remove(LightSource* p) { std::lock_guard<std::mutex> l(_mutex); _lights.erase(p); _lightsDirty = true; }
+    void add(MaterialSource* p) {
+        std::lock_guard<std::mutex> l(_mutex);
+        _materials.insert(p);
+        _materialSetChanged = true;
+    }
+    void remove(MaterialSource* p) {
+        std::lock_guard<std::mutex> l(_mutex);
+        _materials.erase(p);
+        _changedMaterials.erase(p);
+        _materialSetChanged = true;
+    }
 
     const std::set<GeometrySource*>& geometry() const { return _geometry; }
     const std::set<LightSource*>& lights() const { return _lights; }
@@ -126,6 +183,10 @@ private:
     RTCScene _scene;
     std::atomic<bool> _sceneDirty{true};
     std::atomic<bool> _tablesDirty{true};
+    std::atomic<bool> _lightsDirty{false};
+    bool _materialSetChanged = false, _geometrySetChanged = false;
+    std::set<MaterialSource*> _changedMaterials;
+    std::set<GeometrySource*> _changedBindings, _changedGeometry;
     mutable std::mutex _mutex;
     Dicing _dicing;
     shading::TextureCache* _textures = nullptr;

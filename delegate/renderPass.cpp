@@ -142,7 +142,9 @@ float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0
 }  // namespace
 
 bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
-    unsigned sv = renderIndex()->changeTracker().sceneVersion();
+    // The delegate's content version moves only when a commit changed what is rendered, so an
+    // edit that leaves the image as it is does not throw the samples away.
+    unsigned sv = _delegate->contentVersion();
     unsigned setv = _delegate->renderSettingsVersion();
     std::ostringstream key;
     key << state.cameraId.str() << '|' << state.width << 'x' << state.height;
@@ -151,7 +153,9 @@ bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
         const double* m = &cam->transform()[0][0];
         for (int i = 0; i < 16; ++i) key << ',' << m[i];
         key << ',' << cam->focalLength() << ',' << cam->horizontalAperture() << ','
-            << cam->verticalAperture();
+            << cam->verticalAperture() << ',' << cam->horizontalApertureOffset() << ','
+            << cam->verticalApertureOffset() << ',' << cam->clippingRange().x << ','
+            << cam->clippingRange().y << ',' << int(cam->projection());
     }
     bool restart = sv != _sceneVersion || setv != _settingsVersion || key.str() != _stateKey;
     _sceneVersion = sv;

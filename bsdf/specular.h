@@ -81,6 +81,32 @@ struct Specular {
         return dist.pdfNormal(wo, h, visible) / (4.0f * c);
     }
 
+    /// eval() and pdf() in one pass for the facade: h = normalize(wo + wi) (wo.z > 0, wi.z > 0,
+    /// not delta) and g1o = dist.G1(wo) are computed once per view / direction pair. Same
+    /// expressions, same order as eval() and pdf() (bit-identical results).
+    glm::vec3 evalPdf(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& h, float g1o,
+                      float* pdfOut) const {
+        float d = dist.D(h);
+        float c = glm::dot(wo, h);
+        float p = 0.0f;
+        if (c > 0.0f) {
+            // Heitz 2018, eq. 3 (visible normals) or Walter et al. 2007, eq. 14 (D m.z), over 4 wo.m.
+            float pm = visible ? g1o * c * d / wo.z : d * std::max(h.z, 0.0f);
+            p = pm / (4.0f * c);
+        }
+        *pdfOut = p;
+        if (d == 0.0f) return glm::vec3(0.0f);
+        float g = gModel == SpecularG::Smith ? g1o * dist.G1(wi) : G(wo, wi);
+        return fresnel(glm::dot(wi, h)) * (weight * d * g / (4.0f * wo.z));
+    }
+
+    /// The direction part of sample() for a rough lobe (the facade evaluates the mixture itself).
+    bool sampleWi(const glm::vec3& wo, const glm::vec2& u, glm::vec3* wi) const {
+        glm::vec3 m = dist.sampleNormal(wo, u, visible);
+        *wi = reflect(wo, m);
+        return wi->z > 0.0f;
+    }
+
     std::optional<LobeSample> sample(const glm::vec3& wo, const glm::vec2& u, float) const {
         if (wo.z <= 0.0f) return std::nullopt;
         if (delta) {

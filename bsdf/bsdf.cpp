@@ -20,6 +20,7 @@ Bsdf::Bsdf(const MaterialParams& params, const Options& options)
     _weightSheen = _set.sheen.selectionWeight(glm::vec3(0.0f, 0.0f, 1.0f));
     _weightTrans = _set.transmission.weight;
     if (_lobes & lobeBit(Lobe::Clearcoat)) _ccPiLogA2 = _set.clearcoat.dist.piLogA2();
+    if (_lobes & lobeBit(Lobe::Specular)) _specK = _set.specular.dist.constants();
 }
 
 namespace {
@@ -69,6 +70,7 @@ Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
     // (schlickWeight clamps, so max(wo.z, 0) of the selection weights gives the same value).
     const float fv = schlickWeight(wo.z);
     v.fv = fv;
+    v.inv4CosO = 1.0f / (4.0f * wo.z);
     // The lobes' selectionWeight(wo), written out so the probabilities stay in registers.
     float w0 = 0.0f, w1 = 0.0f, w2 = 0.0f, w3 = 0.0f, w4 = 0.0f;
     if (a & kDiffuseBit) w0 = std::max(_weightDiffuse, 0.0f);
@@ -80,6 +82,7 @@ Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
                           : schlickFresnelSG(sp.f0, std::max(wo.z, 0.0f));
         w2 = std::max(sp.weight * luminance(F), 0.0f);
         v.g1Spec = sp.dist.G1(wo);
+        v.g1SpecK = v.g1Spec * v.inv4CosO;
     }
     if (a & kCoatBit) {
         w3 = std::max(_set.clearcoat.weight * schlickFresnel(0.04f, std::max(wo.z, 0.0f)), 0.0f);
@@ -121,8 +124,8 @@ glm::vec3 Bsdf::eval(const View& v, const glm::vec3& wiIn, float* pdfOut,
 }
 
 // All non-delta lobes in one pass: the half vector, cos^2 theta_d and the wo terms of the View
-// are shared; each lobe's value and density use the same expressions as its eval() and pdf(),
-// accumulated in lobe order as before (bit-identical to summing the lobes one by one).
+// are shared; each lobe's value and density use the formulas of its eval() and pdf() with the
+// divisions folded into per-material / per-view reciprocals (equal up to float rounding).
 glm::vec3 Bsdf::evalLive(const View& v, const glm::vec3& wi, LobeMask live, float* pdfOut,
                          LobeValues* perLobe) const {
     if (perLobe) perLobe->fill(glm::vec3(0.0f));
@@ -156,12 +159,12 @@ glm::vec3 Bsdf::evalLive(const View& v, const glm::vec3& wi, LobeMask live, floa
             h = wo + wi;
             float l = glm::length(h);
             hOk = l > 0.0f;
-            h /= l;
+            h *= 1.0f / l;
         }
         if (live & kSpecBit) {
             glm::vec3 fk(0.0f);
             float pk = 0.0f;
-            if (hOk) fk = _set.specular.evalPdf(wo, wi, h, v.g1Spec, &pk);
+            if (hOk) fk = _set.specular.evalPdf(wo, wi, h, _specK, v.inv4CosO, v.g1SpecK, &pk);
             f += fk;
             if (perLobe) (*perLobe)[2] = fk;
             pdf += v.prob[2] * pk;
@@ -169,7 +172,7 @@ glm::vec3 Bsdf::evalLive(const View& v, const glm::vec3& wi, LobeMask live, floa
         if (live & kCoatBit) {
             glm::vec3 fk(0.0f);
             float pk = 0.0f;
-            if (hOk) fk = _set.clearcoat.evalPdf(wo, wi, h, v.g1Coat, _ccPiLogA2, &pk);
+            if (hOk) fk = _set.clearcoat.evalPdf(wo, wi, h, v.g1Coat, _ccPiLogA2, v.inv4CosO, &pk);
             f += fk;
             if (perLobe) (*perLobe)[3] = fk;
             pdf += v.prob[3] * pk;

@@ -48,6 +48,8 @@ public:
         // clearcoat (alpha 0.25) and transmission distributions.
         float fv = 0.0f;
         float g1Spec = 0.0f, g1Coat = 0.0f, g1Trans = 0.0f;
+        float inv4CosO = 0.0f;  ///< 1 / (4 wo.z)
+        float g1SpecK = 0.0f;   ///< g1Spec / (4 wo.z)
     };
     View prepare(const glm::vec3& wo) const;
     glm::vec3 eval(const View& view, const glm::vec3& wi, float* pdf = nullptr,
@@ -78,6 +80,7 @@ private:
     /// kPi ln(alpha^2) of the clearcoat GTR1, computed once at construction.
     float _weightDiffuse = 0.0f, _weightSheen = 0.0f, _weightTrans = 0.0f;
     float _ccPiLogA2 = 0.0f;
+    GgxConst _specK;
     LobeMask _lobes = 0;
     bool _deltaOnly = false;
 };

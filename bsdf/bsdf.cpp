@@ -15,6 +15,12 @@ Bsdf::Bsdf(const MaterialParams& params, const Options& options)
     _set.deltaMask &= _set.mask;
     _lobes = _set.mask;
     _deltaOnly = _lobes != 0 && (_set.deltaMask == _lobes);
+    _weightDiffuse = _set.lambertDiffuse ? _set.lambert.selectionWeight(glm::vec3(0.0f, 0.0f, 1.0f))
+                                         : _set.diffuse.selectionWeight(glm::vec3(0.0f, 0.0f, 1.0f));
+    _weightSheen = _set.sheen.selectionWeight(glm::vec3(0.0f, 0.0f, 1.0f));
+    _weightTrans = _set.transmission.weight;
+    if (_lobes & lobeBit(Lobe::Clearcoat)) _ccPiLogA2 = _set.clearcoat.dist.piLogA2();
+    if (_lobes & lobeBit(Lobe::Specular)) _specK = _set.specular.dist.constants();
 }
 
 namespace {
@@ -37,11 +43,15 @@ auto withLobe(const LobeSet& s, bool inside, Lobe l, Fn&& fn) {
     }
 }
 
+constexpr LobeMask kDiffuseBit = lobeBit(Lobe::Diffuse), kSheenBit = lobeBit(Lobe::Sheen),
+                   kSpecBit = lobeBit(Lobe::Specular), kCoatBit = lobeBit(Lobe::Clearcoat),
+                   kTransBit = lobeBit(Lobe::Transmission);
+
 }  // namespace
 
 Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
     View v;
-    bool transmissive = _set.mask & lobeBit(Lobe::Transmission);
+    bool transmissive = _set.mask & kTransBit;
     if (_set.thin) {
         v.flip = woIn.z < 0.0f ? -1.0f : 1.0f;
         v.active = _set.mask;
@@ -49,25 +59,48 @@ Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
         // Inside a solid: the reflective lobes describe the outside only (pbrt-v3 issue #313).
         v.flip = -1.0f;
         v.inside = true;
-        v.active = lobeBit(Lobe::Transmission);
+        v.active = kTransBit;
     } else {
         v.active = _set.mask;
     }
-    v.wo = bendToHemisphere(glm::vec3(woIn.x, woIn.y, woIn.z * v.flip), 1.0f);
-    float sum = 0.0f;
-    for (int k = 0; k < kLobeCount; ++k) {
-        if (!(v.active & (1u << k))) continue;
-        float w = withLobe(_set, v.inside, Lobe(k),
-                           [&](const auto& lobe) { return lobe.selectionWeight(v.wo); });
-        v.prob[k] = std::max(w, 0.0f);
-        sum += v.prob[k];
+    const glm::vec3 wo = bendToHemisphere(glm::vec3(woIn.x, woIn.y, woIn.z * v.flip), 1.0f);
+    v.wo = wo;
+    const LobeMask a = v.active;
+    // Schlick 1994, eq. 15: (1 - cos)^5, shared by the diffuse, specular and clearcoat terms
+    // (schlickWeight clamps, so max(wo.z, 0) of the selection weights gives the same value).
+    const float fv = schlickWeight(wo.z);
+    v.fv = fv;
+    v.inv4CosO = 1.0f / (4.0f * wo.z);
+    // The lobes' selectionWeight(wo), written out so the probabilities stay in registers.
+    float w0 = 0.0f, w1 = 0.0f, w2 = 0.0f, w3 = 0.0f, w4 = 0.0f;
+    if (a & kDiffuseBit) w0 = std::max(_weightDiffuse, 0.0f);
+    if (a & kSheenBit) w1 = std::max(_weightSheen, 0.0f);
+    if (a & kSpecBit) {
+        const Specular& sp = _set.specular;
+        glm::vec3 F = sp.fModel == SpecularFresnel::Schlick
+                          ? glm::mix(sp.f0, glm::vec3(1.0f), schlickWeight(std::max(wo.z, 0.0f)))
+                          : schlickFresnelSG(sp.f0, std::max(wo.z, 0.0f));
+        w2 = std::max(sp.weight * luminance(F), 0.0f);
+        v.g1Spec = sp.dist.G1(wo);
+        v.g1SpecK = v.g1Spec * v.inv4CosO;
     }
+    if (a & kCoatBit) {
+        w3 = std::max(_set.clearcoat.weight * schlickFresnel(0.04f, std::max(wo.z, 0.0f)), 0.0f);
+        constexpr Ggx kG{0.25f, 0.25f};  // the fixed clearcoat G alpha (clearcoat.h)
+        v.g1Coat = kG.G1(wo);
+    }
+    if (a & kTransBit) {
+        w4 = std::max(_weightTrans, 0.0f);
+        v.g1Trans = _set.transmission.dist.G1(wo);
+    }
+    // Same order of additions as summing over k = 0..4 (inactive lobes add exact zeros).
+    float sum = w0 + w1 + w2 + w3 + w4;
     if (sum > 0.0f) {
-        for (int k = 0; k < kLobeCount; ++k)
-            if (v.prob[k] > 0.0f) v.prob[k] /= sum;  // inactive lobes stay 0 (no division)
+        // inactive lobes stay 0 (0 / sum = 0)
+        v.prob = {w0 / sum, w1 / sum, w2 / sum, w3 / sum, w4 / sum};
     } else {
-        int n = std::popcount(v.active);
-        for (int k = 0; k < kLobeCount; ++k) v.prob[k] = (v.active & (1u << k)) ? 1.0f / n : 0.0f;
+        float inv = 1.0f / float(std::popcount(a));
+        for (int k = 0; k < kLobeCount; ++k) v.prob[k] = (a & (1u << k)) ? inv : 0.0f;
     }
     return v;
 }
@@ -83,35 +116,87 @@ glm::vec3 Bsdf::eval(const glm::vec3& woIn, const glm::vec3& wiIn, float* pdfOut
 
 glm::vec3 Bsdf::eval(const View& v, const glm::vec3& wiIn, float* pdfOut,
                      LobeValues* perLobe) const {
-    if (perLobe) perLobe->fill(glm::vec3(0.0f));
     glm::vec3 wi(wiIn.x, wiIn.y, wiIn.z * v.flip);
+    float pdf;
+    glm::vec3 f = evalLive(v, wi, v.active & ~_set.deltaMask, &pdf, perLobe);
+    if (pdfOut) *pdfOut = pdf;
+    return f;
+}
+
+// All non-delta lobes in one pass: the half vector, cos^2 theta_d and the wo terms of the View
+// are shared; each lobe's value and density use the formulas of its eval() and pdf() with the
+// divisions folded into per-material / per-view reciprocals (equal up to float rounding).
+glm::vec3 Bsdf::evalLive(const View& v, const glm::vec3& wi, LobeMask live, float* pdfOut,
+                         LobeValues* perLobe) const {
+    if (perLobe) perLobe->fill(glm::vec3(0.0f));
+    const glm::vec3& wo = v.wo;
     glm::vec3 f(0.0f);
     float pdf = 0.0f;
-    LobeMask live = v.active & ~_set.deltaMask;
-    for (int k = 0; k < kLobeCount; ++k) {
-        if (!(live & (1u << k))) continue;
-        withLobe(_set, v.inside, Lobe(k), [&](const auto& lobe) {
-            glm::vec3 fk = lobe.eval(v.wo, wi);
+    const bool upper = wo.z > 0.0f && wi.z > 0.0f;
+    if (live & (kDiffuseBit | kSheenBit)) {
+        const float cos2d = DisneyDiffuse::cos2ThetaD(wo, wi);
+        const float pCos = wo.z > 0.0f ? cosineHemispherePdf(wi) : 0.0f;
+        if (live & kDiffuseBit) {
+            glm::vec3 fk(0.0f);
+            if (upper)
+                fk = _set.lambertDiffuse ? _set.lambert.eval(wo, wi)
+                                         : _set.diffuse.eval(wo, wi, v.fv, cos2d);
             f += fk;
-            if (perLobe) (*perLobe)[k] = fk;
-            if (pdfOut) pdf += v.prob[k] * lobe.pdf(v.wo, wi);
-            return 0;
-        });
+            if (perLobe) (*perLobe)[0] = fk;
+            pdf += v.prob[0] * pCos;
+        }
+        if (live & kSheenBit) {
+            glm::vec3 fk = upper ? _set.sheen.eval(cos2d, wi) : glm::vec3(0.0f);
+            f += fk;
+            if (perLobe) (*perLobe)[1] = fk;
+            pdf += v.prob[1] * pCos;
+        }
     }
-    if (pdfOut) *pdfOut = pdf;
+    if (live & (kSpecBit | kCoatBit)) {
+        glm::vec3 h(0.0f);
+        bool hOk = false;
+        if (upper) {
+            h = wo + wi;
+            float l = glm::length(h);
+            hOk = l > 0.0f;
+            // Divided, not multiplied by 1 / l: the clearcoat GTR1 peak (alpha 0.001) turns a
+            // one-ulp change of h.z into a 10% change of D.
+            h /= l;
+        }
+        if (live & kSpecBit) {
+            glm::vec3 fk(0.0f);
+            float pk = 0.0f;
+            if (hOk) fk = _set.specular.evalPdf(wo, wi, h, _specK, v.inv4CosO, v.g1SpecK, &pk);
+            f += fk;
+            if (perLobe) (*perLobe)[2] = fk;
+            pdf += v.prob[2] * pk;
+        }
+        if (live & kCoatBit) {
+            glm::vec3 fk(0.0f);
+            float pk = 0.0f;
+            if (hOk) fk = _set.clearcoat.evalPdf(wo, wi, h, v.g1Coat, _ccPiLogA2, v.inv4CosO, &pk);
+            f += fk;
+            if (perLobe) (*perLobe)[3] = fk;
+            pdf += v.prob[3] * pk;
+        }
+    }
+    if (live & kTransBit) {
+        const Dielectric& t = v.inside ? _set.transmissionInside : _set.transmission;
+        float pk;
+        glm::vec3 fk = t.evalPdf(wo, wi, v.g1Trans, &pk);
+        f += fk;
+        if (perLobe) (*perLobe)[4] = fk;
+        pdf += v.prob[4] * pk;
+    }
+    *pdfOut = pdf;
     return f;
 }
 
 float Bsdf::pdf(const glm::vec3& woIn, const glm::vec3& wiIn) const {
     View v = prepare(woIn);
     glm::vec3 wi(wiIn.x, wiIn.y, wiIn.z * v.flip);
-    float pdf = 0.0f;
-    LobeMask live = v.active & ~_set.deltaMask;
-    for (int k = 0; k < kLobeCount; ++k) {
-        if (!(live & (1u << k))) continue;
-        pdf += v.prob[k] * withLobe(_set, v.inside, Lobe(k),
-                                    [&](const auto& lobe) { return lobe.pdf(v.wo, wi); });
-    }
+    float pdf;
+    evalLive(v, wi, v.active & ~_set.deltaMask, &pdf, nullptr);
     return pdf;
 }
 
@@ -133,21 +218,54 @@ std::optional<BsdfSample> Bsdf::sample(const View& v, float uLobe, const glm::ve
     if (pick < 0) return std::nullopt;
     // 0.99999994: the largest float below 1, keeping the remapped number in [0, 1).
     float uSub = std::clamp((uLobe - cdf) / v.prob[pick], 0.0f, 0.99999994f);
-    std::optional<LobeSample> ls = withLobe(
-        _set, v.inside, Lobe(pick), [&](const auto& lobe) { return lobe.sample(v.wo, u, uSub); });
-    if (!ls) return std::nullopt;
-    BsdfSample s;
-    s.lobe = Lobe(pick);
-    s.wi = glm::vec3(ls->wi.x, ls->wi.y, ls->wi.z * v.flip);
-    if (ls->delta) {
-        s.delta = true;
-        s.f = ls->f;
-        s.pdf = v.prob[pick] * ls->pdf;
+    const Lobe lobe = Lobe(pick);
+    const bool deltaLobe = _set.deltaMask & (1u << pick);
+    if (deltaLobe || !(v.wo.z > 0.0f)) {
+        // Delta lobes (and the degenerate wo.z <= 0 case) go through the lobe's own sample().
+        std::optional<LobeSample> ls = withLobe(
+            _set, v.inside, lobe, [&](const auto& l) { return l.sample(v.wo, u, uSub); });
+        if (!ls) return std::nullopt;
+        BsdfSample s;
+        s.lobe = lobe;
+        s.wi = glm::vec3(ls->wi.x, ls->wi.y, ls->wi.z * v.flip);
+        if (ls->delta) {
+            s.delta = true;
+            s.f = ls->f;
+            s.pdf = v.prob[pick] * ls->pdf;
+            if (!(s.pdf > 0.0f)) return std::nullopt;
+            return s;
+        }
+        s.f = eval(v, s.wi, &s.pdf, nullptr);
         if (!(s.pdf > 0.0f)) return std::nullopt;
         return s;
     }
-    // The mixture value and density at wi (identical to eval() and pdf() there).
-    s.f = eval(v, s.wi, &s.pdf, nullptr);
+    // Rough lobes: only the direction is drawn here; the mixture value and density at wi come
+    // from one evalLive() (the lobe's own f and pdf would be recomputed there anyway).
+    glm::vec3 wi;
+    switch (lobe) {
+        case Lobe::Diffuse:
+        case Lobe::Sheen:
+            // Diffuse, Lambert and sheen all sample the cosine-weighted hemisphere.
+            wi = squareToCosineHemisphere(u);
+            if (wi.z <= 0.0f) return std::nullopt;
+            break;
+        case Lobe::Specular:
+            if (!_set.specular.sampleWi(v.wo, u, &wi)) return std::nullopt;
+            break;
+        case Lobe::Clearcoat:
+            if (!_set.clearcoat.sampleWi(v.wo, u, &wi)) return std::nullopt;
+            break;
+        case Lobe::Transmission:
+        default: {
+            const Dielectric& t = v.inside ? _set.transmissionInside : _set.transmission;
+            if (!t.sampleWi(v.wo, u, uSub, &wi)) return std::nullopt;
+            break;
+        }
+    }
+    BsdfSample s;
+    s.lobe = lobe;
+    s.f = evalLive(v, wi, v.active & ~_set.deltaMask, &s.pdf, nullptr);
+    s.wi = glm::vec3(wi.x, wi.y, wi.z * v.flip);
     if (!(s.pdf > 0.0f)) return std::nullopt;
     return s;
 }

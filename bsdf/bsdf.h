@@ -43,6 +43,13 @@ public:
         bool inside = false;    ///< view inside a solid transmissive object
         LobeMask active = 0;
         std::array<float, kLobeCount> prob{};
+        // Terms of the lobes that depend on wo only, computed once here (bit-identical to the
+        // lobes' own eval()/pdf()): Schlick weight (1 - wo.z)^5, Smith G1(wo) of the specular,
+        // clearcoat (alpha 0.25) and transmission distributions.
+        float fv = 0.0f;
+        float g1Spec = 0.0f, g1Coat = 0.0f, g1Trans = 0.0f;
+        float inv4CosO = 0.0f;  ///< 1 / (4 wo.z)
+        float g1SpecK = 0.0f;   ///< g1Spec / (4 wo.z)
     };
     View prepare(const glm::vec3& wo) const;
     glm::vec3 eval(const View& view, const glm::vec3& wi, float* pdf = nullptr,
@@ -65,7 +72,15 @@ public:
 
 private:
 
+    glm::vec3 evalLive(const View& v, const glm::vec3& wi, LobeMask live, float* pdf,
+                       LobeValues* perLobe) const;
+
     LobeSet _set;
+    /// Selection weights that do not depend on wo (diffuse, sheen, transmission), and
+    /// kPi ln(alpha^2) of the clearcoat GTR1, computed once at construction.
+    float _weightDiffuse = 0.0f, _weightSheen = 0.0f, _weightTrans = 0.0f;
+    float _ccPiLogA2 = 0.0f;
+    GgxConst _specK;
     LobeMask _lobes = 0;
     bool _deltaOnly = false;
 };

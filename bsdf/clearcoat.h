@@ -36,6 +36,24 @@ struct Clearcoat {
         float c = glm::dot(wo, h);
         return c > 0.0f ? dist.pdf(h) / (4.0f * c) : 0.0f;
     }
+    /// eval() and pdf() in one pass for the facade: h = normalize(wo + wi) (wo.z > 0, wi.z > 0),
+    /// g1o = Ggx{0.25, 0.25}.G1(wo) and piLogA2 = dist.piLogA2() precomputed.
+    /// inv4CosO = 1 / (4 wo.z) (float rounding only).
+    glm::vec3 evalPdf(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& h, float g1o,
+                      float piLogA2, float inv4CosO, float* pdfOut) const {
+        constexpr Ggx kG{0.25f, 0.25f};
+        float d = dist.D(h.z, piLogA2);
+        float c = glm::dot(wo, h);
+        *pdfOut = c > 0.0f ? d * std::max(h.z, 0.0f) / (4.0f * c) : 0.0f;
+        float fr = schlickFresnel(0.04f, glm::dot(wi, h));
+        return glm::vec3(weight * d * fr * (g1o * kG.G1(wi)) * inv4CosO);
+    }
+    bool sampleWi(const glm::vec3& wo, const glm::vec2& u, glm::vec3* wi) const {
+        glm::vec3 m = dist.sample(u);
+        if (glm::dot(wo, m) <= 0.0f) return false;
+        *wi = reflect(wo, m);
+        return wi->z > 0.0f;
+    }
     std::optional<LobeSample> sample(const glm::vec3& wo, const glm::vec2& u, float) const {
         if (wo.z <= 0.0f) return std::nullopt;
         glm::vec3 m = dist.sample(u);

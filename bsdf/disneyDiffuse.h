@@ -16,9 +16,15 @@ struct DisneyDiffuse {
 
     /// The scalar factor multiplying color / pi: mix(Fd, ss, subsurface).
     float shape(const glm::vec3& wo, const glm::vec3& wi) const {
-        float fl = schlickWeight(wi.z), fv = schlickWeight(wo.z);
-        // cos^2 theta_d = (l.h)^2 = (1 + l.v) / 2, without normalising h.
-        float cos2d = std::clamp(0.5f * (1.0f + glm::dot(wi, wo)), 0.0f, 1.0f);
+        return shape(wo, wi, schlickWeight(wo.z), cos2ThetaD(wo, wi));
+    }
+    /// cos^2 theta_d = (l.h)^2 = (1 + l.v) / 2, without normalising h.
+    static float cos2ThetaD(const glm::vec3& wo, const glm::vec3& wi) {
+        return std::clamp(0.5f * (1.0f + glm::dot(wi, wo)), 0.0f, 1.0f);
+    }
+    /// shape() with fv = schlickWeight(wo.z) and cos2d = cos2ThetaD(wo, wi) precomputed.
+    float shape(const glm::vec3& wo, const glm::vec3& wi, float fv, float cos2d) const {
+        float fl = schlickWeight(wi.z);
         // Burley 2012, "Physically-Based Shading at Disney", §5.3, eq. 3 (with the 2013 fix
         // cos^2 theta_d, wdas/brdf commit 820ccba): Fd90 = 0.5 + 2 r cos^2 theta_d.
         float fd90 = 0.5f + 2.0f * roughness * cos2d;
@@ -35,6 +41,10 @@ struct DisneyDiffuse {
     glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const {
         if (wo.z <= 0.0f || wi.z <= 0.0f) return glm::vec3(0.0f);
         return color * (kInvPi * shape(wo, wi) * wi.z);
+    }
+    /// eval() for the facade (wo.z > 0, wi.z > 0) with fv and cos2d shared with other lobes.
+    glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi, float fv, float cos2d) const {
+        return color * (kInvPi * shape(wo, wi, fv, cos2d) * wi.z);
     }
     float pdf(const glm::vec3& wo, const glm::vec3& wi) const {
         return wo.z > 0.0f ? cosineHemispherePdf(wi) : 0.0f;

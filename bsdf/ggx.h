@@ -21,6 +21,12 @@ inline glm::vec2 disneyAlpha(float roughness, float anisotropic) {
     return {std::max(kFloor, a / aspect), std::max(kFloor, a * aspect)};
 }
 
+/// Per-material reciprocals of a Ggx, computed once per Bsdf for the facade's fused evaluation
+/// (multiplications instead of divisions in D; differs from Ggx::D by float rounding only).
+struct GgxConst {
+    float invAx = 4.0f, invAy = 4.0f, invPiAxAy = 16.0f * kInvPi;
+};
+
 struct Ggx {
     float ax = 0.25f, ay = 0.25f;
 
@@ -46,6 +52,14 @@ struct Ggx {
     /// Separable Smith masking-shadowing G1(wo) G1(wi), as in the Disney reference code
     /// (wdas/brdf disney.brdf after commit 9aee636, 2017).
     float G(const glm::vec3& wo, const glm::vec3& wi) const { return G1(wo) * G1(wi); }
+
+    GgxConst constants() const { return {1.0f / ax, 1.0f / ay, 1.0f / (kPi * ax * ay)}; }
+    /// Burley 2012, appendix B.2, eq. 13 with the reciprocals precomputed: returns the squared
+    /// denominator term e = (h.x/ax)^2 + (h.y/ay)^2 + h.z^2 (D = invPiAxAy / e^2).
+    static float dTerm(const glm::vec3& h, const GgxConst& k) {
+        float x = h.x * k.invAx, y = h.y * k.invAy;
+        return x * x + y * y + h.z * h.z;
+    }
 
     /// Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4), listing 1.
     /// Requires wo.z > 0. Density of m: pdfVisible(wo, m) = G1(wo) max(0, wo.m) D(m) / wo.z.

@@ -19,6 +19,15 @@ struct Gtr1 {
         float t = a2 * cosH * cosH + (1.0f - cosH) * (1.0f + cosH);
         return (a2 - 1.0f) / (kPi * std::log(a2) * t);
     }
+    /// D() with pi ln(a^2) precomputed (piLogA2 = kPi * std::log(alpha^2)); bit-identical to D().
+    float D(float cosH, float piLogA2) const {
+        if (cosH <= 0.0f) return 0.0f;
+        if (alpha >= 1.0f) return kInvPi;
+        float a2 = alpha * alpha;
+        float t = a2 * cosH * cosH + (1.0f - cosH) * (1.0f + cosH);
+        return (a2 - 1.0f) / (piLogA2 * t);
+    }
+    float piLogA2() const { return alpha >= 1.0f ? 0.0f : kPi * std::log(alpha * alpha); }
 
     /// Burley 2012, appendix B.2, eq. 5: cos^2 theta_h = (1 - a^(2(1-u))) / (1 - a^2),
     /// phi = 2 pi u.y. Density of m: D(m.z) m.z.

@@ -18,6 +18,10 @@ struct Sheen {
         float cosD = std::sqrt(std::clamp(0.5f * (1.0f + glm::dot(wi, wo)), 0.0f, 1.0f));
         return color * (schlickWeight(cosD) * wi.z);
     }
+    /// eval() for the facade (wo.z > 0, wi.z > 0) with cos2d = DisneyDiffuse::cos2ThetaD(wo, wi).
+    glm::vec3 eval(float cos2d, const glm::vec3& wi) const {
+        return color * (schlickWeight(std::sqrt(cos2d)) * wi.z);
+    }
     float pdf(const glm::vec3& wo, const glm::vec3& wi) const {
         return wo.z > 0.0f ? cosineHemispherePdf(wi) : 0.0f;
     }

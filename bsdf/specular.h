@@ -81,6 +81,40 @@ struct Specular {
         return dist.pdfNormal(wo, h, visible) / (4.0f * c);
     }
 
+    /// eval() and pdf() in one pass for the facade, for wo.z > 0, wi.z > 0, not delta:
+    /// h = normalize(wo + wi), k = dist.constants(), inv4CosO = 1 / (4 wo.z) and
+    /// g1oK = dist.G1(wo) inv4CosO are computed once per material / view. The same formulas as
+    /// eval() and pdf() with the divisions folded (equal up to float rounding):
+    /// D G1(wi) = invPiAxAy 2 c_i / (e^2 (c_i + r_i)) and D = invPiAxAy / e^2 share one division,
+    /// and the visible-normal pdf G1(wo) (wo.m) D / wo.z / (4 wo.m) = D G1(wo) / (4 wo.z).
+    glm::vec3 evalPdf(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& h,
+                      const GgxConst& k, float inv4CosO, float g1oK, float* pdfOut) const {
+        float e = Ggx::dTerm(h, k);
+        float c = glm::dot(wo, h);
+        if (gModel == SpecularG::Smith) {
+            // Heitz 2014, eq. 86: G1(wi) = 2 c_i / (c_i + r_i), r_i = |(ax wi.x, ay wi.y, wi.z)|.
+            float ci = wi.z;
+            float ri = std::sqrt(sqr(dist.ax * wi.x) + sqr(dist.ay * wi.y) + ci * ci);
+            float s = ci + ri;
+            float q = k.invPiAxAy / (e * e * s);
+            float d = q * s;  // Burley 2012, eq. 13
+            // Heitz 2018, eq. 3 (visible normals) or Walter et al. 2007, eq. 14 (D m.z), / (4 wo.m).
+            *pdfOut = c > 0.0f ? (visible ? d * g1oK : d * h.z / (4.0f * c)) : 0.0f;
+            // Walter et al. 2007, eq. 20: D F G1(wo) G1(wi) / (4 cos_o).
+            return fresnel(glm::dot(wi, h)) * (weight * (2.0f * ci * q) * g1oK);
+        }
+        float d = k.invPiAxAy / (e * e);  // Burley 2012, eq. 13
+        *pdfOut = c > 0.0f ? (visible ? d * g1oK : d * h.z / (4.0f * c)) : 0.0f;
+        return fresnel(glm::dot(wi, h)) * (weight * d * G(wo, wi) * inv4CosO);
+    }
+
+    /// The direction part of sample() for a rough lobe (the facade evaluates the mixture itself).
+    bool sampleWi(const glm::vec3& wo, const glm::vec2& u, glm::vec3* wi) const {
+        glm::vec3 m = dist.sampleNormal(wo, u, visible);
+        *wi = reflect(wo, m);
+        return wi->z > 0.0f;
+    }
+
     std::optional<LobeSample> sample(const glm::vec3& wo, const glm::vec2& u, float) const {
         if (wo.z <= 0.0f) return std::nullopt;
         if (delta) {

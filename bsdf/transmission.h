@@ -82,6 +82,58 @@ struct Dielectric {
         return pm * eta * eta * std::abs(cosI) / (denom * denom) * (1.0f - F);
     }
 
+    /// eval() and pdf() in one pass for the facade (one half vector, Fresnel factor and D),
+    /// with g1o = dist.G1(wo) precomputed. Same expressions and order (bit-identical).
+    glm::vec3 evalPdf(const glm::vec3& wo, const glm::vec3& wi, float g1o, float* pdfOut) const {
+        *pdfOut = 0.0f;
+        if (delta || wo.z <= 0.0f || wi.z == 0.0f) return glm::vec3(0.0f);
+        glm::vec3 m;
+        bool refr;
+        if (!halfVector(wo, wi, &m, &refr)) return glm::vec3(0.0f);
+        float cosO = glm::dot(wo, m);
+        float F = fresnelDielectric(cosO, eta);
+        float d = dist.D(m);
+        float g = g1o * dist.G1(wi);
+        // Heitz 2018, eq. 3 (visible normals) or Walter et al. 2007, eq. 14 (D m.z).
+        float pm = visible ? g1o * std::max(0.0f, cosO) * d / wo.z : d * std::max(m.z, 0.0f);
+        if (!refr) {
+            *pdfOut = pm / (4.0f * cosO) * F;
+            return glm::vec3(weight * F * d * g / (4.0f * wo.z));  // Walter et al. 2007, eq. 20
+        }
+        if (thin) {
+            *pdfOut = pm / (4.0f * cosO) * (1.0f - F);
+            return tint * (weight * (1.0f - F) * d * g / (4.0f * wo.z));  // Burley 2015, §4.3
+        }
+        // Walter et al. 2007, eq. 17 (pdf) and eq. 21 (f_t), as in pdf() and eval().
+        float cosI = glm::dot(wi, m);
+        float denom = cosO + eta * cosI;
+        *pdfOut = pm * eta * eta * std::abs(cosI) / (denom * denom) * (1.0f - F);
+        float v = eta * eta * std::abs(cosI) * cosO * (1.0f - F) * g * d / (wo.z * denom * denom);
+        return tint * (weight * v);
+    }
+
+    /// The direction part of sample() for a rough interface (same rejections as sample()).
+    bool sampleWi(const glm::vec3& wo, const glm::vec2& u, float uSub, glm::vec3* out) const {
+        glm::vec3 m = dist.sampleNormal(wo, u, visible);
+        float cosO = glm::dot(wo, m);
+        if (cosO <= 0.0f) return false;
+        float F = fresnelDielectric(cosO, eta);
+        glm::vec3 wi;
+        if (uSub < F) {
+            wi = reflect(wo, m);
+            if (wi.z <= 0.0f) return false;
+        } else if (thin) {
+            wi = flipZ(reflect(wo, m));
+            if (wi.z >= 0.0f) return false;
+        } else {
+            if (!refract(wo, m, eta, &wi) || wi.z >= 0.0f) return false;
+        }
+        float p = pdf(wo, wi);
+        if (!(p > 0.0f)) return false;
+        *out = wi;
+        return true;
+    }
+
     /// uSub chooses reflection (probability F at the sampled normal) or transmission.
     std::optional<LobeSample> sample(const glm::vec3& wo, const glm::vec2& u, float uSub) const {
         if (wo.z <= 0.0f) return std::nullopt;

@@ -8,6 +8,7 @@
 
 #include "delegate/lightShaping.h"
 #include "plugins/renderSession.h"
+#include "tests/support/lambertPlaneScene.h"
 
 using namespace principled;
 
@@ -20,38 +21,8 @@ constexpr double kDeg = kPi / 180.0;
 // and a sphere light of radius R, radiance L, at (x0, h, 0) aimed straight down (-Y), with the
 // given shaping inputs.
 std::string scene(double a, double x0, double h, double R, double L, const std::string& shaping) {
-    char text[4096];
-    std::snprintf(text, sizeof text, R"(#usda 1.0
-def Mesh "Plane" (prepend apiSchemas = ["MaterialBindingAPI"])
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
-    rel material:binding = </Mat>
-}
-def Material "Mat"
-{
-    token outputs:surface.connect = </Mat/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (%g, %g, %g)
-        float inputs:ior = 1
-        float inputs:roughness = 1
-        token outputs:surface
-    }
-}
-def Camera "Cam"
-{
-    token projection = "orthographic"
-    float horizontalAperture = 0.01
-    float verticalAperture = 0.01
-    float2 clippingRange = (0.001, 1000)
-    double3 xformOp:translate = (0, 50, 0)
-    float xformOp:rotateX = -90
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
+    char light[1024];
+    std::snprintf(light, sizeof light, R"(
 def SphereLight "Spot"
 {
     float inputs:radius = %g
@@ -62,23 +33,11 @@ def SphereLight "Spot"
     uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
 }
 )",
-                  a, a, a, R, L, shaping.c_str(), x0, h);
-    return text;
+                  R, L, shaping.c_str(), x0, h);
+    return test::planeScene(a, light);
 }
 
-double render(const std::string& usda) {
-    host::SessionOptions o;
-    o.width = o.height = 4;
-    o.samplesPerPixel = 256;
-    o.settings["shadingModel"] = "ue4";
-    auto s = host::RenderSession::openString(usda, "shaping.usda", o);
-    while (!s->step()) {
-    }
-    const float* c = s->color();
-    double sum = 0.0;
-    for (int i = 0; i < 16; ++i) sum += c[4 * i];
-    return sum / 16.0;
-}
+double render(const std::string& usda) { return test::planeRadiance(usda, 256); }
 
 }  // namespace
 

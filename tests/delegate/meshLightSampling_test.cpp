@@ -9,6 +9,7 @@
 #include "delegate/renderBuffer.h"
 #include "delegate/renderDelegate.h"
 #include "delegate/renderPass.h"
+#include "tests/support/seedStatistics.h"
 #include "tests/support/testSceneDelegate.h"
 
 using namespace principled;
@@ -60,33 +61,10 @@ std::vector<float> render(int solidAngle, int seed) {
     return red;
 }
 
-struct Stats {
-    double mean = 0.0, se = 0.0, pixelVar = 0.0;
-};
+using Stats = test::SeedStats;
 
-// Mean over independent seeds, its standard error, and the mean per-pixel variance across seeds.
 Stats stats(int solidAngle) {
-    const int kSeeds = 6;
-    std::vector<std::vector<float>> imgs;
-    std::vector<double> means;
-    for (int s = 0; s < kSeeds; ++s) {
-        imgs.push_back(render(solidAngle, 100 + s));
-        double m = 0.0;
-        for (float v : imgs.back()) m += v;
-        means.push_back(m / imgs.back().size());
-    }
-    Stats st;
-    for (double m : means) st.mean += m / kSeeds;
-    double v = 0.0;
-    for (double m : means) v += (m - st.mean) * (m - st.mean) / (kSeeds - 1);
-    st.se = std::sqrt(v / kSeeds);
-    for (size_t i = 0; i < imgs[0].size(); ++i) {
-        double mu = 0.0, q = 0.0;
-        for (auto& im : imgs) mu += im[i] / kSeeds;
-        for (auto& im : imgs) q += (im[i] - mu) * (im[i] - mu) / (kSeeds - 1);
-        st.pixelVar += q / imgs[0].size();
-    }
-    return st;
+    return test::seedStatistics([&](int seed) { return render(solidAngle, seed); }, 100);
 }
 
 }  // namespace

@@ -75,6 +75,9 @@ std::shared_ptr<EnvironmentMap> loadImage(const std::string& path, const std::st
             weights[i] = (0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z) * sinTheta;
         }
     }
+    glm::dvec3 sum(0.0);
+    for (const auto& t : env->texels) sum += glm::dvec3(t);
+    env->mean = glm::vec3(sum / double(env->texels.size()));
     if (latLong) env->distribution = Distribution2D(weights, spec.width, spec.height);
     return env;
 }

@@ -296,7 +296,7 @@ float EmbreeRenderDelegate::sceneRadius() const {
 void EmbreeRenderDelegate::computeLightPower() {
     // The power of each light without the scene radius: distant and dome lights deliver in
     // proportion to R^2 (multiplied in buildLightDistribution, same arithmetic order as before),
-    // the others do not depend on it. Environment texels are summed here, once per light table.
+    // the others do not depend on it. Textured lights use their image's mean texel (from load).
     constexpr float kPi = 3.14159265358979323846f;
     auto lum = [](const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
     const auto& lights = _snapshot.lights;
@@ -311,22 +311,14 @@ void EmbreeRenderDelegate::computeLightPower() {
                 break;
             case LightRecord::Kind::Dome: {
                 glm::vec3 L = l.radiance;
-                if (l.environment && !l.environment->texels.empty()) {
-                    glm::dvec3 sum(0.0);
-                    for (const auto& t : l.environment->texels) sum += glm::dvec3(t);
-                    L = glm::vec3(sum / double(l.environment->texels.size())) * l.environment->scale;
-                }
+                if (l.environment) L = l.environment->mean * l.environment->scale;
                 _lightPower[i] = lum(L) * kPi * kPi;
                 _lightPowerScales[i] = 1;
                 break;
             }
             default: {
                 glm::vec3 L = l.radiance;  // one-sided Lambertian emitter
-                if (l.rectTexture && !l.rectTexture->texels.empty()) {
-                    glm::dvec3 sum(0.0);
-                    for (const auto& t : l.rectTexture->texels) sum += glm::dvec3(t);
-                    L *= glm::vec3(sum / double(l.rectTexture->texels.size()));
-                }
+                if (l.rectTexture) L *= l.rectTexture->mean;
                 _lightPower[i] = lum(L) * kPi * l.area;
             }
         }

@@ -85,6 +85,7 @@ struct InstanceRecord {
 struct EnvironmentMap {
     int width = 0, height = 0;
     std::vector<glm::vec3> texels;  ///< linear RGB, row 0 = top (+Y pole)
+    glm::vec3 mean{0.0f};           ///< mean texel (light power estimates), set at load
     Distribution2D distribution;    ///< over (u, v) by luminance * sin(theta)
     glm::mat3 worldToLocal{1.0f};   ///< the dome's rotation (its frame: +Y up)
     glm::mat3 localToWorld{1.0f};

@@ -14,14 +14,9 @@
 
 using namespace principled;
 using principled::test::TestSceneDelegate;
+using principled::test::translate;
 
 namespace {
-
-glm::dmat4 translate(double x, double y, double z) {
-    glm::dmat4 m(1.0);
-    m[3] = glm::dvec4(x, y, z, 1.0);
-    return m;
-}
 
 // A diffuse floor (4 x 4, z = 0) under a 1 x 1 emissive quad at z = 0.25, seen from above by an
 // orthographic camera; direct light only. Returns the red channel.

@@ -15,14 +15,9 @@
 
 using namespace principled;
 using principled::test::TestSceneDelegate;
+using principled::test::translate;
 
 namespace {
-
-glm::dmat4 translate(double x, double y, double z) {
-    glm::dmat4 m(1.0);
-    m[3] = glm::dvec4(x, y, z, 1.0);
-    return m;
-}
 
 // A sphere on a diffuse floor under a soft sun (a disc of 5 degrees, tilted) and a sky dome,
 // seen from above; red channel.

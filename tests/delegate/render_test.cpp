@@ -14,6 +14,7 @@
 
 using namespace principled;
 using principled::test::TestSceneDelegate;
+using principled::test::translate;
 
 namespace {
 
@@ -45,12 +46,6 @@ struct Fixture {
         return std::vector<float>(p, p + size_t(w) * h * 4);
     }
 };
-
-glm::dmat4 translate(double x, double y, double z) {
-    glm::dmat4 m(1.0);
-    m[3] = glm::dvec4(x, y, z, 1.0);
-    return m;
-}
 
 }  // namespace
 

@@ -124,4 +124,11 @@ private:
     std::map<hd::Path, Prim> _prims;
 };
 
+/// A translation matrix, for placing test prims.
+inline glm::dmat4 translate(double x, double y, double z) {
+    glm::dmat4 m(1.0);
+    m[3] = glm::dvec4(x, y, z, 1.0);
+    return m;
+}
+
 }  // namespace principled::test

@@ -15,14 +15,9 @@ struct Lambert {
         if (wo.z <= 0.0f || wi.z <= 0.0f) return glm::vec3(0.0f);
         return color * (kInvPi * wi.z);
     }
-    float pdf(const glm::vec3& wo, const glm::vec3& wi) const {
-        return wo.z > 0.0f ? cosineHemispherePdf(wi) : 0.0f;
-    }
+    float pdf(const glm::vec3& wo, const glm::vec3& wi) const { return cosineLobePdf(wo, wi); }
     std::optional<LobeSample> sample(const glm::vec3& wo, const glm::vec2& u, float) const {
-        if (wo.z <= 0.0f) return std::nullopt;
-        glm::vec3 wi = squareToCosineHemisphere(u);
-        if (wi.z <= 0.0f) return std::nullopt;
-        return LobeSample{wi, eval(wo, wi), pdf(wo, wi), false};
+        return sampleCosineLobe(*this, wo, u);
     }
     float selectionWeight(const glm::vec3&) const { return luminance(color); }
 };

@@ -11,6 +11,8 @@
 
 #include <glm/glm.hpp>
 
+#include "bsdf/warp.h"
+
 namespace principled::bsdf {
 
 struct LobeSample {
@@ -19,5 +21,19 @@ struct LobeSample {
     float pdf = 0.0f;   ///< solid-angle pdf (delta: discrete probability inside the lobe)
     bool delta = false;
 };
+
+/// The pdf and sample() of a lobe that draws wi from the cosine-weighted upper hemisphere
+/// (Malley's method, warp.h) whatever wo is, and is zero for views below the surface: the
+/// shared half of Lambert and DisneyDiffuse, which differ only in eval().
+inline float cosineLobePdf(const glm::vec3& wo, const glm::vec3& wi) {
+    return wo.z > 0.0f ? cosineHemispherePdf(wi) : 0.0f;
+}
+template <typename Lobe>
+std::optional<LobeSample> sampleCosineLobe(const Lobe& lobe, const glm::vec3& wo, const glm::vec2& u) {
+    if (wo.z <= 0.0f) return std::nullopt;
+    glm::vec3 wi = squareToCosineHemisphere(u);
+    if (wi.z <= 0.0f) return std::nullopt;
+    return LobeSample{wi, lobe.eval(wo, wi), cosineLobePdf(wo, wi), false};
+}
 
 }  // namespace principled::bsdf

@@ -52,7 +52,31 @@ constexpr detail::SobolByteTables byteTables() {
     return out;
 }
 
+constexpr uint32_t reverse(uint32_t x) {
+    uint32_t r = 0;
+    for (int k = 0; k < 32; ++k) r |= ((x >> k) & 1u) << (31 - k);
+    return r;
+}
+
+// Bit m of a reversed index stands for bit 31 - m of the index, which selects direction number
+// 31 - m; reversing that direction number gives the reversed point's contribution.
+constexpr detail::SobolByteTables reversedByteTables() {
+    const Directions d = directions();
+    detail::SobolByteTables out{};
+    for (int dim = 0; dim < 4; ++dim)
+        for (int byte = 0; byte < 4; ++byte)
+            for (uint32_t b = 0; b < 256; ++b) {
+                uint32_t x = 0;
+                for (int k = 0; k < 8; ++k)
+                    if (b & (1u << k)) x ^= reverse(d[dim][31 - (byte * 8 + k)]);
+                out[dim][byte][b] = x;
+            }
+    return out;
+}
+
 }  // namespace
+
+constexpr detail::SobolByteTables detail::kSobolReversedByteTables = reversedByteTables();
 
 // External linkage from the declaration in sampler.h.
 constexpr detail::SobolByteTables detail::kSobolByteTables = byteTables();

@@ -29,6 +29,9 @@ namespace detail {
 /// (built at compile time in sampler.cpp).
 using SobolByteTables = std::array<std::array<std::array<uint32_t, 256>, 4>, 4>;
 extern const SobolByteTables kSobolByteTables;
+/// The same points in the bit-reversed domain: entry [d][k][b] is reverseBits of the point at
+/// index reverseBits(b << 8k), so reversed points come from reversed indices directly.
+extern const SobolByteTables kSobolReversedByteTables;
 
 /// Bit reversal: a byte swap, then the bits of each byte reversed.
 inline uint32_t reverseBits(uint32_t x) {
@@ -47,24 +50,38 @@ inline uint32_t sobol4(uint32_t index, int dimension) {
            t[3][index >> 24];
 }
 
-/// Nested uniform (Owen) scrambling of a 32-bit fraction with a hash-based permutation:
-/// Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4), section 3 (Laine-Karras
-/// style hash applied to the bit-reversed value).
-inline uint32_t owenScramble(uint32_t x, uint32_t seed) {
-    // Burley 2020, JCGT 9(4), listing 3 constants for the Laine-Karras permutation.
-    x = detail::reverseBits(x);
+/// reverseBits(sobol4(reverseBits(reversedIndex), dimension)): a Sobol point in the
+/// bit-reversed domain, where Owen scrambling works, without reversing twice.
+inline uint32_t sobol4Reversed(uint32_t reversedIndex, int dimension) {
+    const auto& t = detail::kSobolReversedByteTables[dimension & 3];
+    return t[0][reversedIndex & 0xffu] ^ t[1][(reversedIndex >> 8) & 0xffu] ^
+           t[2][(reversedIndex >> 16) & 0xffu] ^ t[3][reversedIndex >> 24];
+}
+
+/// The Laine-Karras style permutation of a bit-reversed value: it flips each bit depending on
+/// the bits below it only, which in the reversed domain is nested uniform scrambling.
+/// Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4), listing 3 constants.
+inline uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) {
     x += seed;
     x ^= x * 0x6c50b47cu;
     x ^= x * 0xb82f1e52u;
     x ^= x * 0xc7afe638u;
     x ^= x * 0x8d22f6e6u;
-    return detail::reverseBits(x);
+    return x;
+}
+
+/// Nested uniform (Owen) scrambling of a 32-bit fraction with a hash-based permutation:
+/// Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4), section 3 (Laine-Karras
+/// style hash applied to the bit-reversed value).
+inline uint32_t owenScramble(uint32_t x, uint32_t seed) {
+    return detail::reverseBits(laineKarrasPermutation(detail::reverseBits(x), seed));
 }
 
 class Sampler {
 public:
     Sampler(SamplerKind kind, uint32_t seed, uint32_t pixel, uint32_t sampleIndex)
-        : _kind(kind), _pixelKey(hashCombine(hashMix(seed ^ 0x5bd1e995u), pixel)), _index(sampleIndex) {}
+        : _kind(kind), _pixelKey(hashCombine(hashMix(seed ^ 0x5bd1e995u), pixel)), _index(sampleIndex),
+          _reversedIndex(detail::reverseBits(sampleIndex)) {}
 
     /// Uniform in [0, 1).
     float next1D() { return toUnit(value(_dimension++)); }
@@ -87,25 +104,30 @@ private:
         // Burley 2020 section 4: dimensions come in groups of four Owen-scrambled Sobol
         // dimensions; each group shuffles the sample order per pixel (scrambling the index)
         // with its own seed, which decorrelates the groups ("padding").
+        // Everything stays bit-reversed until the end: the value equals
+        // owenScramble(sobol4(owenScramble(index, groupSeed), d), dimensionSeed) with one
+        // reversal per value instead of four.
         uint32_t group = d >> 2;
         if (group != _group) {
             _group = group;
             _groupSeed = hashCombine(_pixelKey, group);
-            _shuffled = owenScramble(_index, _groupSeed);
+            _shuffledReversed = laineKarrasPermutation(_reversedIndex, _groupSeed);
         }
-        return owenScramble(sobol4(_shuffled, int(d & 3u)), hashCombine(_groupSeed, (d & 3u) + 1u));
+        return detail::reverseBits(laineKarrasPermutation(sobol4Reversed(_shuffledReversed, int(d & 3u)),
+                                                          hashCombine(_groupSeed, (d & 3u) + 1u)));
     }
     static float toUnit(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
 
     SamplerKind _kind;
     uint32_t _pixelKey;
     uint32_t _index;
+    uint32_t _reversedIndex;
     uint32_t _dimension = 0;
     // Dimensions are drawn in order, four per Sobol group: the group's seed and scrambled
     // index are computed once per group, not once per dimension (same values).
     uint32_t _group = ~0u;
     uint32_t _groupSeed = 0;
-    uint32_t _shuffled = 0;
+    uint32_t _shuffledReversed = 0;  ///< reverseBits of the group's scrambled index
 };
 
 }  // namespace principled::embree

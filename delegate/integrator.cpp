@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <new>
+#include <type_traits>
 
 #include "delegate/hd/token.h"
 #include "delegate/lightSampling.h"
@@ -344,19 +347,23 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // Material: the bound one (evaluated here if textured), or UsdPreviewSurface
         // defaults with displayColor.
         HitContext context(hit);
-        shading::ShadedMaterial shaded;
-        const shading::ShadedMaterial* mat = &shaded;
+        // Built only for textured or unbound materials (an untextured material's record and
+        // prebuilt BSDF are used as they are, with nothing written per hit).
+        std::optional<shading::ShadedMaterial> shadedStore;
+        const shading::ShadedMaterial* mat = nullptr;
         const bsdf::Bsdf* constantBsdf = nullptr;  // prebuilt for untextured materials
         const int materialIndex = rec.materialFor(hit.triangle);  // GeomSubset or the prim's
         if (materialIndex >= 0 && materialIndex < int(_scene.materials.size())) {
             const MaterialRecord& m = _scene.materials[materialIndex];
             if (m.program) {
-                shaded = m.program->evaluate(context);
+                mat = &shadedStore.emplace(m.program->evaluate(context));
             } else {
                 mat = &m.constant;
                 constantBsdf = &*_constantBsdfs[size_t(materialIndex)];
             }
         } else {
+            shading::ShadedMaterial& shaded = shadedStore.emplace();
+            mat = &shaded;
             shaded.params.baseColor = rec.displayColor;
             float dc[3];
             static const hd::Token kDisplayColor("displayColor");  // interned once, not per hit
@@ -428,9 +435,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // light only: NEE at the camera hit plus the emitter its BSDF ray reaches). `>=` here
         // made maxDepth 0 render emitters only and gave every path one bounce fewer than Cycles.
         if (depth > _settings.maxDepth) break;
-        std::optional<bsdf::Bsdf> builtBsdf;
-        if (!constantBsdf) builtBsdf.emplace(mat->params, _settings.bsdf);
-        const bsdf::Bsdf& bsdf = constantBsdf ? *constantBsdf : *builtBsdf;
+        // Raw storage, not std::optional: its engaged-state bookkeeping zeroed 200 bytes per hit.
+        static_assert(std::is_trivially_destructible_v<bsdf::Bsdf>);
+        alignas(bsdf::Bsdf) std::byte builtStorage[sizeof(bsdf::Bsdf)];
+        const bsdf::Bsdf& bsdf =
+            constantBsdf ? *constantBsdf : *::new (builtStorage) bsdf::Bsdf(mat->params, _settings.bsdf);
         const bsdf::Bsdf::View view = bsdf.prepare(woLocal);  // shared by NEE and sampling
 
         // Next-event estimation: one light picked by power, or every light in turn when the scene

@@ -9,6 +9,7 @@
 
 #include "delegate/hd/token.h"
 #include "delegate/lightSampling.h"
+#include "delegate/shadingNormal.h"
 
 namespace principled::embree {
 namespace {
@@ -316,7 +317,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         };
         float tHit = found ? hit.t : kInf;
         for (const LightRecord& light : lights) {
-            if (!isAreaLight(light) || (depth == 0 && !light.visibleToCamera)) continue;
+            if (!isAreaLight(light) || (depth == 0 && !(light.visibleToCamera && _settings.lightsVisible))) continue;
             glm::vec3 Le;
             float pdf;
             if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf))
@@ -417,18 +418,19 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         }
 
         glm::vec3 wo = -ray.direction;
-        // A shading normal that puts the viewer below the surface is replaced by the geometric
-        // one (no black rims); the BSDF then sees a consistent upper hemisphere.
-        glm::vec3 ns = glm::dot(hit.ns, wo) > 1e-4f ? hit.ns : hit.ng;
+        // Shading normals (interpolated or mapped) are tilted back toward the geometric normal
+        // until the view's mirror direction clears the surface (validReflectionNormal): no black
+        // rims, and grazing views shade like Cycles.
+        glm::vec3 ns = validReflectionNormal(hit.ng, wo, hit.ns);
         // Solid dielectrics need the outward normal: inside the object the BSDF sees
         // wo.z < 0 and refracts with the inverse index of refraction.
         bool solidTransmission = mat->params.specTrans > 0.0f && !mat->params.thin;
-        if (solidTransmission && hit.backface) ns = -ns;
         if (mat->hasNormalMap && !(solidTransmission && hit.backface)) {
             Frame tf = tangentFrame(hit, ns);
             glm::vec3 mapped = glm::normalize(tf.toWorld(mat->tangentNormal));
-            if (glm::dot(mapped, wo) > 1e-4f && std::isfinite(mapped.x)) ns = mapped;
+            if (std::isfinite(mapped.x)) ns = validReflectionNormal(hit.ng, wo, mapped);
         }
+        if (solidTransmission && hit.backface) ns = -ns;
         Frame frame(ns);
         glm::vec3 woLocal = frame.toLocal(wo);
         // maxDepth = N: N bounces after the camera hit, Cycles' max_bounces convention (0 = direct

@@ -29,6 +29,7 @@ struct IntegratorSettings {
     int rouletteDepth = 3;    ///< Russian roulette starts at this depth
     float clampIndirect = 0;  ///< max channel of an indirect contribution; 0 = off
     bool domeVisible = true;  ///< camera rays that escape see the dome light
+    bool lightsVisible = false;  ///< camera rays see sphere/rect/disk/cylinder light shapes
     bsdf::Options bsdf;
 };
 

@@ -454,6 +454,9 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Dicing rate", Token("dicingRate"), Value(1.5f), "adaptive subdivision: target refined edge length in pixels"},
         {"Max refine level", Token("maxRefineLevel"), Value(6), "adaptive subdivision: highest level"},
         {"Dome visible to camera", Token("domeLightCameraVisibility"), Value(1), "camera rays see the dome light"},
+        {"Lights visible to camera", Token("lightCameraVisibility"), Value(0),
+         "camera rays see the shapes of sphere, rect, disk and cylinder lights (0, as Cycles, Karma and hdEmbree: "
+         "lights light the scene and show in reflections only)"},
     };
 }
 
@@ -512,6 +515,7 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.maxDepth = std::max(0, intSetting("maxDepth", 8));
     s.clampIndirect = std::max(0.0f, floatSetting("clampIndirect", 0.0f));
     s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
+    s.lightsVisible = intSetting("lightCameraVisibility", 0) != 0;
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
     s.mis = intSetting("mis", 1) != 0;

@@ -201,6 +201,7 @@ def Camera "Cam"
     host::SessionOptions o;
     o.width = o.height = 4;
     o.samplesPerPixel = 4;
+    o.settings["lightCameraVisibility"] = "1";  // lights are hidden from camera rays by default
     auto s = host::RenderSession::openString(usda, "rect_texture.usda", o);
     while (!s->step()) {
     }
@@ -211,6 +212,39 @@ def Camera "Cam"
         for (int x = 0; x < 4; ++x)
             for (int k = 0; k < 3; ++k)
                 EXPECT_NEAR(px(x, y)[k], expected[y / 2][x / 2][k], 1e-4) << "pixel " << x << "," << y;
+}
+
+TEST(Lights, LightShapesAreHiddenFromCameraRaysUnlessAsked) {
+    // Cycles, Karma and hdEmbree do not draw sphere/rect/disk lights for camera rays; with
+    // lightCameraVisibility = 1 the camera sees the emitting shape at its radiance.
+    std::string usda = R"(#usda 1.0
+def SphereLight "Bulb"
+{
+    float inputs:radius = 1
+    float inputs:intensity = 7
+}
+def Camera "Cam"
+{
+    token projection = "orthographic"
+    float horizontalAperture = 5
+    float verticalAperture = 5
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)";
+    for (const char* visible : {"0", "1"}) {
+        host::SessionOptions o;
+        o.width = o.height = 4;
+        o.samplesPerPixel = 1;
+        o.settings["defaultLighting"] = "0";
+        if (visible[0] == '1') o.settings["lightCameraVisibility"] = "1";
+        auto s = host::RenderSession::openString(usda, "bulb.usda", o);
+        while (!s->step()) {
+        }
+        const float* c = s->color();
+        // The centre pixels look straight at the sphere.
+        EXPECT_NEAR(c[4 * (1 * 4 + 1)], visible[0] == '1' ? 7.0f : 0.0f, 1e-3f) << "visible " << visible;
+    }
 }
 
 TEST(Lights, RectLightTextureScalesTheIrradianceItDelivers) {

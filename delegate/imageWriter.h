@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Image output through OpenImageIO: float EXR (linear) and 8-bit PNG (sRGB transfer).
+// Image output (OpenImageIO through the image I/O backend, delegate/imageio/imageIO.h):
+// float EXR (linear) and 8-bit PNG (sRGB transfer).
 #pragma once
 
 #include <string>

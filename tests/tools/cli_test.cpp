@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sys/wait.h>
@@ -115,6 +116,31 @@ TEST(Cli, RendersTheDefaultSceneWithStats) {
     std::string json((std::istreambuf_iterator<char>(s)), std::istreambuf_iterator<char>());
     EXPECT_NE(json.find("\"rays\""), std::string::npos);
     EXPECT_NE(json.find("\"samplesPerPixel\": 2"), std::string::npos) << json;
+    for (const char* key : {"\"processToInitSeconds\"", "\"processToFirstImageSeconds\"",
+                            "\"firstImageUnixSeconds\""})
+        EXPECT_NE(json.find(key), std::string::npos) << key << " missing from " << json;
+}
+
+// OpenImageIO lives in libprincipled_oiio.so, loaded on the first image read or write
+// (delegate/imageio/imageIO.h): commands that touch no image file run without it, and a
+// missing backend is a clear error at the write, after the render.
+TEST(Cli, ImageBackendIsLoadedOnlyWhenAnImageFileIsTouched) {
+    struct Env {
+        Env() { setenv("PRINCIPLED_IMAGEIO_BACKEND", "/nonexistent/libprincipled_oiio.so", 1); }
+        ~Env() { unsetenv("PRINCIPLED_IMAGEIO_BACKEND"); }
+    } env;
+    Result info = run("info");
+    EXPECT_EQ(info.status, 0) << info.output;
+    Result plugins = run("plugins");
+    EXPECT_EQ(plugins.status, 0) << plugins.output;
+    fs::path exr = tempDir() / "nobackend.exr";
+    fs::remove(exr);
+    Result r = run("render -o " + exr.string() + " --spp 1 --res 16x9 --quiet");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("nobackend.exr: cannot load the image I/O backend libprincipled_oiio.so"),
+              std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("/nonexistent/libprincipled_oiio.so"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(exr));
 }
 
 TEST(Cli, AovAllWritesEveryAovAndThreadCountsGiveIdenticalPixels) {

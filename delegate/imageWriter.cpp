@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 
 #include "delegate/imageio/imageIO.h"
+#include "delegate/imageio/nativeWriter.h"
 
 namespace principled::embree {
 
@@ -88,6 +90,18 @@ bool writeImage(const std::string& path, int width, int height,
         return false;
     }
     std::string reason;
+    // EXR and PNG are encoded here (zlib only), so writing the output does not load
+    // OpenImageIO; PRINCIPLED_IMAGE_WRITER=oiio writes through the backend instead.
+    const char* writer = std::getenv("PRINCIPLED_IMAGE_WRITER");
+    if (!writer || std::string(writer) != "oiio") {
+        bool ok = ext == "exr"
+                      ? imageio::writeExrFloat(path, width, height, spec.channelNames,
+                                               floats.data(), &reason)
+                      : imageio::writePng8(path, width, height, spec.channels, bytes.data(),
+                                           &reason);
+        if (!ok) *error = path + ": " + reason;
+        return ok;
+    }
     imageio::Backend* io = imageio::backend(&reason);
     if (!io || !io->write(path, "", spec, data, &reason)) {
         *error = path + ": " + reason;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/processClock.h"
 
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -50,6 +51,13 @@ const double gInitSeconds = sinceStart();
 double secondsSinceProcessStart() { return sinceStart(); }
 
 double processStartToInitSeconds() { return gInitSeconds; }
+
+double processCpuSeconds() {
+    rusage u{};
+    if (getrusage(RUSAGE_SELF, &u) != 0) return -1.0;
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           double(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
+}
 
 double unixSeconds() {
     timespec now{};

@@ -13,6 +13,9 @@ double secondsSinceProcessStart();
 /// dynamic loader spent mapping and relocating the shared libraries (same 10 ms steps).
 double processStartToInitSeconds();
 
+/// CPU time of the whole process so far (all threads, user + system), seconds.
+double processCpuSeconds();
+
 /// The wall clock now, seconds since the Unix epoch (for exact figures measured outside:
 /// a harness that takes the time before exec subtracts it).
 double unixSeconds();

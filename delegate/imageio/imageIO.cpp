@@ -107,8 +107,8 @@ Backend* load(State& s) {
     if (!std::getenv("PRINCIPLED_IMAGEIO_BACKEND"))
         if (Backend* b = attempt(kModule)) return b;  // LD_LIBRARY_PATH, rpath, ld.so.cache
     s.error = std::string("cannot load the image I/O backend ") + kModule +
-              " (reading and writing image files needs it; set PRINCIPLED_IMAGEIO_BACKEND to "
-              "its path). Tried:" + tried;
+              " (textures, light images and checkpoints are read and written with it; set "
+              "PRINCIPLED_IMAGEIO_BACKEND to its path). Tried:" + tried;
     return nullptr;
 }
 

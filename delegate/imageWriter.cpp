@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 
-#include <OpenImageIO/imageio.h>
+#include "delegate/imageio/imageIO.h"
+#include "delegate/imageio/nativeWriter.h"
 
 namespace principled::embree {
 
@@ -37,18 +39,21 @@ bool writeImage(const std::string& path, int width, int height,
     size_t n = size_t(width) * size_t(height);
     std::vector<float> floats;
     std::vector<unsigned char> bytes;
-    OIIO::ImageSpec spec;
+    imageio::ImageSpec spec;
+    spec.width = width;
+    spec.height = height;
     const void* data = nullptr;
     if (ext == "exr") {
         std::vector<std::string> names;
         for (const auto& l : layers)
             for (const auto& c : l.channels) names.push_back(l.name.empty() ? c : l.name + "." + c);
-        spec = OIIO::ImageSpec(width, height, int(names.size()), OIIO::TypeDesc::FLOAT);
-        spec.channelnames = names;
-        spec.alpha_channel = -1;
+        spec.channels = int(names.size());
+        spec.format = imageio::PixelType::Float;
+        spec.channelNames = names;
+        spec.alphaChannel = -1;
         for (size_t i = 0; i < names.size(); ++i)
-            if (names[i] == "A") spec.alpha_channel = int(i);
-        spec.attribute("compression", "zip");
+            if (names[i] == "A") spec.alphaChannel = int(i);
+        spec.strings["compression"] = "zip";
         floats.resize(n * names.size());
         size_t offset = 0;
         for (const auto& l : layers) {
@@ -70,7 +75,8 @@ bool writeImage(const std::string& path, int width, int height,
             *error = path + ": PNG needs a colour layer with 3 or 4 channels";
             return false;
         }
-        spec = OIIO::ImageSpec(width, height, c, OIIO::TypeDesc::UINT8);
+        spec.channels = c;
+        spec.format = imageio::PixelType::UInt8;
         bytes.resize(n * c);
         for (size_t p = 0; p < n; ++p)
             for (int k = 0; k < c; ++k) {
@@ -83,13 +89,22 @@ bool writeImage(const std::string& path, int width, int height,
         *error = path + ": unsupported output format '." + ext + "' (expected .exr or .png)";
         return false;
     }
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        *error = path + ": " + OIIO::geterror();
-        return false;
+    std::string reason;
+    // EXR and PNG are encoded here (zlib only), so writing the output does not load
+    // OpenImageIO; PRINCIPLED_IMAGE_WRITER=oiio writes through the backend instead.
+    const char* writer = std::getenv("PRINCIPLED_IMAGE_WRITER");
+    if (!writer || std::string(writer) != "oiio") {
+        bool ok = ext == "exr"
+                      ? imageio::writeExrFloat(path, width, height, spec.channelNames,
+                                               floats.data(), &reason)
+                      : imageio::writePng8(path, width, height, spec.channels, bytes.data(),
+                                           &reason);
+        if (!ok) *error = path + ": " + reason;
+        return ok;
     }
-    if (!out->open(path, spec) || !out->write_image(spec.format, data) || !out->close()) {
-        *error = path + ": " + out->geterror();
+    imageio::Backend* io = imageio::backend(&reason);
+    if (!io || !io->write(path, "", spec, data, &reason)) {
+        *error = path + ": " + reason;
         return false;
     }
     return true;

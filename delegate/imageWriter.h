@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Image output through OpenImageIO: float EXR (linear) and 8-bit PNG (sRGB transfer).
+// Image output: float EXR (linear, ZIP) and 8-bit PNG (sRGB transfer), encoded by
+// delegate/imageio/nativeWriter.cpp without OpenImageIO (PRINCIPLED_IMAGE_WRITER=oiio: through
+// the image I/O backend, delegate/imageio/imageIO.h).
 #pragma once
 
 #include <string>

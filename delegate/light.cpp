@@ -4,11 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include <OpenImageIO/imageio.h>
-
 #include "delegate/colorTemperature.h"
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
+#include "delegate/imageio/imageIO.h"
 
 namespace principled::embree {
 
@@ -35,24 +34,26 @@ glm::vec3 vector(const glm::dmat4& m, double x, double y, double z) {
 // also gets its luminance sampling distribution.
 std::shared_ptr<EnvironmentMap> loadImage(const std::string& path, const std::string& what, bool latLong,
                                           std::string* error) {
-    auto in = OIIO::ImageInput::open(path);
+    std::string reason;
+    imageio::Backend* io = imageio::backend(&reason);
+    std::unique_ptr<imageio::ImageReader> in = io ? io->open(path, &reason) : nullptr;
     if (!in) {
-        *error = "cannot read " + what + " '" + path + "': " + OIIO::geterror();
+        *error = "cannot read " + what + " '" + path + "': " + reason;
         return nullptr;
     }
-    const OIIO::ImageSpec& spec = in->spec();
+    const imageio::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || size_t(spec.width) * spec.height > (size_t(1) << 26)) {
         *error = what + " '" + path + "' has an unsupported size";
         return nullptr;
     }
-    int channels = spec.nchannels;
+    int channels = spec.channels;
     std::vector<float> px(size_t(spec.width) * spec.height * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, px.data())) {
-        *error = "cannot read " + what + " '" + path + "': " + in->geterror();
+    if (!in->read(imageio::PixelType::Float, channels, px.data())) {
+        *error = "cannot read " + what + " '" + path + "': " + in->error();
         return nullptr;
     }
     // 8-bit images are display-encoded (sRGB); float images are linear.
-    bool srgb = spec.format.basetype == OIIO::TypeDesc::UINT8;
+    bool srgb = spec.format == imageio::PixelType::UInt8;
     auto decode = [&](float v) {
         if (!std::isfinite(v) || v < 0.0f) return 0.0f;
         if (!srgb) return v;

@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/shading/textureCache.h"
 
-#include <OpenImageIO/imagecache.h>
-#include <OpenImageIO/strutil.h>
-#include <OpenImageIO/texture.h>
+#include "delegate/imageio/imageIO.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -13,29 +12,26 @@ namespace principled::shading {
 
 namespace {
 
-using OIIO::TextureOpt;
-using OIIO::TextureSystem;
-using OIIO::ustring;
-
 constexpr std::string_view kUdimToken = "<UDIM>";
 constexpr int kUdimTiles = 100;  // 1001-1100: UsdPreviewSurface spec 2.5
 
-TextureSystem* ts(void* p) {
-    return static_cast<TextureSystem*>(p);
+imageio::TextureSystem* ts(void* p) {
+    return static_cast<imageio::TextureSystem*>(p);
 }
 
-TextureOpt::Wrap toOiio(Wrap w) {
+// The backend's wrap codes: 0 black, 1 clamp, 2 periodic, 3 mirror.
+int toBackend(Wrap w) {
     switch (w) {
         case Wrap::Black:
-            return TextureOpt::WrapBlack;
+            return 0;
         case Wrap::Clamp:
-            return TextureOpt::WrapClamp;
+            return 1;
         case Wrap::Repeat:
-            return TextureOpt::WrapPeriodic;
+            return 2;
         case Wrap::Mirror:
-            return TextureOpt::WrapMirror;
+            return 3;
     }
-    return TextureOpt::WrapBlack;
+    return 0;
 }
 
 // OpenImageIO writes "wrapmodes" as "swrap,twrap" with its own names (periodic, clamp, ...).
@@ -53,73 +49,70 @@ bool fromOiioName(std::string_view name, Wrap* out) {
     return true;
 }
 
-// Errors are per thread in OpenImageIO: take and clear the pending message.
-std::string takeError(TextureSystem* system) {
-    std::string e = system->geterror();
-    while (!e.empty() && (e.back() == '\n' || e.back() == ' ')) e.pop_back();
-    return e;
-}
-
-std::string formatName(TextureSystem* system, TextureSystem::TextureHandle* handle,
-                       TextureSystem::Perthread* thread) {
-    OIIO::ustring name;
-    if (!system->get_texture_info(handle, thread, 0, OIIO::ustring("fileformat"), OIIO::TypeString,
-                                  &name))
-        (void)takeError(system);
-    return name.string();
+std::string lower(std::string_view s) {
+    std::string out(s);
+    for (auto& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
 }
 
 bool contains(const std::string& text, std::string_view word) {
-    return OIIO::Strutil::icontains(text, word);
+    return lower(text).find(lower(word)) != std::string::npos;
 }
 
-ColorTag colorTag(const OIIO::ImageSpec& spec, const std::string& format) {
-    std::string icc = std::string(spec.get_string_attribute("ICCProfile:profile_description")) +
-                      " " + std::string(spec.get_string_attribute("photoshop:ICCProfile"));
-    std::string cs = spec.get_string_attribute("oiio:ColorSpace");
-    float gamma = spec.get_float_attribute("oiio:Gamma", 0.0f);
+bool iequals(const std::string& a, std::string_view b) {
+    return lower(a) == lower(b);
+}
+
+ColorTag colorTag(const imageio::ImageSpec& spec, const std::string& format) {
+    std::string icc = spec.string("ICCProfile:profile_description") + " " +
+                      spec.string("photoshop:ICCProfile");
+    std::string cs = spec.string("oiio:ColorSpace");
+    float gamma = static_cast<float>(spec.number("oiio:Gamma", 0.0));
     // 0.1: the tolerance USD's Hio uses when it reads a file's gamma to decide sRGB or linear.
-    if (std::abs(gamma - 1.0f) < 0.1f || contains(icc, "linear") ||
-        OIIO::Strutil::iequals(cs, "linear") || OIIO::Strutil::iequals(cs, "scene_linear") ||
-        OIIO::Strutil::iequals(cs, "lin_srgb"))
+    if (std::abs(gamma - 1.0f) < 0.1f || contains(icc, "linear") || iequals(cs, "linear") ||
+        iequals(cs, "scene_linear") || iequals(cs, "lin_srgb"))
         return ColorTag::Linear;
     if (std::abs(gamma - 2.2f) < 0.1f || contains(icc, "sRGB") ||
-        spec.get_int_attribute("Exif:ColorSpace", 0) == 1)
+        static_cast<int>(spec.number("Exif:ColorSpace", 0.0)) == 1)
         return ColorTag::Srgb;
     // PNG and JPEG readers default the label to sRGB; other formats only report what they read.
-    if (OIIO::Strutil::iequals(cs, "sRGB") && format != "png" && format != "jpeg")
-        return ColorTag::Srgb;
+    if (iequals(cs, "sRGB") && format != "png" && format != "jpeg") return ColorTag::Srgb;
     return ColorTag::Unknown;
 }
+
+// The options of the most recently created cache: they apply process-wide (one texture system
+// per process, in the backend), set when the backend is loaded or at once if it already is.
+std::mutex gOptionsMutex;
+TextureCache::Options gOptions;
 
 }  // namespace
 
 TextureCache::TextureCache() : TextureCache(Options()) {}
 
-// One OpenImageIO texture system per process, created on first use and never destroyed.
-// Destroying one is unsafe here: OIIO 2.4's TextureSystem::destroy() deletes the
-// implementation through its non-virtual base (a sized-delete mismatch that ASan reports and
-// that corrupts jemalloc's heap inside Blender), and the per-thread micro-caches of reused TBB
-// workers would outlive it (a crash when a second textured session renders in the process).
-static TextureSystem* processTextureSystem() {
-    static TextureSystem* system = TextureSystem::create(false);
-    return system;
-}
-
+// The texture system is OpenImageIO's, one per process, created by the image I/O backend on
+// first use and never destroyed (see delegate/imageio/oiioBackend.cpp). The backend is loaded
+// by the first open(), so a scene without textures never loads it.
 TextureCache::TextureCache(const Options& options) {
-    // Options apply process-wide (the last cache created sets them).
-    TextureSystem* system = processTextureSystem();
-    system->attribute("max_memory_MB", options.maxMemoryMB);
-    system->attribute("max_open_files", options.maxOpenFiles);
-    system->attribute("automip", options.autoMip ? 1 : 0);
-    // Scanline files (PNG, JPEG) are cut into 64x64 tiles so only the touched part is cached.
-    system->attribute("autotile", 64);
-    // UsdPreviewSurface colours are straight alpha: keep PNG/TIFF colours unpremultiplied.
-    system->attribute("unassociatedalpha", 1);
-    _system = system;
+    std::lock_guard lock(gOptionsMutex);
+    gOptions = options;
+    if (imageio::Backend* io = imageio::loadedBackend())
+        io->textureSystem().configure(options.maxMemoryMB, options.maxOpenFiles, options.autoMip);
 }
 
 TextureCache::~TextureCache() = default;  // the process-wide system stays alive
+
+bool TextureCache::ensureSystem(std::string* error) {
+    if (_system) return true;
+    imageio::Backend* io = imageio::backend(error);
+    if (!io) return false;
+    imageio::TextureSystem& system = io->textureSystem();
+    {
+        std::lock_guard lock(gOptionsMutex);
+        system.configure(gOptions.maxMemoryMB, gOptions.maxOpenFiles, gOptions.autoMip);
+    }
+    _system = &system;
+    return true;
+}
 
 TextureOpenResult TextureCache::open(const std::string& path) {
     std::lock_guard<std::mutex> lock(_mutex);
@@ -192,27 +185,23 @@ TextureOpenResult TextureCache::openFile(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return fail("file not found");
 
-    TextureSystem* system = ts(_system);
-    ustring name(path);
-    TextureSystem::Perthread* thread = system->get_perthread_info();
-    TextureSystem::TextureHandle* handle = system->get_texture_handle(name, thread);
-    OIIO::ImageSpec spec;
-    if (!handle || !system->get_imagespec(handle, thread, 0, spec)) {
-        std::string e = takeError(system);
-        return fail(e.empty() ? std::string("cannot be read") : e);
-    }
-    if (spec.nchannels < 1 || spec.width < 1 || spec.height < 1)
+    std::string e;
+    if (!ensureSystem(&e)) return fail(e);
+    imageio::ImageSpec spec;
+    void* handle = ts(_system)->open(path, &spec, &e);
+    if (!handle) return fail(e.empty() ? std::string("cannot be read") : e);
+    if (spec.channels < 1 || spec.width < 1 || spec.height < 1)
         return fail("image has no pixels or no channels");
 
     auto tex = std::make_unique<Texture>();
     tex->path = path;
     tex->width = spec.width;
     tex->height = spec.height;
-    tex->channels = spec.nchannels;
-    tex->bitsPerChannel = static_cast<int>(spec.format.size()) * 8;
-    tex->isFloat = spec.format.is_floating_point();
-    tex->colorTag = colorTag(spec, formatName(system, handle, thread));
-    std::string wrap = spec.get_string_attribute("wrapmodes");
+    tex->channels = spec.channels;
+    tex->bitsPerChannel = spec.bitsPerChannel;
+    tex->isFloat = spec.format == imageio::PixelType::Float || spec.format == imageio::PixelType::Half;
+    tex->colorTag = colorTag(spec, spec.fileFormat);
+    std::string wrap = spec.string("wrapmodes");
     if (!wrap.empty()) {
         auto comma = wrap.find(',');
         std::string s = wrap.substr(0, comma);
@@ -246,23 +235,17 @@ bool TextureCache::lookup(const Texture& texture, Wrap wrapS, Wrap wrapT, glm::v
 
 bool TextureCache::lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, float s, float t,
                               const glm::vec4& d, glm::vec4* rgba) const {
-    TextureSystem* system = ts(_system);
-    TextureOpt opt;
-    opt.swrap = toOiio(wrapS);
-    opt.twrap = toOiio(wrapT);
-    // Bilinear within a level (exact at texel centres), trilinear/anisotropic across levels.
-    opt.interpmode = TextureOpt::InterpBilinear;
-    opt.fill = 0.0f;
+    // Bilinear within a level (exact at texel centres), trilinear/anisotropic across levels
+    // (the backend's options), black fill.
     // st (0,0) is the bottom-left texel in USD; OpenImageIO's t runs from the top row down.
     // Flipping t keeps black/clamp/repeat/mirror wrapping intact (all symmetric about 0 and 1).
     t = 1.0f - t;
     int n = std::min(texture.channels, 4);
     float px[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    if (!system->texture(static_cast<TextureSystem::TextureHandle*>(texture.handle),
-                         system->get_perthread_info(), opt, s, t, d.x, -d.y, d.z, -d.w, n, px)) {
-        (void)system->geterror();  // the file went bad after open(): no data, never a crash
+    // False when the file went bad after open(): no data, never a crash.
+    if (!ts(_system)->lookup(texture.handle, toBackend(wrapS), toBackend(wrapT), s, t, d.x, -d.y,
+                             d.z, -d.w, n, px))
         return false;
-    }
     switch (n) {
         case 1:
             *rgba = {px[0], px[0], px[0], 1.0f};
@@ -284,14 +267,13 @@ void TextureCache::invalidate() {
     std::lock_guard<std::mutex> lock(_mutex);
     _failures.clear();
     _reported.clear();
-    ts(_system)->invalidate_all(true);
+    // Process-wide, like the texture system; nothing to drop before the backend is loaded.
+    if (imageio::Backend* io = imageio::loadedBackend()) io->textureSystem().invalidateAll();
 }
 
 size_t TextureCache::memoryUsed() const {
-    // ImageCache "stat:cache_memory_used" (int64) is the tile memory currently resident.
-    long long used = 0;
-    ts(_system)->getattribute("stat:cache_memory_used", OIIO::TypeDesc::INT64, &used);
-    return static_cast<size_t>(std::max(0LL, used));
+    imageio::Backend* io = imageio::loadedBackend();
+    return io ? io->textureSystem().memoryUsed() : 0;
 }
 
 }  // namespace principled::shading

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // TextureCache: texture files resolved once to OpenImageIO texture handles, looked up with
-// mip-mapped, filtered reads through one TextureSystem that has a memory limit.
+// mip-mapped, filtered reads through one TextureSystem that has a memory limit. OpenImageIO is
+// reached through the image I/O backend (delegate/imageio/imageIO.h), loaded by the first open().
 #pragma once
 
 #include <cstdint>
@@ -34,7 +35,7 @@ struct Texture {
     bool hasWrapMetadata = false;           ///< the file carries "wrapmodes"
     Wrap metadataWrapS = Wrap::Black;
     Wrap metadataWrapT = Wrap::Black;
-    void* handle = nullptr;  ///< OIIO::TextureSystem::TextureHandle* (null for a UDIM set)
+    void* handle = nullptr;  ///< the backend's texture handle (null for a UDIM set)
     /// A `<UDIM>` set: tile 1001 + u + 10 v at index u + 10 v (null where the set has no
     /// file); the fields above describe the first tile found. Empty for a plain file.
     std::vector<const Texture*> udimTiles;
@@ -110,7 +111,11 @@ class TextureCache {
     bool lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, float s, float t,
                     const glm::vec4& footprint, glm::vec4* rgba) const;
 
-    void* _system = nullptr;  ///< OIIO::TextureSystem*
+    /// Loads the image I/O backend and takes its texture system (_mutex held). False with
+    /// *error when the backend cannot be loaded.
+    bool ensureSystem(std::string* error);
+
+    void* _system = nullptr;  ///< imageio::TextureSystem*, set by the first open()
     mutable std::mutex _mutex;
     std::map<std::string, std::unique_ptr<Texture>> _textures;
     std::map<std::string, std::string> _failures;  ///< path -> error

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 using namespace principled;
@@ -41,4 +42,53 @@ TEST(ImageWriter, ExrRoundTripsFloatsAndPngIsEncoded) {
     EXPECT_EQ(b[1], 255);  // clamped
     EXPECT_FALSE(embree::writeImage((dir / "a.bmp").string(), 2, 1, {layer}, &err));
     EXPECT_NE(err.find(".exr or .png"), std::string::npos);
+}
+
+// EXR and PNG are encoded by delegate/imageio/nativeWriter.cpp (no OpenImageIO at write time):
+// OpenImageIO must read back every value, across ZIP blocks of 16 lines with a partial last
+// block, layered and long (> 31 characters) channel names, and the same pixels as its own
+// writer (PRINCIPLED_IMAGE_WRITER=oiio).
+TEST(ImageWriter, NativeExrAndPngReadBackExactlyAndMatchOpenImageIO) {
+    auto dir = std::filesystem::temp_directory_path() / "principled_imageWriter_test";
+    std::filesystem::create_directories(dir);
+    const int w = 37, h = 53;
+    std::vector<float> rgba(size_t(w) * h * 4), aov(size_t(w) * h * 2);
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = float((i * 7919) % 1000) / 997.0f * (i % 5 ? 1.0f : 40.0f);
+    for (size_t i = 0; i < aov.size(); ++i) aov[i] = -float(i) * 0.25f;
+    std::vector<embree::ImageLayer> layers = {
+        {"", {"R", "G", "B", "A"}, rgba.data()},
+        {"a_rather_long_layer_name_for_the_test", {"X", "Y"}, aov.data()}};
+    auto read = [](const std::string& path, std::vector<std::string>* names) {
+        auto in = OIIO::ImageInput::open(path);
+        EXPECT_TRUE(in) << OIIO::geterror();
+        if (!in) return std::vector<float>();
+        const auto& spec = in->spec();
+        if (names) *names = spec.channelnames;
+        std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+        EXPECT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+        return px;
+    };
+    std::string err;
+    std::string exr = (dir / "native.exr").string(), png = (dir / "native.png").string();
+    ASSERT_TRUE(embree::writeImage(exr, w, h, layers, &err)) << err;
+    ASSERT_TRUE(embree::writeImage(png, w, h, {layers[0]}, &err)) << err;
+    std::vector<std::string> names;
+    std::vector<float> back = read(exr, &names);
+    ASSERT_EQ(names.size(), 6u);
+    ASSERT_EQ(back.size(), size_t(w) * h * 6);
+    // OpenImageIO lists R, G, B, A first, then the layer's channels.
+    EXPECT_EQ(names[0], "R");
+    EXPECT_EQ(names[3], "A");
+    EXPECT_EQ(names[4], "a_rather_long_layer_name_for_the_test.X");
+    for (size_t p = 0; p < size_t(w) * h; ++p) {
+        for (int c = 0; c < 4; ++c) ASSERT_EQ(back[p * 6 + c], rgba[p * 4 + c]) << p << " " << c;
+        for (int c = 0; c < 2; ++c) ASSERT_EQ(back[p * 6 + 4 + c], aov[p * 2 + c]) << p << " " << c;
+    }
+    setenv("PRINCIPLED_IMAGE_WRITER", "oiio", 1);
+    std::string exrO = (dir / "oiio.exr").string(), pngO = (dir / "oiio.png").string();
+    bool ok = embree::writeImage(exrO, w, h, layers, &err) && embree::writeImage(pngO, w, h, {layers[0]}, &err);
+    unsetenv("PRINCIPLED_IMAGE_WRITER");
+    ASSERT_TRUE(ok) << err;
+    EXPECT_TRUE(read(exrO, nullptr) == back);
+    EXPECT_TRUE(read(pngO, nullptr) == read(png, nullptr));
 }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sys/wait.h>
@@ -115,6 +116,39 @@ TEST(Cli, RendersTheDefaultSceneWithStats) {
     std::string json((std::istreambuf_iterator<char>(s)), std::istreambuf_iterator<char>());
     EXPECT_NE(json.find("\"rays\""), std::string::npos);
     EXPECT_NE(json.find("\"samplesPerPixel\": 2"), std::string::npos) << json;
+    for (const char* key : {"\"processToInitSeconds\"", "\"processToFirstImageSeconds\"",
+                            "\"firstImageUnixSeconds\""})
+        EXPECT_NE(json.find(key), std::string::npos) << key << " missing from " << json;
+}
+
+// OpenImageIO lives in libprincipled_oiio.so, loaded on the first image read
+// (delegate/imageio/imageIO.h); EXR and PNG output are written without it. Commands that read
+// no image file run without it, and a missing backend is a clear error where an image is read.
+TEST(Cli, ImageBackendIsLoadedOnlyWhenAnImageFileIsRead) {
+    struct Env {
+        Env() { setenv("PRINCIPLED_IMAGEIO_BACKEND", "/nonexistent/libprincipled_oiio.so", 1); }
+        ~Env() { unsetenv("PRINCIPLED_IMAGEIO_BACKEND"); }
+    } env;
+    Result info = run("info");
+    EXPECT_EQ(info.status, 0) << info.output;
+    Result plugins = run("plugins");
+    EXPECT_EQ(plugins.status, 0) << plugins.output;
+    fs::path exr = tempDir() / "nobackend.exr", png = tempDir() / "nobackend.png";
+    fs::remove(exr);
+    Result r = run("render -o " + exr.string() + " -o " + png.string() + " --spp 1 --res 16x9 --quiet");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(exr));
+    EXPECT_TRUE(fs::exists(png));
+    // A dome light image needs the backend: the warning names it and where it was looked for.
+    fs::path tex = tempDir() / "sky.exr", scene = tempDir() / "sky.usda";
+    fs::copy_file(exr, tex, fs::copy_options::overwrite_existing);
+    std::ofstream(scene) << "#usda 1.0\ndef DomeLight \"Sky\"\n{\n    asset inputs:texture:file = @" << tex.string()
+                         << "@\n}\ndef Sphere \"Ball\"\n{\n}\n";
+    Result sky = run("render " + scene.string() + " -o " + exr.string() + " --spp 1 --res 16x9");
+    EXPECT_EQ(sky.status, 0) << sky.output;
+    EXPECT_NE(sky.output.find("cannot load the image I/O backend libprincipled_oiio.so"), std::string::npos)
+        << sky.output;
+    EXPECT_NE(sky.output.find("/nonexistent/libprincipled_oiio.so"), std::string::npos) << sky.output;
 }
 
 TEST(Cli, AovAllWritesEveryAovAndThreadCountsGiveIdenticalPixels) {

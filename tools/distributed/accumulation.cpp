@@ -7,8 +7,7 @@
 #include <sstream>
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
-
+#include "delegate/imageio/imageIO.h"
 #include "delegate/renderBuffer.h"
 #include "delegate/renderPass.h"
 #include "plugins/renderSession.h"
@@ -205,20 +204,24 @@ bool writeCheckpoint(const std::string& path, const Accumulation& acc, const Che
     addDouble("stats.lumSqSum", acc.lumSqSum, 1, 0);
     addInt("stats.samples", std::vector<int32_t>(acc.pixelSamples.begin(), acc.pixelSamples.end()));
 
-    OIIO::ImageSpec spec(acc.width, acc.height, int(names.size()), OIIO::TypeDesc::UINT);
-    spec.channelnames = names;
-    spec.attribute("compression", "zip");
-    spec.attribute("principled:checkpoint", "1");
-    spec.attribute("principled:sceneHash", info.sceneHash);
-    spec.attribute("principled:settings", info.settings);
-    spec.attribute("principled:sampleRange", std::to_string(info.rangeFirst) + ":" + std::to_string(info.rangeEnd));
-    spec.attribute("principled:completedSamples", acc.completedSamples);
+    imageio::ImageSpec spec;
+    spec.width = acc.width;
+    spec.height = acc.height;
+    spec.channels = int(names.size());
+    spec.format = imageio::PixelType::UInt32;
+    spec.channelNames = names;
+    spec.strings["compression"] = "zip";
+    spec.strings["principled:checkpoint"] = "1";
+    spec.strings["principled:sceneHash"] = info.sceneHash;
+    spec.strings["principled:settings"] = info.settings;
+    spec.strings["principled:sampleRange"] = std::to_string(info.rangeFirst) + ":" + std::to_string(info.rangeEnd);
+    spec.numbers["principled:completedSamples"] = acc.completedSamples;
     std::string order;
     for (const auto& a : acc.aovs) order += (order.empty() ? "" : ",") + a.name;
-    spec.attribute("principled:aovs", order);
+    spec.strings["principled:aovs"] = order;
     for (const auto& a : acc.aovs)
-        if (!a.isInt) spec.attribute("principled:multiSampled:" + a.name, a.multiSampled ? 1 : 0);
-    spec.attribute("principled:rank", std::to_string(info.rank) + "/" + std::to_string(info.ranks));
+        if (!a.isInt) spec.numbers["principled:multiSampled:" + a.name] = a.multiSampled ? 1 : 0;
+    spec.strings["principled:rank"] = std::to_string(info.rank) + "/" + std::to_string(info.ranks);
     std::vector<uint32_t> pixels(n * names.size());
     for (size_t p = 0; p < n; ++p)
         for (size_t c = 0; c < names.size(); ++c) pixels[p * names.size() + c] = planes[c][p];
@@ -227,10 +230,10 @@ bool writeCheckpoint(const std::string& path, const Accumulation& acc, const Che
     std::error_code ec;
     if (!final.parent_path().empty()) fs::create_directories(final.parent_path(), ec);
     fs::path tmp = final.parent_path() / ("." + final.stem().string() + ".tmp" + std::to_string(getpid()) + ".exr");
-    auto out = OIIO::ImageOutput::create(final.string());
-    if (!out || !out->open(tmp.string(), spec) ||
-        !out->write_image(OIIO::TypeDesc::UINT, pixels.data()) || !out->close()) {
-        *error = path + ": cannot write the checkpoint" + (out ? ": " + out->geterror() : std::string());
+    std::string reason;
+    imageio::Backend* io = imageio::backend(&reason);
+    if (!io || !io->write(tmp.string(), final.string(), spec, pixels.data(), &reason)) {
+        *error = path + ": cannot write the checkpoint" + (reason.empty() ? "" : ": " + reason);
         fs::remove(tmp, ec);
         return false;
     }
@@ -245,32 +248,34 @@ bool writeCheckpoint(const std::string& path, const Accumulation& acc, const Che
 
 bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* info,
                     std::string* error) {
-    auto in = OIIO::ImageInput::open(path);
+    std::string reason;
+    imageio::Backend* io = imageio::backend(&reason);
+    std::unique_ptr<imageio::ImageReader> in = io ? io->open(path, &reason) : nullptr;
     if (!in) {
-        *error = path + ": cannot read the checkpoint: " + OIIO::geterror();
+        *error = path + ": cannot read the checkpoint: " + reason;
         return false;
     }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.get_string_attribute("principled:checkpoint") != "1") {
+    const imageio::ImageSpec& spec = in->spec();
+    if (spec.string("principled:checkpoint") != "1") {
         *error = path + ": not a principled checkpoint (no principled:checkpoint metadata)";
         return false;
     }
-    info->sceneHash = spec.get_string_attribute("principled:sceneHash");
-    info->settings = spec.get_string_attribute("principled:settings");
-    std::string range = spec.get_string_attribute("principled:sampleRange");
+    info->sceneHash = spec.string("principled:sceneHash");
+    info->settings = spec.string("principled:settings");
+    std::string range = spec.string("principled:sampleRange");
     if (std::sscanf(range.c_str(), "%d:%d", &info->rangeFirst, &info->rangeEnd) != 2) {
         *error = path + ": checkpoint has no valid principled:sampleRange";
         return false;
     }
-    int nch = spec.nchannels;
+    int nch = spec.channels;
     size_t n = size_t(spec.width) * spec.height;
     std::vector<uint32_t> pixels(n * nch);
-    if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::UINT, pixels.data())) {
-        *error = path + ": cannot read the checkpoint pixels: " + in->geterror();
+    if (!in->read(imageio::PixelType::UInt32, nch, pixels.data())) {
+        *error = path + ": cannot read the checkpoint pixels: " + in->error();
         return false;
     }
     std::map<std::string, int> index;
-    for (int c = 0; c < nch; ++c) index[spec.channelnames[c]] = c;
+    for (int c = 0; c < nch && c < int(spec.channelNames.size()); ++c) index[spec.channelNames[c]] = c;
     auto plane = [&](const std::string& name, bool* ok) {
         std::vector<uint32_t> v(n);
         auto it = index.find(name);
@@ -291,10 +296,10 @@ bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* 
     };
     acc->width = spec.width;
     acc->height = spec.height;
-    acc->completedSamples = spec.get_int_attribute("principled:completedSamples", 0);
+    acc->completedSamples = int(spec.number("principled:completedSamples", 0));
     // EXR sorts channels by name: the AOV order comes from principled:aovs.
     acc->aovs.clear();
-    std::stringstream order(spec.get_string_attribute("principled:aovs"));
+    std::stringstream order(spec.string("principled:aovs"));
     for (std::string name; std::getline(order, name, ',');) {
         if (!index.count(name + ".count")) {
             ok = false;
@@ -318,7 +323,7 @@ bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* 
             a.sums.resize(n * a.components);
             for (int k = 0; k < a.components; ++k)
                 readDouble(a.name + ".sum" + std::to_string(k), a.sums, a.components, k);
-            a.multiSampled = spec.get_int_attribute("principled:multiSampled:" + a.name, 1) != 0;
+            a.multiSampled = spec.number("principled:multiSampled:" + a.name, 1) != 0;
         }
         acc->aovs.push_back(std::move(a));
     }

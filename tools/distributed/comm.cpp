@@ -8,10 +8,12 @@
 #include <unistd.h>
 
 #ifdef PRINCIPLED_HAVE_MPI
-#define OMPI_SKIP_MPICXX 1  // the C API only
-#define MPICH_SKIP_MPICXX 1
-#include <mpi.h>
+#include <dlfcn.h>
+
+#include <filesystem>
 #endif
+
+#include "tools/distributed/mpiModule.h"
 
 namespace principled::tools::distributed {
 
@@ -28,6 +30,52 @@ int Comm::launcherSize() {
     return 0;
 }
 
+#ifdef PRINCIPLED_HAVE_MPI
+namespace {
+
+// libprincipled_mpi.so: $PRINCIPLED_MPI_MODULE, <exe>/../lib/, the build tree, the install
+// prefix, then the default dlopen search. RTLD_GLOBAL: Open MPI's own components may expect
+// libmpi's symbols to be global.
+const PrincipledMpiApi* loadMpi(std::string* error) {
+    namespace fs = std::filesystem;
+    constexpr const char* kModule = "libprincipled_mpi.so";
+    std::vector<std::string> names;
+    if (const char* env = std::getenv("PRINCIPLED_MPI_MODULE"); env && *env) {
+        names.push_back(env);
+    } else {
+        std::error_code ec;
+        fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+        if (!ec) names.push_back((exe.parent_path() / ".." / "lib" / kModule).string());
+#ifdef PRINCIPLED_MPI_BUILD_DIR
+        names.push_back(std::string(PRINCIPLED_MPI_BUILD_DIR) + "/" + kModule);
+#endif
+#ifdef PRINCIPLED_MPI_INSTALL_DIR
+        names.push_back(std::string(PRINCIPLED_MPI_INSTALL_DIR) + "/" + kModule);
+#endif
+        names.push_back(kModule);
+    }
+    std::string tried;
+    for (const auto& n : names) {
+        void* h = dlopen(n.c_str(), RTLD_NOW | RTLD_GLOBAL);
+        if (!h) {
+            const char* e = dlerror();
+            tried += "\n  " + n + ": " + (e ? e : "cannot be loaded");
+            continue;
+        }
+        auto entry = reinterpret_cast<PrincipledMpiApiFn>(dlsym(h, "principled_mpi_api"));
+        const PrincipledMpiApi* api = entry ? entry() : nullptr;
+        if (api && api->version == PRINCIPLED_MPI_MODULE_VERSION) return api;
+        tried += "\n  " + n + ": not a principled MPI module of version " +
+                 std::to_string(PRINCIPLED_MPI_MODULE_VERSION);
+    }
+    *error = std::string("started by an MPI launcher, but cannot load ") + kModule +
+             " (set PRINCIPLED_MPI_MODULE to its path). Tried:" + tried;
+    return nullptr;
+}
+
+}  // namespace
+#endif
+
 Comm::Comm() {
     char name[256] = {};
     gethostname(name, sizeof name - 1);
@@ -35,12 +83,11 @@ Comm::Comm() {
     int launched = launcherSize();
 #ifdef PRINCIPLED_HAVE_MPI
     if (launched > 0) {
-        MPI_Init(nullptr, nullptr);
-        _initialized = true;
-        MPI_Comm_rank(MPI_COMM_WORLD, &_rank);
-        MPI_Comm_size(MPI_COMM_WORLD, &_size);
-        // Errors end the job with a message instead of returning codes we would ignore.
-        MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_ARE_FATAL);
+        _mpi = loadMpi(&_loadError);
+        if (_mpi) {
+            _mpi->init(&_rank, &_size);
+            _initialized = true;
+        }
     }
 #else
     _unsupported = launched > 1;
@@ -48,18 +95,15 @@ Comm::Comm() {
 }
 
 Comm::~Comm() {
-#ifdef PRINCIPLED_HAVE_MPI
-    if (_initialized) MPI_Finalize();
-#endif
+    if (_initialized) _mpi->finalize();
 }
 
-#ifdef PRINCIPLED_HAVE_MPI
 // Every call is a no-op for a single rank that never initialised MPI.
 void Comm::send(int dest, int tag, const std::vector<char>& bytes) {
     if (!_initialized) return;
     for (size_t at = 0; at < bytes.size() || at == 0; at += kChunk) {
         int n = int(std::min(kChunk, bytes.size() - at));
-        MPI_Send(bytes.data() + at, n, MPI_BYTE, dest, tag, MPI_COMM_WORLD);
+        _mpi->sendBytes(bytes.data() + at, n, dest, tag);
         if (bytes.empty()) break;
     }
 }
@@ -68,66 +112,43 @@ void Comm::recv(int src, int tag, std::vector<char>& bytes) {
     if (!_initialized) return;
     for (size_t at = 0; at < bytes.size() || at == 0; at += kChunk) {
         int n = int(std::min(kChunk, bytes.size() - at));
-        MPI_Recv(bytes.data() + at, n, MPI_BYTE, src, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        _mpi->recvBytes(bytes.data() + at, n, src, tag);
         if (bytes.empty()) break;
     }
 }
 
 void Comm::sendInt64(int dest, int tag, long long v) {
-    if (!_initialized) return;
-    MPI_Send(&v, 1, MPI_LONG_LONG, dest, tag, MPI_COMM_WORLD);
+    if (_initialized) _mpi->sendInt64(v, dest, tag);
 }
 
 int Comm::probe(int src, int tag) {
-    if (!_initialized) return -1;
-    int flag = 0;
-    MPI_Status st;
-    MPI_Iprobe(src < 0 ? MPI_ANY_SOURCE : src, tag, MPI_COMM_WORLD, &flag, &st);
-    return flag ? st.MPI_SOURCE : -1;
+    return _initialized ? _mpi->probe(src, tag) : -1;
 }
 
 long long Comm::recvInt64(int src, int tag) {
-    long long v = 0;
-    if (!_initialized) return v;
-    MPI_Recv(&v, 1, MPI_LONG_LONG, src, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    return v;
+    return _initialized ? _mpi->recvInt64(src, tag) : 0;
 }
 
 void Comm::broadcast(std::string& s) {
     if (!_initialized) return;
     int n = int(s.size());
-    MPI_Bcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    _mpi->broadcastInt(&n);
     s.resize(size_t(n));
-    MPI_Bcast(s.data(), n, MPI_CHAR, 0, MPI_COMM_WORLD);
+    _mpi->broadcastChars(s.data(), n);
 }
 
 void Comm::broadcast(int& v) {
-    if (_initialized) MPI_Bcast(&v, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (_initialized) _mpi->broadcastInt(&v);
 }
 
 void Comm::barrier() {
-    if (_initialized) MPI_Barrier(MPI_COMM_WORLD);
+    if (_initialized) _mpi->barrier();
 }
 
 void Comm::abort(int code) {
     std::fflush(stderr);
-    if (_initialized) MPI_Abort(MPI_COMM_WORLD, code);
+    if (_initialized) _mpi->abort(code);
     std::_Exit(code);
 }
-#else
-// A single rank never sends or receives.
-void Comm::send(int, int, const std::vector<char>&) {}
-void Comm::recv(int, int, std::vector<char>&) {}
-void Comm::sendInt64(int, int, long long) {}
-int Comm::probe(int, int) { return -1; }
-long long Comm::recvInt64(int, int) { return 0; }
-void Comm::broadcast(std::string&) {}
-void Comm::broadcast(int&) {}
-void Comm::barrier() {}
-void Comm::abort(int code) {
-    std::fflush(stderr);
-    std::_Exit(code);
-}
-#endif
 
 }  // namespace principled::tools::distributed

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 // Comm: the few MPI operations distributed rendering needs, behind a class that is a single
 // rank when the binary was built without MPI or was not started by mpirun (so the ordinary
-// `principled render` never initialises MPI).
+// `principled render` never initialises MPI). MPI itself is in libprincipled_mpi.so, loaded
+// only when a launcher started the process (tools/distributed/mpiModule.h).
 #pragma once
 
 #include <cstddef>
 #include <string>
 #include <vector>
+
+struct PrincipledMpiApi;  // tools/distributed/mpiModule.h
 
 namespace principled::tools::distributed {
 
@@ -29,6 +32,8 @@ public:
     const std::string& host() const { return _host; }
     /// True when a launcher says there are several ranks but MPI support is not compiled in.
     bool launchedWithoutSupport() const { return _unsupported; }
+    /// Why libprincipled_mpi.so could not be loaded for a launched process (empty: fine).
+    const std::string& loadError() const { return _loadError; }
 
     void send(int dest, int tag, const std::vector<char>& bytes);
     /// Receives a message of known size (chunked like send).
@@ -47,7 +52,8 @@ public:
 private:
     int _rank = 0, _size = 1;
     bool _initialized = false, _unsupported = false;
-    std::string _host;
+    std::string _host, _loadError;
+    const ::PrincipledMpiApi* _mpi = nullptr;  ///< set when MPI is initialised
 };
 
 }  // namespace principled::tools::distributed

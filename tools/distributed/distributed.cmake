@@ -5,12 +5,24 @@ target_sources(principled PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/accumulation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/comm.cpp
   ${CMAKE_CURRENT_LIST_DIR}/distributedRender.cpp)
-target_link_libraries(principled PRIVATE OpenImageIO::lib)
+target_link_libraries(principled PRIVATE principled_imageio)
 if(PRINCIPLED_WITH_MPI)
   find_package(MPI COMPONENTS CXX QUIET)
   if(MPI_CXX_FOUND)
-    target_link_libraries(principled PRIVATE MPI::MPI_CXX)
-    target_compile_definitions(principled PRIVATE PRINCIPLED_HAVE_MPI)
+    # MPI lives in libprincipled_mpi.so (mpiModule.cpp), dlopen()ed only under a launcher:
+    # an ordinary render does not load Open MPI's libraries.
+    add_library(principled_mpi MODULE ${CMAKE_CURRENT_LIST_DIR}/mpiModule.cpp)
+    target_include_directories(principled_mpi PRIVATE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(principled_mpi PRIVATE MPI::MPI_CXX principled_warnings)
+    set_target_properties(principled_mpi PROPERTIES
+      CXX_VISIBILITY_PRESET hidden
+      VISIBILITY_INLINES_HIDDEN ON)
+    install(TARGETS principled_mpi LIBRARY DESTINATION lib)
+    add_dependencies(principled principled_mpi)
+    target_link_libraries(principled PRIVATE ${CMAKE_DL_LIBS})
+    target_compile_definitions(principled PRIVATE PRINCIPLED_HAVE_MPI
+      PRINCIPLED_MPI_BUILD_DIR="$<TARGET_FILE_DIR:principled_mpi>"
+      PRINCIPLED_MPI_INSTALL_DIR="${CMAKE_INSTALL_PREFIX}/lib")
     message(STATUS "principled: MPI ${MPI_CXX_VERSION} found: distributed rendering on (mpirun -np N principled render ...)")
   else()
     message(STATUS "principled: MPI not found: distributed rendering off (install libopenmpi-dev)")

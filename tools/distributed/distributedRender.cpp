@@ -444,6 +444,10 @@ int run(const host::SessionOptions& session, const std::string& scene, const std
                              "was built without MPI (install libopenmpi-dev and rebuild)\n");
         return 1;
     }
+    if (!comm.loadError().empty()) {
+        std::fprintf(stderr, "principled: error: %s\n", comm.loadError().c_str());
+        return 1;
+    }
     try {
         Job(comm, session, scene, outputs, split, quiet, options).run();
     } catch (const std::exception& e) {

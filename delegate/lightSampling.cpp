@@ -97,7 +97,12 @@ constexpr size_t kSolidAngleMaxTriangles = 8;
 // precision and area sampling is as good (the 1/r^2 factor is nearly constant over the light);
 // above it a point is almost enclosed. The same test decides sampleLight() and the MIS pdf.
 constexpr float kMinSolidAngle = 1e-3f, kMaxSolidAngle = 6.2f;
-constexpr float kNearRadii = 4.0f;
+// Solid-angle sampling only within this many bounding radii of the light's centre. Measured
+// (branch lights): with 64 Owen-scrambled Sobol samples the area estimator's relative standard
+// deviation beyond 2 radii is <= 2 % at every elevation tried (15-90 degrees), and the Cornell
+// box's error against a 2048-spp reference is the same at 2 and 4 radii (full paths and direct
+// light only) while 2 costs 6.5 % less CPU; at 1 radius the direct-light error rises.
+constexpr float kNearRadii = 2.0f;
 
 // The spherical triangles of a small mesh light's triangles seen from p and their total solid
 // angle; returns 0 when the light is sampled by area from p instead.

@@ -412,7 +412,7 @@ BENCHMARK(BM_TextureLookup)->Unit(benchmark::kMicrosecond);
 
 // Mesh light sampling (delegate/lightSampling.cpp): scenes/cornell.usda's light, a 0.5 x 0.5
 // quad of two triangles at y = 1.999, sampled from points spread through the box [-1, 1] x
-// [0, 2] x [-1, 1] (~40 % within the 4 bounding radii where solid-angle sampling is used).
+// [0, 2] x [-1, 1] (~9 % within the 2 bounding radii where solid-angle sampling is used).
 // Baseline in the same run: the same light with lightSolidAngle=0 (area sampling: one triangle
 // pick, one point, no trigonometry).
 struct CornellLight {

@@ -31,6 +31,8 @@
 #include <OpenImageIO/imageio.h>
 #include <glm/glm.hpp>
 
+#include "delegate/light.h"
+#include "delegate/lightSampling.h"
 #include "delegate/shading/textureCache.h"
 #include "delegate/subdiv/subdivTopology.h"
 #include "scene_adapter/usda/stage.h"
@@ -407,6 +409,54 @@ void BM_TextureLookup_baselineBilinear(benchmark::State& state) {
 }
 BENCHMARK(BM_TextureLookup_baselineBilinear)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TextureLookup)->Unit(benchmark::kMicrosecond);
+
+// Mesh light sampling (delegate/lightSampling.cpp): scenes/cornell.usda's light, a 0.5 x 0.5
+// quad of two triangles at y = 1.999, sampled from points spread through the box [-1, 1] x
+// [0, 2] x [-1, 1] (~9 % within the 2 bounding radii where solid-angle sampling is used).
+// Baseline in the same run: the same light with lightSolidAngle=0 (area sampling: one triangle
+// pick, one point, no trigonometry).
+struct CornellLight {
+    embree::GeometryRecord mesh;
+    embree::LightRecord light;
+    std::vector<glm::vec3> points;
+    explicit CornellLight(bool solidAngle) {
+        mesh.points = {{-0.25f, 1.999f, -0.25f}, {0.25f, 1.999f, -0.25f}, {0.25f, 1.999f, 0.25f}, {-0.25f, 1.999f, 0.25f}};
+        mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+        light.kind = embree::LightRecord::Kind::Mesh;
+        light.solidAngleSampling = solidAngle;
+        light.mesh = &mesh;
+        light.meshTriangles = std::make_shared<std::vector<uint32_t>>(std::vector<uint32_t>{0, 1});
+        light.meshAreaCdf = std::make_shared<std::vector<float>>(std::vector<float>{0.0f, 0.5f, 1.0f});
+        light.area = 0.25f;
+        light.center = glm::vec3(0.0f, 1.999f, 0.0f);
+        light.radius = 0.25f * std::sqrt(2.0f);
+        embree::prepareMeshLight(&light);
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<float> U(0.0f, 1.0f);
+        for (int i = 0; i < 4096; ++i) points.push_back({2.0f * U(rng) - 1.0f, 1.99f * U(rng), 2.0f * U(rng) - 1.0f});
+    }
+};
+void meshLightSamples(benchmark::State& state, bool solidAngle) {
+    static CornellLight scenes[2] = {CornellLight(false), CornellLight(true)};
+    const CornellLight& c = scenes[solidAngle ? 1 : 0];
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> U(0.0f, 0.99999994f);
+    std::vector<glm::vec2> us(c.points.size());
+    for (auto& u : us) u = {U(rng), U(rng)};
+    float acc = 0.0f;
+    for (auto _ : state)
+        for (size_t i = 0; i < c.points.size(); ++i) {
+            embree::LightSample ls;
+            if (embree::sampleLight(c.light, c.points[i], glm::vec3(0, 1, 0), us[i], &ls)) acc += ls.pdf + ls.wi.x;
+        }
+    benchmark::DoNotOptimize(acc);
+    state.counters["Msamples/s"] = benchmark::Counter(double(c.points.size()) * state.iterations() * 1e-6,
+                                                      benchmark::Counter::kIsRate);
+}
+void BM_MeshLightSample(benchmark::State& state) { meshLightSamples(state, true); }
+void BM_MeshLightSample_baselineArea(benchmark::State& state) { meshLightSamples(state, false); }
+BENCHMARK(BM_MeshLightSample_baselineArea)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MeshLightSample)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

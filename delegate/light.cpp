@@ -234,4 +234,26 @@ void Light::finalize(RenderParam* renderParam) {
     param->markLightsDirty();
 }
 
+void prepareMeshLight(LightRecord* l) {
+    auto world = std::make_shared<std::vector<MeshLightTriangle>>();
+    if (l->mesh && l->meshTriangles) {
+        const GeometryRecord& g = *l->mesh;
+        world->reserve(l->meshTriangles->size());
+        for (uint32_t t : *l->meshTriangles) {
+            const glm::uvec3& tri = g.triangles[t];
+            MeshLightTriangle m;
+            m.a = glm::vec3(g.objectToWorld * glm::vec4(g.points[tri.x], 1.0f));
+            m.b = glm::vec3(g.objectToWorld * glm::vec4(g.points[tri.y], 1.0f));
+            m.c = glm::vec3(g.objectToWorld * glm::vec4(g.points[tri.z], 1.0f));
+            glm::vec3 n = glm::cross(m.b - m.a, m.c - m.a);
+            float len = glm::length(n);
+            // A zero-area triangle keeps a zero normal: the samplers reject it.
+            m.normal = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f);
+            m.area = 0.5f * len;
+            world->push_back(m);
+        }
+    }
+    l->meshWorld = std::move(world);
+}
+
 }  // namespace principled::embree

@@ -26,4 +26,9 @@ private:
     bool _registered = false;
 };
 
+/// Commit-time tables of mesh light l (kind Mesh, mesh and meshTriangles set): its emitting
+/// triangles in world space with their normals and areas (l->meshWorld), read by sampleLight()
+/// and meshLightPdf() instead of transforming the mesh's points per sample.
+void prepareMeshLight(LightRecord* l);
+
 }  // namespace principled::embree

@@ -97,20 +97,18 @@ constexpr size_t kSolidAngleMaxTriangles = 8;
 // precision and area sampling is as good (the 1/r^2 factor is nearly constant over the light);
 // above it a point is almost enclosed. The same test decides sampleLight() and the MIS pdf.
 constexpr float kMinSolidAngle = 1e-3f, kMaxSolidAngle = 6.2f;
-constexpr float kNearRadii = 4.0f;
+// Solid-angle sampling only within this many bounding radii of the light's centre. Measured
+// (branch lights): with 64 Owen-scrambled Sobol samples the area estimator's relative standard
+// deviation beyond 2 radii is <= 2 % at every elevation tried (15-90 degrees), and the Cornell
+// box's error against a 2048-spp reference is the same at 2 and 4 radii (full paths and direct
+// light only) while 2 costs 6.5 % less CPU; at 1 radius the direct-light error rises.
+constexpr float kNearRadii = 2.0f;
 
-void meshTriangleWorld(const LightRecord& l, size_t i, glm::vec3* a, glm::vec3* b, glm::vec3* c) {
-    const GeometryRecord& g = *l.mesh;
-    const glm::uvec3& t = g.triangles[(*l.meshTriangles)[i]];
-    *a = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.x], 1.0f));
-    *b = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.y], 1.0f));
-    *c = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.z], 1.0f));
-}
-
-// Solid angles of a small mesh light's triangles seen from p and their sum; returns 0 when the
-// light is sampled by area from p instead.
-float meshSolidAngles(const LightRecord& l, const glm::vec3& p, float* omegas) {
-    size_t n = l.meshTriangles->size();
+// The spherical triangles of a small mesh light's triangles seen from p and their total solid
+// angle; returns 0 when the light is sampled by area from p instead.
+float meshSphericalTriangles(const LightRecord& l, const glm::vec3& p, SphericalTriangle* tris) {
+    const std::vector<MeshLightTriangle>& world = *l.meshWorld;
+    size_t n = world.size();
     if (n > kSolidAngleMaxTriangles) return 0.0f;
     // Far from the light (beyond kNearRadii bounding radii) 1/r^2 and the cosine barely vary
     // over it, area sampling is nearly as good and costs no trigonometry: one distance test.
@@ -118,10 +116,8 @@ float meshSolidAngles(const LightRecord& l, const glm::vec3& p, float* omegas) {
     if (glm::dot(toC, toC) > kNearRadii * kNearRadii * l.radius * l.radius) return 0.0f;
     float total = 0.0f;
     for (size_t i = 0; i < n; ++i) {
-        glm::vec3 a, b, c;
-        meshTriangleWorld(l, i, &a, &b, &c);
-        omegas[i] = triangleSolidAngle(p, a, b, c);
-        total += omegas[i];
+        makeSphericalTriangle(p, world[i].a, world[i].b, world[i].c, &tris[i]);
+        total += tris[i].solidAngle;
     }
     return (total >= kMinSolidAngle && total <= kMaxSolidAngle) ? total : 0.0f;
 }
@@ -129,8 +125,8 @@ float meshSolidAngles(const LightRecord& l, const glm::vec3& p, float* omegas) {
 }  // namespace
 
 float meshLightPdf(const LightRecord& l, const glm::vec3& origin, float distance, float cosLight) {
-    float omegas[kSolidAngleMaxTriangles];
-    float total = l.solidAngleSampling ? meshSolidAngles(l, origin, omegas) : 0.0f;
+    SphericalTriangle tris[kSolidAngleMaxTriangles];
+    float total = l.solidAngleSampling ? meshSphericalTriangles(l, origin, tris) : 0.0f;
     if (total > 0.0f) return 1.0f / total;
     return toSolidAngle(1.0f / l.area, distance, std::abs(cosLight));
 }
@@ -244,22 +240,22 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             return out->pdf > 0.0f;
         }
         case LightRecord::Kind::Mesh: {
-            float omegas[kSolidAngleMaxTriangles];
-            if (float total = l.solidAngleSampling ? meshSolidAngles(l, p, omegas) : 0.0f; total > 0.0f) {
+            const std::vector<MeshLightTriangle>& world = *l.meshWorld;
+            SphericalTriangle tris[kSolidAngleMaxTriangles];
+            if (float total = l.solidAngleSampling ? meshSphericalTriangles(l, p, tris) : 0.0f; total > 0.0f) {
                 // Triangle i with probability omega_i / total (u.x reused inside the cell), then
                 // a uniform direction in its spherical triangle: pdf = 1 / total.
-                size_t n = l.meshTriangles->size(), i = 0;
+                size_t n = world.size(), i = 0;
                 float target = u.x * total, acc = 0.0f;
-                while (i + 1 < n && acc + omegas[i] <= target) acc += omegas[i++];
-                float ux = omegas[i] > 0.0f ? std::clamp((target - acc) / omegas[i], 0.0f, 1.0f) : 0.5f;
-                glm::vec3 a, b, c;
-                meshTriangleWorld(l, i, &a, &b, &c);
+                while (i + 1 < n && acc + tris[i].solidAngle <= target) acc += tris[i++].solidAngle;
+                float omega = tris[i].solidAngle;
+                float ux = omega > 0.0f ? std::clamp((target - acc) / omega, 0.0f, 1.0f) : 0.5f;
                 glm::vec3 wi;
-                if (!sampleSphericalTriangle(p, a, b, c, glm::vec2(ux, u.y), &wi)) return false;
-                glm::vec3 n3 = glm::cross(b - a, c - a);
-                float denom = glm::dot(wi, n3);
+                if (!sampleSphericalTriangle(tris[i], glm::vec2(ux, u.y), &wi)) return false;
+                const MeshLightTriangle& t = world[i];
+                float denom = glm::dot(wi, t.normal);
                 if (denom == 0.0f) return false;
-                float dist = glm::dot(a - p, n3) / denom;  // the triangle's plane along wi
+                float dist = glm::dot(t.a - p, t.normal) / denom;  // the triangle's plane along wi
                 if (!(dist > 0.0f) || !std::isfinite(dist)) return false;
                 out->wi = wi;
                 out->pdf = 1.0f / total;
@@ -270,26 +266,20 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             // Pick a triangle by area (u.x reused inside the chosen cell), then a uniform point
             // on it (Pharr et al. 2023, §6.5.4: b0 = 1 - sqrt(u0), b1 = v sqrt(u0)).
             const auto& cdf = *l.meshAreaCdf;
-            size_t n = l.meshTriangles->size();
+            size_t n = world.size();
             size_t i = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, u.x) - (cdf.begin() + 1));
             i = std::min(i, n - 1);
             float cell = cdf[i + 1] - cdf[i];
             float ux = cell > 0.0f ? std::clamp((u.x - cdf[i]) / cell, 0.0f, 1.0f) : 0.5f;
-            const GeometryRecord& g = *l.mesh;
-            const glm::uvec3& t = g.triangles[(*l.meshTriangles)[i]];
-            glm::vec3 a = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.x], 1.0f));
-            glm::vec3 b = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.y], 1.0f));
-            glm::vec3 c = glm::vec3(g.objectToWorld * glm::vec4(g.points[t.z], 1.0f));
+            const MeshLightTriangle& t = world[i];
+            if (!(t.area > 0.0f)) return false;
             float su = std::sqrt(ux);
-            glm::vec3 q = (1.0f - su) * a + (u.y * su) * b + ((1.0f - u.y) * su) * c;
-            glm::vec3 n3 = glm::cross(b - a, c - a);
-            float len = glm::length(n3);
-            if (!(len > 0.0f)) return false;
+            glm::vec3 q = (1.0f - su) * t.a + (u.y * su) * t.b + ((1.0f - u.y) * su) * t.c;
             glm::vec3 toQ = q - p;
             float dist = glm::length(toQ);
             if (!(dist > 0.0f)) return false;
             out->wi = toQ / dist;
-            float cosL = std::abs(glm::dot(out->wi, n3 / len));
+            float cosL = std::abs(glm::dot(out->wi, t.normal));
             out->pdf = toSolidAngle(1.0f / l.area, dist, cosL);
             out->distance = dist;
             out->Li = l.radiance;

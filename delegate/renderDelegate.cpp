@@ -275,6 +275,7 @@ void EmbreeRenderDelegate::buildMeshLights() {
         }
         l.meshTriangles = std::move(tris);
         l.meshAreaCdf = std::move(cdf);
+        prepareMeshLight(&l);
         l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
         _meshLights.push_back(std::move(l));
         _meshLightRecords.push_back(r);

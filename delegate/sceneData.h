@@ -92,6 +92,15 @@ struct EnvironmentMap {
     glm::vec3 scale{1.0f};          ///< color * intensity * 2^exposure
 };
 
+/// One emitting triangle of a mesh light in world space, with its unit normal ((b - a) x (c - a)
+/// normalised) and area: computed once at commit (prepareMeshLight, light.cpp) so sampling does
+/// not transform three points per triangle per sample.
+struct MeshLightTriangle {
+    glm::vec3 a{0.0f}, b{0.0f}, c{0.0f};
+    glm::vec3 normal{0.0f};
+    float area = 0.0f;
+};
+
 struct LightRecord {
     enum class Kind : uint8_t { Distant, Dome, Sphere, Rect, Disk, Cylinder, Mesh };
     Kind kind = Kind::Distant;
@@ -118,6 +127,8 @@ struct LightRecord {
     std::shared_ptr<const std::vector<uint32_t>> meshTriangles;
     std::shared_ptr<const std::vector<float>> meshAreaCdf;  ///< meshTriangles.size() + 1
     bool solidAngleSampling = true;  ///< small mesh lights: sample by solid angle (lightSampling.cpp)
+    /// meshTriangles in world space, same order (prepareMeshLight, light.cpp).
+    std::shared_ptr<const std::vector<MeshLightTriangle>> meshWorld;
 };
 
 /// Everything a render pass reads: the committed top-level scene and the tables the records

@@ -6,9 +6,12 @@
 #include <cmath>
 #include <vector>
 
+#include "delegate/light.h"
+#include "delegate/lightSampling.h"
 #include "delegate/renderBuffer.h"
 #include "delegate/renderDelegate.h"
 #include "delegate/renderPass.h"
+#include "delegate/sampler.h"
 #include "tests/support/seedStatistics.h"
 #include "tests/support/testSceneDelegate.h"
 
@@ -72,4 +75,42 @@ TEST(MeshLightSampling, SolidAngleAndAreaSamplingAgreeInMean) {
                                             << solid.mean << " +- " << solid.se;
     // The point of solid-angle sampling: lower per-pixel variance this close to the emitter.
     EXPECT_LT(solid.pixelVar, area.pixelVar) << "solid angle " << solid.pixelVar << ", area " << area.pixelVar;
+}
+
+// A mesh light record built directly: a 2 x 1 quad (two triangles), moved by a transform. Every
+// light sample lands on the quad at the distance sampleLight() reports, and its pdf is the one
+// meshLightPdf() gives the same direction, near the light (solid angle) and far (area).
+TEST(MeshLightSampling, SamplesLandOnTheLightWithTheIntersectionPdf) {
+    embree::GeometryRecord g;
+    g.points = {{-1, -0.5f, 0}, {1, -0.5f, 0}, {1, 0.5f, 0}, {-1, 0.5f, 0}};
+    g.triangles = {{0, 1, 2}, {0, 2, 3}};
+    g.objectToWorld = glm::mat4(glm::vec4(0, 1, 0, 0), glm::vec4(-1, 0, 0, 0), glm::vec4(0, 0, 1, 0),
+                                glm::vec4(0.5f, 0.25f, 2.0f, 1));  // rotate 90 degrees about z, translate
+    embree::LightRecord l;
+    l.kind = embree::LightRecord::Kind::Mesh;
+    l.radiance = glm::vec3(1.0f);
+    l.mesh = &g;
+    l.meshTriangles = std::make_shared<std::vector<uint32_t>>(std::vector<uint32_t>{0, 1});
+    l.meshAreaCdf = std::make_shared<std::vector<float>>(std::vector<float>{0.0f, 0.5f, 1.0f});
+    l.area = 2.0f;
+    l.center = glm::vec3(0.5f, 0.25f, 2.0f);
+    l.radius = std::sqrt(1.25f);
+    embree::prepareMeshLight(&l);
+    ASSERT_EQ(l.meshWorld->size(), 2u);
+    EXPECT_NEAR((*l.meshWorld)[0].area + (*l.meshWorld)[1].area, 2.0f, 1e-5f);
+    // World corners: x in [0.5 - 0.5, 0.5 + 0.5], y in [0.25 - 1, 0.25 + 1], z = 2.
+    for (glm::vec3 p : {glm::vec3(0.3f, 0.1f, 1.5f), glm::vec3(2.0f, -1.0f, 0.5f), glm::vec3(0.5f, 0.2f, 2.5f),
+                        glm::vec3(1.0f, 2.0f, -30.0f)}) {  // near below, near oblique, above, far
+        for (uint32_t i = 0; i < 256; ++i) {
+            embree::Sampler s(embree::SamplerKind::Sobol, 5, 0, i);
+            embree::LightSample ls;
+            ASSERT_TRUE(embree::sampleLight(l, p, glm::vec3(0, 0, 1), s.next2D(), &ls));
+            glm::vec3 q = p + ls.distance * ls.wi;
+            EXPECT_NEAR(q.z, 2.0f, 1e-4f);
+            EXPECT_TRUE(q.x >= -1e-4f && q.x <= 1.0f + 1e-4f && q.y >= -0.75f - 1e-4f && q.y <= 1.25f + 1e-4f)
+                << q.x << " " << q.y;
+            float pdf = embree::meshLightPdf(l, p, ls.distance, ls.wi.z);
+            EXPECT_NEAR(ls.pdf, pdf, 1e-4f * pdf);
+        }
+    }
 }

@@ -135,3 +135,96 @@ TEST(SphericalTriangle, SamplesFallInSubTrianglesInProportionToTheirSolidAngle) 
         EXPECT_LT(chi2, 13.8) << "p = 0.001 critical value for 2 dof";  // chi2(2) 99.9 %
     }
 }
+
+// The float solid angle (unit-vector form of Van Oosterom & Strackee 1983, eq. 8) against the
+// same formula evaluated in double on the original, unnormalised vectors.
+TEST(SphericalTriangle, SolidAngleMatchesADoublePrecisionReference) {
+    auto reference = [](const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+        glm::dvec3 A = a - p, B = b - p, C = c - p;
+        double la = glm::length(A), lb = glm::length(B), lc = glm::length(C);
+        double num = std::abs(glm::dot(A, glm::cross(B, C)));
+        double den = la * lb * lc + glm::dot(A, B) * lc + glm::dot(A, C) * lb + glm::dot(B, C) * la;
+        return 2.0 * std::atan2(num, den);
+    };
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> U(-2.0f, 2.0f);
+    for (int i = 0; i < 2000; ++i) {
+        glm::vec3 p(U(rng), U(rng), U(rng)), a(U(rng), U(rng), U(rng)), b(U(rng), U(rng), U(rng)),
+            c(U(rng), U(rng), U(rng));
+        double ref = reference(p, a, b, c);
+        EXPECT_NEAR(triangleSolidAngle(p, a, b, c), ref, 2e-5 * std::max(1.0, ref)) << "triangle " << i;
+    }
+    for (const Case& k : kCases) {
+        double ref = reference(k.p, k.a, k.b, k.c);
+        EXPECT_NEAR(triangleSolidAngle(k.p, k.a, k.b, k.c), ref, 1e-5 * ref);
+    }
+}
+
+// The pdf 1 / Omega integrates to 1 over the triangle: the fraction of directions uniform over
+// the whole sphere that hit the triangle, times 4 pi, estimates the same Omega.
+TEST(SphericalTriangle, PdfIntegratesToOneOverTheTriangle) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    for (const Case& k : kCases) {
+        double omega = triangleSolidAngle(k.p, k.a, k.b, k.c);
+        if (omega < 0.01) continue;  // the far case would need ~10^8 directions
+        const int N = 400000;
+        int hitCount = 0;
+        for (int i = 0; i < N; ++i) {
+            // Uniform on the sphere: z uniform in [-1, 1], phi uniform (Archimedes).
+            double z = 2.0 * U(rng) - 1.0, phi = 2.0 * kPi * U(rng), r = std::sqrt(std::max(0.0, 1.0 - z * z));
+            glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), z);
+            hitCount += hits(glm::dvec3(k.p), d, glm::dvec3(k.a), glm::dvec3(k.b), glm::dvec3(k.c));
+        }
+        double f = double(hitCount) / N, se = std::sqrt(f * (1.0 - f) / N);
+        double integral = 4.0 * kPi * f / omega;  // integral of the pdf 1 / Omega over the triangle
+        EXPECT_NEAR(integral, 1.0, 5.0 * 4.0 * kPi * se / omega + 2e-3) << "omega " << omega;
+    }
+}
+
+// Degenerate triangles: zero area, a repeated vertex, seen edge-on, the point on a vertex, and
+// non-finite input. No sample, no NaN, the output direction untouched.
+TEST(SphericalTriangle, DegenerateTrianglesReturnFalseWithoutNaN) {
+    const float nan = std::nanf(""), inf = INFINITY;
+    const Case degenerate[] = {
+        {{0, 0, 0}, {-1, 0, 1}, {0, 0, 1}, {1, 0, 1}},     // collinear vertices
+        {{0, 0, 0}, {1, 1, 1}, {1, 1, 1}, {0, 1, 1}},      // repeated vertex
+        {{0, 0, 0}, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}},      // one point
+        {{0, 0, 1}, {2, -1, 1}, {3, -1, 1}, {3, 1, 1}},    // edge-on: p in the triangle's plane
+        {{1, 1, 1}, {1, 1, 1}, {2, 1, 1}, {1, 2, 1}},      // p on a vertex
+        {{0, 0, 0}, {-1, -1, 1}, {1, -1, 1}, {0, 0, 0}},   // p on a vertex (last)
+        {{0, 0, 0}, {nan, -1, 1}, {1, -1, 1}, {1, 1, 1}},  // NaN vertex
+        {{0, 0, 0}, {inf, -1, 1}, {1, -1, 1}, {1, 1, 1}},  // infinite vertex
+    };
+    int index = 0;
+    for (const Case& k : degenerate) {
+        SphericalTriangle t;
+        EXPECT_FALSE(makeSphericalTriangle(k.p, k.a, k.b, k.c, &t)) << "case " << index;
+        float omega = triangleSolidAngle(k.p, k.a, k.b, k.c);
+        EXPECT_TRUE(std::isfinite(omega) && omega >= 0.0f) << "case " << index << ": " << omega;
+        for (glm::vec2 u : {glm::vec2(0.0f), glm::vec2(0.5f), glm::vec2(0.99999994f)}) {
+            glm::vec3 d(7.0f);
+            EXPECT_FALSE(sampleSphericalTriangle(k.p, k.a, k.b, k.c, u, &d)) << "case " << index;
+            EXPECT_FALSE(sampleSphericalTriangle(t, u, &d)) << "case " << index;
+            EXPECT_EQ(d, glm::vec3(7.0f)) << "case " << index;
+        }
+        ++index;
+    }
+}
+
+// The extremes of u land on the triangle's vertices and edges, not outside it.
+TEST(SphericalTriangle, CornerSamplesStayInsideTheTriangle) {
+    for (const Case& k : kCases) {
+        SphericalTriangle t;
+        ASSERT_TRUE(makeSphericalTriangle(k.p, k.a, k.b, k.c, &t));
+        for (float ux : {0.0f, 1e-7f, 0.5f, 0.99999994f, 1.0f})
+            for (float uy : {0.0f, 1e-7f, 0.5f, 0.99999994f, 1.0f}) {
+                glm::vec3 d;
+                ASSERT_TRUE(sampleSphericalTriangle(t, {ux, uy}, &d));
+                ASSERT_TRUE(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z));
+                EXPECT_NEAR(glm::length(d), 1.0f, 1e-5f);
+                EXPECT_TRUE(hits(glm::dvec3(k.p), glm::dvec3(d), glm::dvec3(k.a), glm::dvec3(k.b), glm::dvec3(k.c)))
+                    << "u = " << ux << ", " << uy;
+            }
+    }
+}

@@ -100,6 +100,23 @@ class TextureWriter:
         return path
 
 
+# Image Texture node extension -> UsdUVTexture wrapS/wrapT. UsdUVTexture's own fallback
+# (useMetadata without metadata) is black, which darkens a border half a texel wide on every
+# repeating texture and turns a tangent-space normal map's edge into (-1, -1, -1).
+WRAP = {"REPEAT": "repeat", "EXTEND": "clamp", "CLIP": "black", "MIRROR": "mirror"}
+
+
+def texture_wrap(node):
+    """The wrap token of an Image Texture node (Blender's default extension is REPEAT)."""
+    return WRAP.get(getattr(node, "extension", "REPEAT"), "repeat")
+
+
+def link_signature(links):
+    """What a change of needs a rebuild (set_material_texture): the linked inputs and their
+    wrap modes."""
+    return tuple(sorted((k, v[3]) for k, v in links.items()))
+
+
 def principled_bsdf(material):
     if material is None or not material.use_nodes or material.node_tree is None:
         return None
@@ -116,13 +133,14 @@ def principled_bsdf(material):
 def material_params(material, textures):
     """Principled BSDF (v1, Blender 3.4) -> UsdPreviewSurface + Disney inputs.
 
-    Returns (inputs: {name: float | [3 floats]}, links: {input: (file, channel, extra)},
+    Returns (inputs: {name: float | [3 floats]}, links: {input: (file, channel, extra, wrap)},
     warnings: [str]). Mapping: Base Color -> diffuseColor; Metallic, Roughness,
     Anisotropic, Sheen, Specular, IOR unchanged; Specular Tint -> specularTint; Sheen Tint ->
     sheenTint; Clearcoat -> clearcoat; Clearcoat Roughness r -> clearcoatGloss
     g = (0.1 - r^2)/0.099 (Cycles alpha = r^2, Disney alpha = mix(0.1, 0.001, g));
     Transmission -> specTrans; Emission * Emission Strength -> emissiveColor; Alpha ->
     opacity; a Normal Map node fed by an Image Texture -> the tangent-space normal input.
+    Every texture keeps its node's extension as wrapS/wrapT (texture_wrap).
     """
     warnings = []
     inputs = {}
@@ -162,7 +180,7 @@ def material_params(material, textures):
     inputs["diffuseColor"] = value("Base Color")[:3]
     tex = image_link("Base Color")
     if tex is not None:
-        links["diffuseColor"] = (textures.file_for(tex.image), "rgb", None)
+        links["diffuseColor"] = (textures.file_for(tex.image), "rgb", None, texture_wrap(tex))
     for blender, usd in (("Metallic", "metallic"), ("Roughness", "roughness"),
                          ("Specular", "specular"), ("Specular Tint", "specularTint"),
                          ("Anisotropic", "anisotropic"), ("Sheen", "sheen"),
@@ -172,7 +190,7 @@ def material_params(material, textures):
         inputs[usd] = float(value(blender))
         tex = image_link(blender)
         if tex is not None:
-            links[usd] = (textures.file_for(tex.image), "r", None)
+            links[usd] = (textures.file_for(tex.image), "r", None, texture_wrap(tex))
     r = float(value("Clearcoat Roughness"))
     inputs["clearcoatGloss"] = min(1.0, max(0.0, (0.1 - r * r) / 0.099))
     strength = float(value("Emission Strength"))
@@ -184,7 +202,8 @@ def material_params(material, textures):
             if tex is not None and tex.type == "TEX_IMAGE" and tex.image is not None and \
                     image_file(tex.image):
                 links["normal"] = (textures.file_for(tex.image), "rgb",
-                                   float(nnode.inputs["Strength"].default_value))
+                                   float(nnode.inputs["Strength"].default_value),
+                                   texture_wrap(tex))
             else:
                 warnings.append(f"material '{material.name}': Normal Map without an Image "
                                 "Texture; ignored")
@@ -471,9 +490,11 @@ class SceneExport:
         b.add_material(path)
         for k, v in inputs.items():
             b.set_material_input(path, k, v)
-        for k, (file, channel, strength) in links.items():
+        for k, (file, channel, strength, wrap) in links.items():
             b.set_material_texture(path, k, file, channel)
             tex = f"{path}/{k}Texture"
+            b.set_attribute_string(tex, "token", "inputs:wrapS", wrap)
+            b.set_attribute_string(tex, "token", "inputs:wrapT", wrap)
             if k == "normal":
                 s = 1.0 if strength is None else strength
                 # Tangent-space map stored as 0.5 + 0.5 n: scale/bias to [-1, 1], raw data.
@@ -482,7 +503,7 @@ class SceneExport:
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
             elif k != "diffuseColor":
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
-        self.materials[key] = (path, tuple(sorted(links)))
+        self.materials[key] = (path, link_signature(links))
         return path
 
     def build(self):

@@ -140,7 +140,7 @@ class Session:
                     continue
                 path, sig = entry
                 inputs, links, _ = export.material_params(idd.original, ex.textures)
-                if tuple(sorted(links)) != sig:
+                if export.link_signature(links) != sig:
                     rebuild = True
                     continue
                 for k, v in inputs.items():

@@ -1,0 +1,142 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Headless Blender regression tests for conversions found by bench/blender_parity.py.
+
+blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
+    [--module-dir build/lib/python]
+
+- Texture wrap: an Image Texture node's extension (REPEAT by default) becomes UsdUVTexture
+  wrapS/wrapT. Without it UsdUVTexture falls back to black, so bilinear lookups within half a
+  texel of a UV edge blend with black: a 4x4 texture on a plane rendered ~25% darker in a band
+  an eighth of the plane wide, and a tangent-space normal map decoded black as (-1, -1, -1)
+  there (the parity bench's normal-map and checker scenes). Rendered check: two planes under
+  an overhead delta sun (strength pi) seen by an overhead orthographic camera, one with a 4x4
+  base-colour texture, one with a flat 4x4 normal map; every pixel of each plane, edges
+  included, must have the Lambert radiance albedo (Cycles gives exactly that).
+Exit code 0 = pass.
+"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import test_render as tr  # noqa: E402  (argument parsing, module path, check())
+from principled_blender import export, session  # noqa: E402
+
+check = tr.check
+W, H = 100, 50
+TEXEL = 200
+ALBEDO = ((TEXEL / 255 + 0.055) / 1.055) ** 2.4
+
+
+def render_combined(scene):
+    captured = {}
+    session.CAPTURE = captured
+    try:
+        bpy.ops.render.render()
+    finally:
+        session.CAPTURE = None
+    return captured["Combined"].reshape(H, W, 4)[::-1]  # top row first
+
+
+def solid_image(name, rgb8, non_color=False):
+    img = bpy.data.images.new(name, 4, 4, alpha=False)
+    if non_color:  # before the pixels: a colour-space change regenerates a generated image
+        img.colorspace_settings.name = "Non-Color"
+    px = np.ones((4, 4, 4), np.float32)
+    px[:, :, :3] = np.array(rgb8, np.float32) / 255.0
+    img.pixels.foreach_set(px.ravel())
+    return img
+
+
+def build():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 8
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    mats = []
+    for i, kind in enumerate(("color", "normal")):
+        bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2 + 2.4 * i, 0, 0))
+        plane = bpy.context.active_object
+        m = bpy.data.materials.new(kind)
+        m.use_nodes = True
+        nt = m.node_tree
+        b = nt.nodes["Principled BSDF"]
+        b.inputs["Specular"].default_value = 0.0
+        b.inputs["Roughness"].default_value = 1.0
+        tex = nt.nodes.new("ShaderNodeTexImage")
+        if kind == "color":
+            tex.image = solid_image("Grey", (TEXEL, TEXEL, TEXEL))
+            nt.links.new(tex.outputs["Color"], b.inputs["Base Color"])
+        else:
+            b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+            tex.image = solid_image("Flat", (128, 128, 255), non_color=True)
+            nm = nt.nodes.new("ShaderNodeNormalMap")
+            nt.links.new(tex.outputs["Color"], nm.inputs["Color"])
+            nt.links.new(nm.outputs["Normal"], b.inputs["Normal"])
+        plane.data.materials.append(m)
+        mats.append(m)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    sun = bpy.context.active_object
+    sun.data.energy = math.pi
+    sun.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0  # 20 px per unit: each plane is 40 x 40 px
+    scene.camera = cam
+    return scene, mats
+
+
+def test_wrap_tokens(mats):
+    for ext, token in (("REPEAT", "repeat"), ("EXTEND", "clamp"), ("CLIP", "black")):
+        node = mats[0].node_tree.nodes["Image Texture"]
+        node.extension = ext
+        _inputs, links, _w = export.material_params(mats[0], export.TextureWriter(
+            os.path.join(bpy.app.tempdir or "/tmp", "principled-parity-test")))
+        got = links["diffuseColor"][3] if len(links["diffuseColor"]) > 3 else None
+        check(got == token, f"extension {ext} -> wrap '{token}' "
+              f"({got})")
+    mats[0].node_tree.nodes["Image Texture"].extension = "REPEAT"
+
+
+def test_render_edges(scene):
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    # Plane i spans x in [-2.2, -0.2] / [0.2, 2.2], y in [-1, 1]: pixels 6..46 / 54..94, 5..45.
+    for name, x0 in (("base-colour texture", 6), ("normal map", 54)):
+        inner = img[6:44, x0 + 1:x0 + 39]   # one pixel in from the edges (no partial coverage)
+        ring = np.concatenate([inner[:4].ravel(), inner[-4:].ravel(), inner[:, :4].ravel(),
+                               inner[:, -4:].ravel()])
+        centre = inner[10:-10, 10:-10]
+        check(abs(centre.mean() / ALBEDO - 1) < 0.02,
+              f"{name}: centre radiance {centre.mean():.4f} = albedo {ALBEDO:.4f}")
+        check(abs(ring.mean() / ALBEDO - 1) < 0.02 and ring.min() > 0.95 * ALBEDO,
+              f"{name}: edge band (4 px, half a texel) mean {ring.mean():.4f}, min "
+              f"{ring.min():.4f} = albedo {ALBEDO:.4f} (wrap repeat, not black)")
+
+
+def main():
+    tr.principled_blender.register()
+    try:
+        scene, mats = build()
+        test_render_edges(scene)
+        test_wrap_tokens(mats)
+    except Exception:
+        import traceback
+
+        traceback.print_exc()
+        tr.failures.append("exception")
+    print(f"{len(tr.failures)} failures" if tr.failures else "all passed")
+    sys.exit(1 if tr.failures else 0)
+
+
+main()

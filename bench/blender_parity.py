@@ -306,6 +306,23 @@ def s_emission_mesh(sc):
     return {"box": (20, 50, 64, 100)}  # the lit sphere / floor left of the emitter
 
 
+def s_emission_shader(sc):
+    """An Emission shader node (not the Principled BSDF's Emission) on a mesh: the only light."""
+    camera(sc)
+    plane(mat=material("Floor", (0.8, 0.8, 0.8), 0.8))
+    lamp = bpy.data.materials.new("EmissionShader")
+    lamp.use_nodes = True
+    nt = lamp.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    em = nt.nodes.new("ShaderNodeEmission")
+    em.inputs["Color"].default_value = (0.3, 0.6, 1.0, 1.0)
+    em.inputs["Strength"].default_value = 8.0
+    nt.links.new(em.outputs["Emission"], nt.nodes["Material Output"].inputs["Surface"])
+    sphere(0.5, (0.7, 0.3, 0.5), lamp)
+    cube(0.8, (-0.8, -0.2, 0.4), material("Box", (0.8, 0.8, 0.8), 0.5))
+    return {"box": (20, 50, 64, 100)}
+
+
 def s_world_color(sc):
     camera(sc)
     plane(mat=material("Floor", (0.8, 0.8, 0.8), 0.8))
@@ -415,7 +432,8 @@ def s_subsurf_custom(sc):
 SCENES = [
     ("glass", s_glass), ("checker_point", s_checker), ("area_square", s_area_square),
     ("area_disk_metal", s_area_disk_metal), ("spot", s_spot),
-    ("emission_mesh", s_emission_mesh), ("world_color", s_world_color),
+    ("emission_mesh", s_emission_mesh), ("emission_shader", s_emission_shader),
+    ("world_color", s_world_color),
     ("world_hdr", s_world_hdr), ("normal_map", s_normal_map), ("normal_tilt", s_normal_tilt), ("alpha", s_alpha),
     ("subsurf_custom", s_subsurf_custom),
 ]

@@ -12,6 +12,10 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
   an overhead delta sun (strength pi) seen by an overhead orthographic camera, one with a 4x4
   base-colour texture, one with a flat 4x4 normal map; every pixel of each plane, edges
   included, must have the Lambert radiance albedo (Cycles gives exactly that).
+- Emission shader: an Emission node alone on the Material Output (not the Principled BSDF's
+  Emission input) is a pure emitter in Cycles; it was translated as the viewport display
+  colour (no emission: the parity bench's emission_shader scene rendered black, -100%).
+  Rendered check: the emitter's pixels have radiance colour x strength, and it lights a plane.
 Exit code 0 = pass.
 """
 import math
@@ -124,12 +128,51 @@ def test_render_edges(scene):
               f"{ring.min():.4f} = albedo {ALBEDO:.4f} (wrap repeat, not black)")
 
 
+def test_emission_shader():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 8
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    m = bpy.data.materials.new("Lamp")
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    em = nt.nodes.new("ShaderNodeEmission")
+    color, strength = (0.25, 0.5, 1.0), 2.0
+    em.inputs["Color"].default_value = (*color, 1.0)
+    em.inputs["Strength"].default_value = strength
+    nt.links.new(em.outputs["Emission"], nt.nodes["Material Output"].inputs["Surface"])
+    bpy.context.active_object.data.materials.append(m)
+    inputs, _links, warns = export.material_params(m, None)
+    check(inputs.get("emissiveColor") == [c * strength for c in color] and not warns,
+          f"Emission shader -> emissiveColor {inputs.get('emissiveColor')} ({warns})")
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    img = render_combined(scene)[:, :, :3]
+    centre = img[15:35, 16:36].reshape(-1, 3).mean(axis=0)
+    want = np.array(color) * strength
+    check(np.allclose(centre, want, rtol=0.01),
+          f"Emission shader: emitter radiance {centre.round(4).tolist()} = {want.tolist()}")
+
+
 def main():
     tr.principled_blender.register()
     try:
         scene, mats = build()
         test_render_edges(scene)
         test_wrap_tokens(mats)
+        test_emission_shader()
     except Exception:
         import traceback
 

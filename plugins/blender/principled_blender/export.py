@@ -117,7 +117,8 @@ def link_signature(links):
     return tuple(sorted((k, v[3]) for k, v in links.items()))
 
 
-def principled_bsdf(material):
+def surface_node(material):
+    """The node feeding the active Material Output's Surface, or None."""
     if material is None or not material.use_nodes or material.node_tree is None:
         return None
     out = None
@@ -126,8 +127,26 @@ def principled_bsdf(material):
             out = n
     if out is None:
         return None
-    node = _linked_node(out.inputs["Surface"])
+    return _linked_node(out.inputs["Surface"])
+
+
+def principled_bsdf(material):
+    node = surface_node(material)
     return node if node is not None and node.type == "BSDF_PRINCIPLED" else None
+
+
+def emission_params(node, material_name, warnings):
+    """An Emission shader alone on the output: Cycles renders a pure emitter (radiance colour x
+    strength, both sides) that reflects nothing. principled: emissiveColor, black diffuse,
+    specular 0, roughness 1 (Disney keeps a faint grazing Schlick lobe at specular 0)."""
+    for name in ("Color", "Strength"):
+        if node.inputs[name].is_linked:
+            warnings.append(f"material '{material_name}': Emission {name} is linked; using the "
+                            "socket value")
+    strength = float(node.inputs["Strength"].default_value)
+    color = [float(c) * strength for c in node.inputs["Color"].default_value[:3]]
+    return {"diffuseColor": [0.0, 0.0, 0.0], "specular": 0.0, "roughness": 1.0,
+            "metallic": 0.0, "emissiveColor": color}
 
 
 def material_params(material, textures):
@@ -149,9 +168,12 @@ def material_params(material, textures):
         return {"diffuseColor": [0.8, 0.8, 0.8], "roughness": 0.5}, links, warnings
     bsdf = principled_bsdf(material)
     if bsdf is None:
+        node = surface_node(material)
+        if node is not None and node.type == "EMISSION":
+            return emission_params(node, material.name, warnings), links, warnings
         c = list(material.diffuse_color)[:3]
-        warnings.append(f"material '{material.name}': no Principled BSDF on the output; "
-                        "using its viewport display color")
+        warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
+                        "output; using its viewport display color")
         return {"diffuseColor": c, "roughness": float(material.roughness),
                 "metallic": float(material.metallic)}, links, warnings
     I = bsdf.inputs

@@ -183,8 +183,8 @@ def image_texture_node(mat, image, socket="Base Color", interpolation="Linear"):
 
 
 def write_png(path, rgb8):
-    """Minimal PNG writer (8-bit RGB, rows top first)."""
-    h, w, _ = rgb8.shape
+    """Minimal PNG writer (8-bit RGB or RGBA, rows top first)."""
+    h, w, nc = rgb8.shape
     raw = b"".join(b"\x00" + rgb8[y].tobytes() for y in range(h))
 
     def chunk(t, d):
@@ -192,7 +192,7 @@ def write_png(path, rgb8):
         return c + struct.pack(">I", zlib.crc32(t + d) & 0xFFFFFFFF)
 
     with open(path, "wb") as f:
-        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2 if nc == 3 else 6, 0, 0, 0))
                 + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
@@ -399,6 +399,29 @@ def s_alpha(sc):
     return {"box": (40, 30, 88, 80)}  # the half-transparent plane
 
 
+def s_alpha_texture(sc):
+    """A cut-out 'leaf': RGBA PNG (green disc, alpha 0 outside, 0.5 in a ring) whose Alpha
+    output feeds the Principled Alpha, above a grey floor under a sun."""
+    camera(sc, (0, -6, 4), (0, 0, 0.5))
+    n = 64
+    y, x = np.mgrid[0:n, 0:n]
+    r = np.hypot(x + 0.5 - n / 2, y + 0.5 - n / 2) / (n / 2)
+    img = np.zeros((n, n, 4), np.uint8)
+    img[..., :3] = (60, 170, 50)
+    img[..., 3] = np.where(r < 0.6, 255, np.where(r < 0.9, 128, 0))
+    path = os.path.join(OUT, "leaf.png")
+    write_png(path, img)
+    m = material("Leaf", rough=0.6)
+    tex = image_texture_node(m, bpy.data.images.load(path))
+    m.node_tree.links.new(tex.outputs["Alpha"], m.node_tree.nodes["Principled BSDF"].inputs["Alpha"])
+    plane(6.0, mat=material("Floor", (0.6, 0.6, 0.6), 0.7))
+    plane(2.5, (0, 0, 1.2), m, rot=(math.radians(60), 0, 0))
+    light(sc, "SUN", rot=(math.radians(30), 0, math.radians(20)), energy=3.0,
+          angle=math.radians(2))
+    world_color(sc, (0.1, 0.1, 0.1))
+    return {"box": (40, 20, 88, 75)}
+
+
 def s_subsurf_custom(sc):
     camera(sc, (0, -6, 3), (0, 0, 0.8))
     plane(mat=material("Floor", (0.6, 0.6, 0.6), 0.7))
@@ -435,6 +458,7 @@ SCENES = [
     ("emission_mesh", s_emission_mesh), ("emission_shader", s_emission_shader),
     ("world_color", s_world_color),
     ("world_hdr", s_world_hdr), ("normal_map", s_normal_map), ("normal_tilt", s_normal_tilt), ("alpha", s_alpha),
+    ("alpha_texture", s_alpha_texture),
     ("subsurf_custom", s_subsurf_custom),
 ]
 

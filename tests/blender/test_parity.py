@@ -16,6 +16,10 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
   Emission input) is a pure emitter in Cycles; it was translated as the viewport display
   colour (no emission: the parity bench's emission_shader scene rendered black, -100%).
   Rendered check: the emitter's pixels have radiance colour x strength, and it lights a plane.
+- Alpha from an Image Texture: Principled Alpha fed by the Image Texture's Alpha output reads
+  the image's alpha (it read the red channel: an opaque white texel with alpha 0.25 rendered
+  fully opaque). Generated/packed images are written as PPM (no alpha), so their alpha goes to
+  a PGM of its own. Rendered check: the plane's radiance is alpha x albedo over black.
 Exit code 0 = pass.
 """
 import math
@@ -166,6 +170,50 @@ def test_emission_shader():
           f"Emission shader: emitter radiance {centre.round(4).tolist()} = {want.tolist()}")
 
 
+def test_alpha_texture():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 64
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    img = bpy.data.images.new("Leaf", 4, 4, alpha=True)
+    px = np.ones((4, 4, 4), np.float32)
+    px[:, :, 3] = 0.25
+    img.pixels.foreach_set(px.ravel())
+    m = bpy.data.materials.new("Leaf")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    nt.links.new(tex.outputs["Alpha"], b.inputs["Alpha"])
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    centre = img[7:43, 8:44].mean()
+    want = 0.25 * ALBEDO
+    check(abs(centre / want - 1) < 0.05,
+          f"Alpha from an Image Texture's Alpha output: radiance {centre:.4f} = 0.25 x albedo "
+          f"{want:.4f}")
+
+
 def main():
     tr.principled_blender.register()
     try:
@@ -173,6 +221,7 @@ def main():
         test_render_edges(scene)
         test_wrap_tokens(mats)
         test_emission_shader()
+        test_alpha_texture()
     except Exception:
         import traceback
 

@@ -38,6 +38,16 @@ def _socket_value(sock):
         return float(v)
 
 
+def _linked_socket(sock):
+    """The output socket feeding sock (reroutes skipped), or None."""
+    if not sock.is_linked:
+        return None
+    link = sock.links[0]
+    while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
+        link = link.from_node.inputs[0].links[0]
+    return link.from_socket
+
+
 def _linked_node(sock):
     if not sock.is_linked:
         return None
@@ -72,6 +82,25 @@ class TextureWriter:
             path = self._write_pixels(image)
         self.files[key] = path
         return path
+
+    def alpha_file_for(self, image):
+        """(file, channel) giving the image's alpha: its own file's 'a' channel, else a PGM of
+        the alpha written from the pixels (PPM/PFM have no alpha), read as its 'r'."""
+        path = self.file_for(image)
+        if not path.endswith((".ppm", ".pfm")):
+            return path, "a"
+        key = image.name + "\0alpha"
+        if key not in self.files:
+            w, h = image.size
+            px = np.empty(w * h * 4, np.float32)
+            image.pixels.foreach_get(px)
+            a = px.reshape(h, w, 4)[::-1, :, 3]
+            out = os.path.join(self.directory, usd_name(image.name, "Image") + "_alpha.pgm")
+            with open(out, "wb") as f:
+                f.write(b"P5\n%d %d\n255\n" % (w, h))
+                f.write(np.clip(np.round(a * 255.0), 0, 255).astype(np.uint8).tobytes())
+            self.files[key] = out
+        return self.files[key], "r"
 
     def _write_pixels(self, image):
         w, h = image.size
@@ -159,7 +188,9 @@ def material_params(material, textures):
     g = (0.1 - r^2)/0.099 (Cycles alpha = r^2, Disney alpha = mix(0.1, 0.001, g));
     Transmission -> specTrans; Emission * Emission Strength -> emissiveColor; Alpha ->
     opacity; a Normal Map node fed by an Image Texture -> the tangent-space normal input.
-    Every texture keeps its node's extension as wrapS/wrapT (texture_wrap).
+    Every texture keeps its node's extension as wrapS/wrapT (texture_wrap). A scalar input fed
+    by an Image Texture's Alpha output reads the image's alpha (TextureWriter.alpha_file_for),
+    any other output its red channel.
     """
     warnings = []
     inputs = {}
@@ -212,7 +243,11 @@ def material_params(material, textures):
         inputs[usd] = float(value(blender))
         tex = image_link(blender)
         if tex is not None:
-            links[usd] = (textures.file_for(tex.image), "r", None, texture_wrap(tex))
+            if _linked_socket(I[blender]).name == "Alpha":  # the Image Texture's Alpha output
+                file, channel = textures.alpha_file_for(tex.image)
+            else:
+                file, channel = textures.file_for(tex.image), "r"
+            links[usd] = (file, channel, None, texture_wrap(tex))
     r = float(value("Clearcoat Roughness"))
     inputs["clearcoatGloss"] = min(1.0, max(0.0, (0.1 - r * r) / 0.099))
     strength = float(value("Emission Strength"))

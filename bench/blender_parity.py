@@ -338,6 +338,8 @@ def s_world_hdr(sc):
     nt = sc.world.node_tree
     env = nt.nodes.new("ShaderNodeTexEnvironment")
     env.image = env_image()
+    # PARITY_ENV_INTERP=Closest checks the nearest-texel dome lookup's share of the difference.
+    env.interpolation = os.environ.get("PARITY_ENV_INTERP", "Linear")
     nt.links.new(env.outputs["Color"], nt.nodes["Background"].inputs["Color"])
     return {"box": (40, 35, 88, 85)}
 
@@ -452,6 +454,18 @@ def s_subsurf_custom(sc):
     return {"box": (20, 40, 108, 90)}
 
 
+def s_lamps_in_view(sc):
+    """Open discrepancy (renderer): a point lamp (r 0.3) and a square area lamp inside the
+    frame. Cycles 3.4's lamps are invisible to camera rays; principled's SphereLight and the
+    area emitter quad are seen (the lamp's radiance, hundreds of times the scene's)."""
+    camera(sc, (0, -7, 4), (0, 0, 0.6))
+    plane(mat=material("Floor", (0.8, 0.8, 0.8), 0.7))
+    light(sc, "POINT", loc=(-1.5, 0.5, 2.5), energy=300.0, shadow_soft_size=0.3)
+    light(sc, "AREA", loc=(1.5, 0.5, 3), target=(0, 0, 0), energy=300.0, shape="SQUARE",
+          size=1.0)
+    return {"box": (30, 70, 98, 120)}  # the floor (no lamp in it)
+
+
 SCENES = [
     ("glass", s_glass), ("checker_point", s_checker), ("area_square", s_area_square),
     ("area_disk_metal", s_area_disk_metal), ("spot", s_spot),
@@ -459,7 +473,7 @@ SCENES = [
     ("world_color", s_world_color),
     ("world_hdr", s_world_hdr), ("normal_map", s_normal_map), ("normal_tilt", s_normal_tilt), ("alpha", s_alpha),
     ("alpha_texture", s_alpha_texture),
-    ("subsurf_custom", s_subsurf_custom),
+    ("subsurf_custom", s_subsurf_custom), ("lamps_in_view", s_lamps_in_view),
 ]
 
 

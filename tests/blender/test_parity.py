@@ -20,6 +20,10 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
   the image's alpha (it read the red channel: an opaque white texel with alpha 0.25 rendered
   fully opaque). Generated/packed images are written as PPM (no alpha), so their alpha goes to
   a PGM of its own. Rendered check: the plane's radiance is alpha x albedo over black.
+- Film alpha: Cycles' Combined alpha is 1 everywhere unless Film > Transparent, in which case
+  the world is not seen by camera rays (background RGBA = 0). The add-on passed the delegate's
+  coverage alpha through (0 over the world: a saved RGBA image had a transparent background)
+  and showed the world with Film > Transparent on.
 Exit code 0 = pass.
 """
 import math
@@ -214,6 +218,43 @@ def test_alpha_texture():
           f"{want:.4f}")
 
 
+def test_film_alpha():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 4
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0.5, 0.5, 0.5)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    m = bpy.data.materials.new("Lamp")
+    m.use_nodes = True
+    b = m.node_tree.nodes["Principled BSDF"]
+    b.inputs["Base Color"].default_value = (0, 0, 0, 1)
+    b.inputs["Emission"].default_value = (1, 1, 1, 1)
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    for transparent in (False, True):
+        scene.render.film_transparent = transparent
+        img = render_combined(scene)
+        bg, lamp = img[20:30, 70:90].reshape(-1, 4), img[15:35, 16:36].reshape(-1, 4)
+        want_bg = [0.0] * 4 if transparent else [0.5, 0.5, 0.5, 1.0]
+        check(np.allclose(bg, want_bg, atol=1e-4),
+              f"film_transparent={transparent}: background RGBA {bg.mean(axis=0).round(4).tolist()}"
+              f" = {want_bg}")
+        check(np.allclose(lamp[:, 3], 1.0, atol=1e-4) and np.allclose(lamp[:, :3], 1.0, rtol=0.03),
+              f"film_transparent={transparent}: emitter RGBA {lamp.mean(axis=0).round(4).tolist()}"
+              " = 1 (+ its specular reflection of the world)")
+
+
 def main():
     tr.principled_blender.register()
     try:
@@ -222,6 +263,7 @@ def main():
         test_wrap_tokens(mats)
         test_emission_shader()
         test_alpha_texture()
+        test_film_alpha()
     except Exception:
         import traceback
 

@@ -70,6 +70,7 @@ class Session:
         self.rebuilds = 0
         self.last_update = {}
         self.camera_matrix = None
+        self.film_transparent = False
 
     def close(self, keep_textures=False):
         if self.delegate is not None:
@@ -90,6 +91,7 @@ class Session:
     def full_sync(self, depsgraph, width, height, view_camera=None):
         """Translates the whole depsgraph and opens it (a full rebuild)."""
         self.resize(width, height)
+        self.film_transparent = bool(depsgraph.scene.render.film_transparent)
         ex = export.SceneExport(self.p, depsgraph, self.texture_dir, width, height,
                                 view_camera=view_camera)
         builder = ex.build()
@@ -242,6 +244,12 @@ class Session:
         d = self.delegate
         if name == "Combined":
             img = d.aov("color")
+            if not self.film_transparent:
+                # Cycles' alpha is 1 everywhere unless Film > Transparent; the delegate's is
+                # the coverage (0 where the ray saw the dome), which made the background of a
+                # saved RGBA image transparent.
+                img = np.array(img, dtype=np.float32)
+                img[:, :, 3] = 1.0
         elif name == "Depth":
             # Cycles' Depth is the camera-space Z distance (planar), 1e10 where nothing hit.
             pos = d.aov("position")

@@ -241,6 +241,8 @@ def env_image():
     px[..., 2] = np.where(sky, 1.0, 0.1)
     blob = ((U - 0.3) ** 2 + (V - 0.75) ** 2) < 0.004
     px[blob, :3] = (40.0, 35.0, 30.0)
+    if os.environ.get("PARITY_ENV") == "noblob":  # diagnosis: the gradient alone
+        px[blob, :3] = px[np.roll(blob, 20, axis=0), :3].mean(axis=0)
     px[..., 3] = 1.0
     im.pixels.foreach_set(px.ravel())
     return im

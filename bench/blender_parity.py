@@ -273,6 +273,26 @@ def s_checker(sc):
     return {"box": (44, 44, 84, 84)}
 
 
+def s_checker_mapping(sc):
+    """The checker through Texture Coordinate UV -> Mapping (scale 3 x 2, rotation 30 deg,
+    offset) -> Image Texture: tiling as real scenes use it."""
+    camera(sc, (0, -5, 5), (0, 0, 0))
+    m = material("Tiled", rough=0.8, specular=0.3)
+    tex = image_texture_node(m, checker_png())
+    nt = m.node_tree
+    mp = nt.nodes.new("ShaderNodeMapping")
+    mp.inputs["Location"].default_value = (0.1, 0.2, 0.0)
+    mp.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(30))
+    mp.inputs["Scale"].default_value = (3.0, 2.0, 1.0)
+    tc = nt.nodes.new("ShaderNodeTexCoord")
+    nt.links.new(tc.outputs["UV"], mp.inputs["Vector"])
+    nt.links.new(mp.outputs["Vector"], tex.inputs["Vector"])
+    plane(4.0, mat=m, rot=(0, 0, math.radians(20)))
+    light(sc, "SUN", rot=(math.radians(30), 0, math.radians(20)), energy=3.0, angle=0.0)
+    world_color(sc, (0.02, 0.02, 0.02))
+    return {"box": (44, 44, 84, 84)}
+
+
 def s_area_square(sc):
     camera(sc)
     plane(mat=material("Floor", (0.8, 0.8, 0.8), 0.7))
@@ -469,7 +489,8 @@ def s_lamps_in_view(sc):
 
 
 SCENES = [
-    ("glass", s_glass), ("checker_point", s_checker), ("area_square", s_area_square),
+    ("glass", s_glass), ("checker_point", s_checker), ("checker_mapping", s_checker_mapping),
+    ("area_square", s_area_square),
     ("area_disk_metal", s_area_disk_metal), ("spot", s_spot),
     ("emission_mesh", s_emission_mesh), ("emission_shader", s_emission_shader),
     ("world_color", s_world_color),

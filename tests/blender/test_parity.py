@@ -24,6 +24,11 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
   the world is not seen by camera rays (background RGBA = 0). The add-on passed the delegate's
   coverage alpha through (0 over the world: a saved RGBA image had a transparent background)
   and showed the world with Film > Transparent on.
+- UV Mapping: an Image Texture fed by Mapping <- Texture Coordinate UV (tiling, offset,
+  rotation) was looked up at the raw UVs. The add-on now transforms the mesh's st by the
+  Mapping (export.uv_mapping). Rendered check: an 8x1 black|white texture with Mapping scale
+  x 2 shows black, white, black, white quarters across the plane (was black, white halves);
+  the Texture type is the inverse of the Point type.
 Exit code 0 = pass.
 """
 import math
@@ -255,6 +260,65 @@ def test_film_alpha():
               " = 1 (+ its specular reflection of the world)")
 
 
+def test_uv_mapping():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 4
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    img = bpy.data.images.new("Stripes", 8, 1, alpha=False)
+    px = np.ones((1, 8, 4), np.float32)
+    px[0, :4, :3] = 0.0
+    img.pixels.foreach_set(px.ravel())
+    m = bpy.data.materials.new("Tiled")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    mp = nt.nodes.new("ShaderNodeMapping")
+    mp.inputs["Scale"].default_value = (2.0, 1.0, 1.0)
+    tc = nt.nodes.new("ShaderNodeTexCoord")
+    nt.links.new(tc.outputs["UV"], mp.inputs["Vector"])
+    nt.links.new(mp.outputs["Vector"], tex.inputs["Vector"])
+    nt.links.new(tex.outputs["Color"], b.inputs["Base Color"])
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    cols = [float(img[15:35, x - 1:x + 2].mean()) for x in (11, 21, 31, 41)]  # u = 1/8, 3/8, ...
+    check(cols[0] < 0.02 and cols[2] < 0.02 and cols[1] > 0.98 and cols[3] > 0.98,
+          f"Mapping scale x 2: quarters black/white/black/white {[round(c, 3) for c in cols]}")
+    warns = []
+    check(export.uv_mapping(m, warns) == (2.0, 0.0, 0.0, 1.0, 0.0, 0.0) and not warns,
+          f"Mapping scale (2, 1) -> {export.uv_mapping(m, [])} ({warns})")
+    # Texture type = inverse of Point type.
+    mp.inputs["Location"].default_value = (0.3, -0.2, 0.0)
+    mp.inputs["Rotation"].default_value = (0.0, 0.0, 0.7)
+    mp.inputs["Scale"].default_value = (1.5, 0.5, 1.0)
+    pt = export._mapping_affine(mp, [], "t")
+    mp.vector_type = "TEXTURE"
+    tx = export._mapping_affine(mp, [], "t")
+    A = np.array([[pt[0], pt[1], pt[4]], [pt[2], pt[3], pt[5]], [0, 0, 1]])
+    B = np.array([[tx[0], tx[1], tx[4]], [tx[2], tx[3], tx[5]], [0, 0, 1]])
+    check(np.allclose(B @ A, np.eye(3), atol=1e-6), "Mapping Texture type inverts the Point type")
+
+
 def main():
     tr.principled_blender.register()
     try:
@@ -264,6 +328,7 @@ def main():
         test_emission_shader()
         test_alpha_texture()
         test_film_alpha()
+        test_uv_mapping()
     except Exception:
         import traceback
 

@@ -140,10 +140,93 @@ def texture_wrap(node):
     return WRAP.get(getattr(node, "extension", "REPEAT"), "repeat")
 
 
-def link_signature(links):
-    """What a change of needs a rebuild (set_material_texture): the linked inputs and their
-    wrap modes."""
-    return tuple(sorted((k, v[3]) for k, v in links.items()))
+def link_signature(links, mapping=None):
+    """What a change of needs a rebuild (set_material_texture, the mesh's st): the linked
+    inputs, their wrap modes and the material's UV Mapping (uv_mapping)."""
+    return tuple(sorted((k, v[3]) for k, v in links.items())) + (mapping,)
+
+
+def _mapping_affine(node, warnings, where):
+    """A Mapping node on UVs -> (a, b, c, d, e, f): u' = a u + b v + e, v' = c u + d v + f.
+    Blender: Point u' = T + R (S u); Vector R (S u); Texture S^-1 R^-1 (u - T). Only the Z
+    rotation and the X/Y scale and location act on UVs."""
+    if any(node.inputs[n].is_linked for n in ("Location", "Rotation", "Scale")
+           if n in node.inputs):
+        warnings.append(f"{where}: Mapping inputs are linked; ignored")
+        return None
+    rot = [float(x) for x in node.inputs["Rotation"].default_value]
+    if abs(rot[0]) > 1e-6 or abs(rot[1]) > 1e-6:
+        warnings.append(f"{where}: Mapping X/Y rotation ignored on UVs")
+    sx, sy = [float(x) for x in node.inputs["Scale"].default_value][:2]
+    tx, ty = ([float(x) for x in node.inputs["Location"].default_value][:2]
+              if "Location" in node.inputs else (0.0, 0.0))
+    c, s = math.cos(rot[2]), math.sin(rot[2])
+    kind = node.vector_type
+    if kind == "POINT":
+        m = (c * sx, -s * sy, s * sx, c * sy, tx, ty)
+    elif kind == "VECTOR":
+        m = (c * sx, -s * sy, s * sx, c * sy, 0.0, 0.0)
+    elif kind == "TEXTURE":
+        if abs(sx) < 1e-12 or abs(sy) < 1e-12:
+            return None
+        # S^-1 R^T (u - T)
+        a, b2, c2, d = c / sx, s / sx, -s / sy, c / sy
+        m = (a, b2, c2, d, -(a * tx + b2 * ty), -(c2 * tx + d * ty))
+    else:
+        warnings.append(f"{where}: Mapping type {kind} on UVs ignored")
+        return None
+    return tuple(round(x, 9) for x in m)
+
+
+def uv_mapping(material, warnings):
+    """The UV transform of a material's Image Textures: a Mapping node between a UV source
+    (Texture Coordinate UV, UV Map) and the textures' Vector input (tiling, offset, rotation),
+    as _mapping_affine's 6 numbers, or None. Applied to the st of the meshes using the
+    material (one per material: textures with different Mappings use the first, warned)."""
+    bsdf = principled_bsdf(material)
+    if bsdf is None:
+        return None
+    texs = []
+    for sock in bsdf.inputs:
+        node = _linked_node(sock)
+        if node is not None and node.type == "NORMAL_MAP":
+            node = _linked_node(node.inputs["Color"])
+        if node is not None and node.type == "TEX_IMAGE":
+            texs.append(node)
+    found = []
+    where = f"material '{material.name}'"
+    for tex in texs:
+        vec = _linked_node(tex.inputs["Vector"])
+        m = None
+        if vec is not None and vec.type == "MAPPING":
+            src_sock = _linked_socket(vec.inputs["Vector"])
+            src = src_sock.node if src_sock is not None else None
+            if src is not None and ((src.type == "TEX_COORD" and src_sock.name == "UV") or
+                                    src.type == "UVMAP"):
+                m = _mapping_affine(vec, warnings, where)
+            else:
+                warnings.append(f"{where}: Mapping fed by "
+                                f"{src.type if src is not None else 'nothing'}; only UVs are "
+                                "translated, the Mapping is ignored")
+        elif vec is not None and vec.type not in ("TEX_COORD", "UVMAP"):
+            warnings.append(f"{where}: Image Texture vector from '{vec.type}'; using the UVs")
+        if m not in found:
+            found.append(m)
+    if len(found) > 1:
+        warnings.append(f"{where}: textures use different UV Mappings; using one for all")
+    return next((m for m in found if m is not None), None)
+
+
+def transform_st(st, m):
+    """Applies uv_mapping's affine to a flat faceVarying st array."""
+    if st is None or m is None:
+        return st
+    a, b, c, d, e, f = m
+    uv = np.asarray(st, np.float64).reshape(-1, 2)
+    out = np.empty_like(uv)
+    out[:, 0] = a * uv[:, 0] + b * uv[:, 1] + e
+    out[:, 1] = c * uv[:, 0] + d * uv[:, 1] + f
+    return out.astype(np.float32).ravel()
 
 
 def surface_node(material):
@@ -527,6 +610,7 @@ class SceneExport:
         self.view_camera = view_camera  # (matrix, params) for a viewport camera
         self.meshes = {}          # mesh cache: evaluated object name -> MeshData
         self.world_texture = None  # the dome's texture file, if the world has one
+        self.st_mappings = {}     # material name -> uv_mapping() (applied to the meshes' st)
         self._names = set()
 
     def _unique(self, base):
@@ -544,6 +628,8 @@ class SceneExport:
         path = "/World/Looks/" + self._unique(usd_name(key, "Mat"))
         inputs, links, warns = material_params(material, self.textures)
         self.warnings += warns
+        mapping = uv_mapping(material, self.warnings) if material is not None else None
+        self.st_mappings[key] = mapping
         b.add_material(path)
         for k, v in inputs.items():
             b.set_material_input(path, k, v)
@@ -560,7 +646,7 @@ class SceneExport:
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
             elif k != "diffuseColor":
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
-        self.materials[key] = (path, link_signature(links))
+        self.materials[key] = (path, link_signature(links, mapping))
         return path
 
     def build(self):
@@ -616,10 +702,13 @@ class SceneExport:
                     mat = obj.material_slots[slot].material
                 gp = f"{xf}/Geom_{slot}"
                 counts = np.full(len(idx) // 3, 3, np.int32)
+                mpath = self.material_path(b, mat)
+                st = transform_st(st, self.st_mappings.get(
+                    mat.name if mat is not None else "__default__"))
                 b.add_mesh(gp, md.points, counts, idx, normals=nrm, st=st,
                            normals_interpolation="faceVarying", st_interpolation="faceVarying",
                            double_sided=True)
-                b.bind_material(gp, self.material_path(b, mat))
+                b.bind_material(gp, mpath)
                 self.mesh_prims.append((gp, name, pass_index))
         if self.view_camera is not None:
             mw, params = self.view_camera

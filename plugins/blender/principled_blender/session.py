@@ -142,7 +142,7 @@ class Session:
                     continue
                 path, sig = entry
                 inputs, links, _ = export.material_params(idd.original, ex.textures)
-                if export.link_signature(links) != sig:
+                if export.link_signature(links, export.uv_mapping(idd.original, [])) != sig:
                     rebuild = True
                     continue
                 for k, v in inputs.items():

@@ -476,6 +476,19 @@ def s_subsurf_custom(sc):
     return {"box": (20, 40, 108, 90)}
 
 
+def s_area_in_room(sc):
+    """A closed room (cube 4 x 4 x 3 seen from inside) lit by a square area lamp just under the
+    ceiling pointing down, out of frame: Cycles' area lamp emits from its front only."""
+    camera(sc, (0, -1.9, 1.2), (0, 0, 0.9), lens=20.0)
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0, 0, 1.5))
+    room = bpy.context.active_object
+    room.scale = (4.0, 4.0, 3.0)
+    link(room, material("Walls", (0.7, 0.7, 0.7), 0.8))
+    sphere(0.5, (0.6, 0.8, 0.5), material("Ball", (0.7, 0.3, 0.2), 0.5))
+    light(sc, "AREA", loc=(0, -1.2, 2.9), rot=(0, 0, 0), energy=200.0, shape="SQUARE", size=1.0)
+    return {"box": (40, 50, 90, 100)}
+
+
 def s_lamps_in_view(sc):
     """Open discrepancy (renderer): a point lamp (r 0.3) and a square area lamp inside the
     frame. Cycles 3.4's lamps are invisible to camera rays; principled's SphereLight and the
@@ -496,7 +509,8 @@ SCENES = [
     ("world_color", s_world_color),
     ("world_hdr", s_world_hdr), ("normal_map", s_normal_map), ("normal_tilt", s_normal_tilt), ("alpha", s_alpha),
     ("alpha_texture", s_alpha_texture),
-    ("subsurf_custom", s_subsurf_custom), ("lamps_in_view", s_lamps_in_view),
+    ("subsurf_custom", s_subsurf_custom), ("area_in_room", s_area_in_room),
+    ("lamps_in_view", s_lamps_in_view),
 ]
 
 

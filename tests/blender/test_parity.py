@@ -29,6 +29,11 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
   Mapping (export.uv_mapping). Rendered check: an 8x1 black|white texture with Mapping scale
   x 2 shows black, white, black, white quarters across the plane (was black, white halves);
   the Texture type is the inverse of the Point type.
+- Area lamps: Cycles' area lamp emits from its front (-Z) only and occludes nothing; the
+  add-on exported an emissive two-sided quad (+13% in the bench's closed room). Now a UsdLux
+  RectLight/DiskLight. Rendered check: a small square lamp (power 4 pi, 1 m up, facing down)
+  lights the floor at radiance albedo h^2/d^4 (small-lamp limit); the same lamp facing up
+  leaves the floor black; a disk lamp facing down gives the same as the square.
 Exit code 0 = pass.
 """
 import math
@@ -319,6 +324,51 @@ def test_uv_mapping():
     check(np.allclose(B @ A, np.eye(3), atol=1e-6), "Mapping Texture type inverts the Point type")
 
 
+def test_area_one_sided():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 64
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=20.0, location=(0, 0, 0))
+    m = bpy.data.materials.new("Floor")
+    m.use_nodes = True
+    b = m.node_tree.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.light_add(type="AREA", location=(0, 0, 1.0))
+    lamp = bpy.context.active_object
+    lamp.data.energy = 4 * math.pi
+    lamp.data.size = 0.1
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    # Floor patch of 3 x 3 px around x = 0.625 (pixel centres: x = (col + 0.5)/20 - 2.5,
+    # y = 1.25 - (row + 0.5)/20), d^2 = 1 + x^2 + y^2.
+    xs = (np.arange(61, 64) + 0.5) / 20.0 - 2.5
+    ys = 1.25 - (np.arange(24, 27) + 0.5) / 20.0
+    X, Y = np.meshgrid(xs, ys)
+    want = float(np.mean(ALBEDO / (1.0 + X * X + Y * Y) ** 2))
+    for shape, rot, expect in (("SQUARE", 0.0, want), ("DISK", 0.0, want), ("SQUARE", math.pi, 0.0)):
+        lamp.data.shape = shape
+        lamp.rotation_euler = (rot, 0.0, 0.0)
+        img = render_combined(scene)[:, :, :3].mean(axis=2)
+        got = float(img[24:27, 61:64].mean())
+        ok = abs(got - expect) < 0.03 * want
+        check(ok, f"area lamp {shape} facing {'down' if rot == 0 else 'up'}: floor radiance "
+                  f"{got:.4f} = {expect:.4f}")
+
+
 def main():
     tr.principled_blender.register()
     try:
@@ -329,6 +379,7 @@ def main():
         test_alpha_texture()
         test_film_alpha()
         test_uv_mapping()
+        test_area_one_sided()
     except Exception:
         import traceback
 

@@ -192,6 +192,9 @@ class Session:
 
                             loc, rot, _s = mw.decompose()
                             mw = Matrix.Translation(loc) @ rot.to_matrix().to_4x4()
+                        elif kind == "area":
+                            mw = export.area_light_matrix(
+                                export.light_params(obj.data, mw)[1], mw)
                         self.delegate.set_transform(xf, export.usd_matrix(mw))
                         done["transforms"] += 1
                         continue
@@ -235,7 +238,15 @@ class Session:
                 d.set_attribute(xf, "inputs:shaping:cone:softness", sh["softness"])
                 d.set_attribute(xf, "inputs:shaping:focus", sh["focus"])
         else:
-            d.set_attribute(targets[0], "inputs:emissiveColor", lp["radiance"])
+            if lp["disk"] != ex.area_disks.get(obj.name):
+                return False  # Rect <-> Disk: another prim type
+            d.set_attribute(xf, "inputs:color", lp["radiance"])
+            if lp["disk"]:
+                d.set_transform(xf, export.usd_matrix(
+                    export.area_light_matrix(lp, obj.matrix_world)))
+            else:
+                d.set_attribute(xf, "inputs:width", lp["size"][0])
+                d.set_attribute(xf, "inputs:height", lp["size"][1])
         return True
 
     # ---- results -----------------------------------------------------------------------

@@ -345,6 +345,37 @@ def s_emission_shader(sc):
     return {"box": (20, 50, 64, 100)}
 
 
+def node_material(name, kind, **values):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    n = nt.nodes.new(kind)
+    for k, v in values.items():
+        n.inputs[k].default_value = v
+    if hasattr(n, "distribution") and kind != "ShaderNodeBsdfDiffuse":
+        n.distribution = "GGX"
+    nt.links.new(n.outputs["BSDF"], nt.nodes["Material Output"].inputs["Surface"])
+    return m
+
+
+def s_bsdf_nodes(sc):
+    """Diffuse, Glossy and Glass BSDF nodes (not the Principled BSDF): a diffuse cube, a rough
+    glossy sphere, a glass sphere, on a Principled floor; sun and world colour."""
+    camera(sc, (0, -7, 3.5), (0, 0, 0.6))
+    plane(mat=material("Floor", (0.6, 0.6, 0.6), 0.7))
+    cube(1.0, (-1.6, 0, 0.5), node_material("Diffuse", "ShaderNodeBsdfDiffuse",
+                                            Color=(0.2, 0.5, 0.8, 1.0)))
+    sphere(0.6, (0.0, 0.3, 0.6), node_material("Glossy", "ShaderNodeBsdfGlossy",
+                                              Color=(0.9, 0.6, 0.3, 1.0), Roughness=0.3))
+    sphere(0.6, (1.6, 0, 0.6), node_material("Glass", "ShaderNodeBsdfGlass",
+                                            Color=(1.0, 1.0, 1.0, 1.0), Roughness=0.0, IOR=1.45))
+    light(sc, "SUN", rot=(math.radians(40), 0, math.radians(30)), energy=3.0,
+          angle=math.radians(3))
+    world_color(sc, (0.15, 0.18, 0.22))
+    return {"box": (20, 50, 50, 80)}  # the diffuse cube
+
+
 def s_world_color(sc):
     camera(sc)
     plane(mat=material("Floor", (0.8, 0.8, 0.8), 0.8))
@@ -506,6 +537,7 @@ SCENES = [
     ("area_square", s_area_square),
     ("area_disk_metal", s_area_disk_metal), ("spot", s_spot),
     ("emission_mesh", s_emission_mesh), ("emission_shader", s_emission_shader),
+    ("bsdf_nodes", s_bsdf_nodes),
     ("world_color", s_world_color),
     ("world_hdr", s_world_hdr), ("normal_map", s_normal_map), ("normal_tilt", s_normal_tilt), ("alpha", s_alpha),
     ("alpha_texture", s_alpha_texture),

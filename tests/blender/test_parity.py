@@ -34,6 +34,10 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
   RectLight/DiskLight. Rendered check: a small square lamp (power 4 pi, 1 m up, facing down)
   lights the floor at radiance albedo h^2/d^4 (small-lamp limit); the same lamp facing up
   leaves the floor black; a disk lamp facing down gives the same as the square.
+- Diffuse / Glossy / Glass BSDF nodes alone on the output were translated as the viewport
+  display colour (+11.7% on the bench's bsdf_nodes scene, the glass sphere opaque). Checked:
+  the Disney inputs they map to, and a Diffuse BSDF plane renders its colour under the
+  overhead sun (Burley = Lambert at normal incidence).
 Exit code 0 = pass.
 """
 import math
@@ -369,6 +373,56 @@ def test_area_one_sided():
                   f"{got:.4f} = {expect:.4f}")
 
 
+def test_bsdf_nodes():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 8
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+
+    def node_mat(kind, **values):
+        m = bpy.data.materials.new(kind)
+        m.use_nodes = True
+        nt = m.node_tree
+        nt.nodes.remove(nt.nodes["Principled BSDF"])
+        n = nt.nodes.new(kind)
+        for k, v in values.items():
+            n.inputs[k].default_value = v
+        nt.links.new(n.outputs["BSDF"], nt.nodes["Material Output"].inputs["Surface"])
+        return m
+
+    glass = node_mat("ShaderNodeBsdfGlass", IOR=1.5, Roughness=0.1)
+    p, _l, w = export.material_params(glass, None)
+    check(p.get("specTrans") == 1.0 and abs(p.get("ior", 0) - 1.5) < 1e-6 and
+          abs(p.get("specular", 0) - 0.5) < 1e-6 and abs(p.get("roughness", 0) - 0.1) < 1e-6
+          and not w, f"Glass BSDF -> specTrans 1, ior 1.5, specular 0.5 ({p}, {w})")
+    glossy = node_mat("ShaderNodeBsdfGlossy", Color=(0.9, 0.6, 0.3, 1.0), Roughness=0.3)
+    p, _l, w = export.material_params(glossy, None)
+    check(p.get("metallic") == 1.0 and np.allclose(p.get("diffuseColor"), (0.9, 0.6, 0.3)),
+          f"Glossy BSDF -> metallic 1, F0 = Color ({p})")
+    diffuse = node_mat("ShaderNodeBsdfDiffuse", Color=(ALBEDO, ALBEDO, ALBEDO, 1.0))
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    bpy.context.active_object.data.materials.append(diffuse)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    centre = float(img[15:35, 16:36].mean())
+    check(abs(centre / ALBEDO - 1) < 0.01,
+          f"Diffuse BSDF plane: radiance {centre:.4f} = its colour {ALBEDO:.4f}")
+
+
 def main():
     tr.principled_blender.register()
     try:
@@ -380,6 +434,7 @@ def main():
         test_film_alpha()
         test_uv_mapping()
         test_area_one_sided()
+        test_bsdf_nodes()
     except Exception:
         import traceback
 

@@ -261,6 +261,39 @@ def emission_params(node, material_name, warnings):
             "metallic": 0.0, "emissiveColor": color}
 
 
+def bsdf_node_params(node, material_name, warnings):
+    """A single Diffuse, Glossy or Glass BSDF node on the output -> Disney inputs (socket values;
+    links are warned about and ignored), or None for other nodes.
+
+    - Diffuse BSDF (Lambert at Roughness 0, Oren-Nayar above): diffuseColor, specular 0,
+      roughness 0.25 (Burley's grazing factor F_D90 = 0.5 + 2 r cos^2(theta_d) is then 1 at
+      theta_d = 0: the Disney diffuse closest to Lambert); Oren-Nayar roughness not translated.
+    - Glossy BSDF (coloured mirror-like microfacet, no Fresnel): metallic 1 with F0 = Color,
+      roughness (Disney's Schlick edge brightening remains).
+    - Glass BSDF: specTrans 1, diffuseColor = Color (the transmission tint), roughness, ior,
+      specular = ((ior - 1)/(ior + 1))^2 / 0.08 (the same index for the reflection)."""
+    t = node.type
+    if t not in ("BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS"):
+        return None
+    for sock in node.inputs:
+        if sock.is_linked and sock.name != "Weight":
+            warnings.append(f"material '{material_name}': {node.name} input '{sock.name}' is "
+                            "linked; using the socket value")
+    color = [float(c) for c in node.inputs["Color"].default_value[:3]]
+    rough = float(node.inputs["Roughness"].default_value)
+    if t == "BSDF_DIFFUSE":
+        if rough > 0.0:
+            warnings.append(f"material '{material_name}': Diffuse BSDF roughness (Oren-Nayar) "
+                            "not translated")
+        return {"diffuseColor": color, "roughness": 0.25, "specular": 0.0, "metallic": 0.0}
+    if t == "BSDF_GLOSSY":
+        return {"diffuseColor": color, "roughness": rough, "metallic": 1.0, "specular": 0.5}
+    ior = max(1.0, float(node.inputs["IOR"].default_value))
+    spec = ((ior - 1.0) / (ior + 1.0)) ** 2 / 0.08
+    return {"diffuseColor": color, "roughness": rough, "metallic": 0.0, "specTrans": 1.0,
+            "ior": ior, "specular": min(spec, 1.0)}
+
+
 def material_params(material, textures):
     """Principled BSDF (v1, Blender 3.4) -> UsdPreviewSurface + Disney inputs.
 
@@ -285,9 +318,12 @@ def material_params(material, textures):
         node = surface_node(material)
         if node is not None and node.type == "EMISSION":
             return emission_params(node, material.name, warnings), links, warnings
+        simple = bsdf_node_params(node, material.name, warnings) if node is not None else None
+        if simple is not None:
+            return simple, links, warnings
         c = list(material.diffuse_color)[:3]
         warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
-                        "output; using its viewport display color")
+                        "output (nor a Diffuse, Glossy or Glass BSDF); using its viewport display color")
         return {"diffuseColor": c, "roughness": float(material.roughness),
                 "metallic": float(material.metallic)}, links, warnings
     I = bsdf.inputs

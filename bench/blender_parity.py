@@ -477,6 +477,31 @@ def s_alpha_texture(sc):
     return {"box": (40, 20, 88, 75)}
 
 
+def s_mix_transparent(sc):
+    """The cut-out leaf through the older setup: Mix Shader (Transparent BSDF, Principled BSDF)
+    with Fac = Image Alpha."""
+    camera(sc, (0, -6, 4), (0, 0, 0.5))
+    leaf = os.path.join(OUT, "leaf.png")
+    if not os.path.isfile(leaf):
+        s_alpha_texture(sc)  # writes it
+        reset()
+    m = material("Leaf", rough=0.6)
+    nt = m.node_tree
+    tex = image_texture_node(m, bpy.data.images.load(leaf))
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    tr_node = nt.nodes.new("ShaderNodeBsdfTransparent")
+    nt.links.new(tex.outputs["Alpha"], mix.inputs["Fac"])
+    nt.links.new(tr_node.outputs["BSDF"], mix.inputs[1])
+    nt.links.new(nt.nodes["Principled BSDF"].outputs["BSDF"], mix.inputs[2])
+    nt.links.new(mix.outputs["Shader"], nt.nodes["Material Output"].inputs["Surface"])
+    plane(6.0, mat=material("Floor", (0.6, 0.6, 0.6), 0.7))
+    plane(2.5, (0, 0, 1.2), m, rot=(math.radians(60), 0, 0))
+    light(sc, "SUN", rot=(math.radians(30), 0, math.radians(20)), energy=3.0,
+          angle=math.radians(2))
+    world_color(sc, (0.1, 0.1, 0.1))
+    return {"box": (40, 20, 88, 75)}
+
+
 def s_subsurf_custom(sc):
     camera(sc, (0, -6, 3), (0, 0, 0.8))
     plane(mat=material("Floor", (0.6, 0.6, 0.6), 0.7))
@@ -540,7 +565,7 @@ SCENES = [
     ("bsdf_nodes", s_bsdf_nodes),
     ("world_color", s_world_color),
     ("world_hdr", s_world_hdr), ("normal_map", s_normal_map), ("normal_tilt", s_normal_tilt), ("alpha", s_alpha),
-    ("alpha_texture", s_alpha_texture),
+    ("alpha_texture", s_alpha_texture), ("mix_transparent", s_mix_transparent),
     ("subsurf_custom", s_subsurf_custom), ("area_in_room", s_area_in_room),
     ("lamps_in_view", s_lamps_in_view),
 ]

@@ -38,6 +38,10 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
   display colour (+11.7% on the bench's bsdf_nodes scene, the glass sphere opaque). Checked:
   the Disney inputs they map to, and a Diffuse BSDF plane renders its colour under the
   overhead sun (Burley = Lambert at normal incidence).
+- Mix Shader (Transparent BSDF, shader) by Fac: the classic cut-out setup was the viewport
+  colour. Now opacity = Fac (Transparent first) or 1 - Fac, Fac constant or an Image Texture
+  output (inverted by scale -1, bias 1). Rendered: alpha 0.25 texel -> 0.25 / 0.75 x albedo,
+  constant Fac 0.4 -> 0.4 x albedo.
 Exit code 0 = pass.
 """
 import math
@@ -423,6 +427,62 @@ def test_bsdf_nodes():
           f"Diffuse BSDF plane: radiance {centre:.4f} = its colour {ALBEDO:.4f}")
 
 
+def test_mix_transparent():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 64
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    img = bpy.data.images.new("Cutout", 4, 4, alpha=True)
+    px = np.ones((4, 4, 4), np.float32)
+    px[:, :, 3] = 0.25
+    img.pixels.foreach_set(px.ravel())
+    m = bpy.data.materials.new("Cutout")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    tr_node = nt.nodes.new("ShaderNodeBsdfTransparent")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    out = nt.nodes["Material Output"]
+    nt.links.new(mix.outputs["Shader"], out.inputs["Surface"])
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    for label, transparent_first, textured, want in (("Fac = alpha, Transparent first", True, True, 0.25),
+                                                     ("Fac = alpha, Transparent second", False, True, 0.75),
+                                                     ("Fac 0.4, Transparent first", True, False, 0.4)):
+        for link in list(nt.links):
+            if link.to_node == mix:
+                nt.links.remove(link)
+        nt.links.new(tr_node.outputs["BSDF"], mix.inputs[1 if transparent_first else 2])
+        nt.links.new(b.outputs["BSDF"], mix.inputs[2 if transparent_first else 1])
+        if textured:
+            nt.links.new(tex.outputs["Alpha"], mix.inputs["Fac"])
+        else:
+            mix.inputs["Fac"].default_value = 0.4
+        centre = float(render_combined(scene)[7:43, 8:44, :3].mean())
+        check(abs(centre / (want * ALBEDO) - 1) < 0.05,
+              f"Mix Shader {label}: radiance {centre:.4f} = {want} x albedo {want * ALBEDO:.4f}")
+
+
 def main():
     tr.principled_blender.register()
     try:
@@ -435,6 +495,7 @@ def main():
         test_uv_mapping()
         test_area_one_sided()
         test_bsdf_nodes()
+        test_mix_transparent()
     except Exception:
         import traceback
 

@@ -242,8 +242,30 @@ def surface_node(material):
     return _linked_node(out.inputs["Surface"])
 
 
-def principled_bsdf(material):
+def transparent_mix(node):
+    """A Mix Shader of a Transparent BSDF and another shader (the classic cut-out setup) ->
+    (other shader node, Fac socket, True if the Transparent BSDF is the first input: then the
+    surface's presence is Fac, else 1 - Fac); None otherwise."""
+    if node is None or node.type != "MIX_SHADER":
+        return None
+    a, b = _linked_node(node.inputs[1]), _linked_node(node.inputs[2])
+    if a is not None and a.type == "BSDF_TRANSPARENT" and b is not None:
+        return b, node.inputs[0], True
+    if b is not None and b.type == "BSDF_TRANSPARENT" and a is not None:
+        return a, node.inputs[0], False
+    return None
+
+
+def shading_node(material):
+    """The shader that gives the surface its BSDF: the output's node, or the non-transparent
+    side of a transparent_mix."""
     node = surface_node(material)
+    mix = transparent_mix(node)
+    return mix[0] if mix is not None else node
+
+
+def principled_bsdf(material):
+    node = shading_node(material)
     return node if node is not None and node.type == "BSDF_PRINCIPLED" else None
 
 
@@ -295,6 +317,44 @@ def bsdf_node_params(node, material_name, warnings):
 
 
 def material_params(material, textures):
+    """_base_material_params, then a Mix Shader with a Transparent BSDF on the output
+    (transparent_mix) multiplies the opacity by its Fac (or 1 - Fac): a constant, or an Image
+    Texture's Alpha/Color output linked as the opacity texture (inverted with scale -1, bias 1
+    when the Transparent BSDF is the second input)."""
+    inputs, links, warnings = _base_material_params(material, textures)
+    mix = transparent_mix(surface_node(material))
+    if mix is None:
+        return inputs, links, warnings
+    _node, fac, transparent_first = mix
+    src = _linked_node(fac)
+    if src is None:
+        f = float(fac.default_value)
+        inputs["opacity"] = inputs.get("opacity", 1.0) * (f if transparent_first else 1.0 - f)
+        return inputs, links, warnings
+    if src.type == "TEX_IMAGE" and src.image is not None and textures is not None:
+        if "opacity" in links:
+            warnings.append(f"material '{material.name}': both Alpha and a Mix Shader Fac are "
+                            "textured; using the Mix Shader's")
+        try:
+            if _linked_socket(fac).name == "Alpha":
+                file, channel = textures.alpha_file_for(src.image)
+            else:
+                file, channel = textures.file_for(src.image), "r"
+        except Exception as e:
+            warnings.append(f"material '{material.name}': image '{src.image.name}': {e}")
+            return inputs, links, warnings
+        links["opacity"] = (file, channel, None if transparent_first else "invert",
+                            texture_wrap(src))
+        inputs["opacity"] = 1.0
+        return inputs, links, warnings
+    warnings.append(f"material '{material.name}': Mix Shader Fac linked to '{src.type}'; "
+                    "using its socket value")
+    f = float(fac.default_value)
+    inputs["opacity"] = inputs.get("opacity", 1.0) * (f if transparent_first else 1.0 - f)
+    return inputs, links, warnings
+
+
+def _base_material_params(material, textures):
     """Principled BSDF (v1, Blender 3.4) -> UsdPreviewSurface + Disney inputs.
 
     Returns (inputs: {name: float | [3 floats]}, links: {input: (file, channel, extra, wrap)},
@@ -315,7 +375,7 @@ def material_params(material, textures):
         return {"diffuseColor": [0.8, 0.8, 0.8], "roughness": 0.5}, links, warnings
     bsdf = principled_bsdf(material)
     if bsdf is None:
-        node = surface_node(material)
+        node = shading_node(material)
         if node is not None and node.type == "EMISSION":
             return emission_params(node, material.name, warnings), links, warnings
         simple = bsdf_node_params(node, material.name, warnings) if node is not None else None
@@ -695,6 +755,9 @@ class SceneExport:
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
             elif k != "diffuseColor":
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
+                if strength == "invert":  # 1 - texel (a Mix Shader's Fac toward Transparent)
+                    b.set_attribute(tex, "float4", "inputs:scale", [-1.0, -1.0, -1.0, -1.0])
+                    b.set_attribute(tex, "float4", "inputs:bias", [1.0, 1.0, 1.0, 1.0])
         self.materials[key] = (path, link_signature(links, mapping))
         return path
 

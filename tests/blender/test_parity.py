@@ -42,6 +42,9 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
   colour. Now opacity = Fac (Transparent first) or 1 - Fac, Fac constant or an Image Texture
   output (inverted by scale -1, bias 1). Rendered: alpha 0.25 texel -> 0.25 / 0.75 x albedo,
   constant Fac 0.4 -> 0.4 x albedo.
+- Emission map: the Principled Emission input linked to an Image Texture used the socket
+  value (black). Now the texture (sRGB for 8-bit, like Base Color) times Emission Strength.
+  Rendered: texel 200 at strength 2 -> 2 x decode(200).
 Exit code 0 = pass.
 """
 import math
@@ -483,6 +486,39 @@ def test_mix_transparent():
               f"Mix Shader {label}: radiance {centre:.4f} = {want} x albedo {want * ALBEDO:.4f}")
 
 
+def test_emission_map():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 4
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    m = bpy.data.materials.new("Screen")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    b.inputs["Base Color"].default_value = (0, 0, 0, 1)
+    b.inputs["Emission Strength"].default_value = 2.0
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = solid_image("Screen", (TEXEL, TEXEL, TEXEL))
+    nt.links.new(tex.outputs["Color"], b.inputs["Emission"])
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    centre = float(render_combined(scene)[15:35, 16:36, :3].mean())
+    check(abs(centre / (2 * ALBEDO) - 1) < 0.01,
+          f"Emission map x strength 2: radiance {centre:.4f} = {2 * ALBEDO:.4f}")
+
+
 def main():
     tr.principled_blender.register()
     try:
@@ -496,6 +532,7 @@ def main():
         test_area_one_sided()
         test_bsdf_nodes()
         test_mix_transparent()
+        test_emission_map()
     except Exception:
         import traceback
 

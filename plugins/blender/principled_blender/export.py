@@ -431,6 +431,10 @@ def _base_material_params(material, textures):
     inputs["clearcoatGloss"] = min(1.0, max(0.0, (0.1 - r * r) / 0.099))
     strength = float(value("Emission Strength"))
     inputs["emissiveColor"] = [c * strength for c in value("Emission")[:3]]
+    tex = image_link("Emission")
+    if tex is not None:  # an emission map (screens, signs): colour data, times the strength
+        links["emissiveColor"] = (textures.file_for(tex.image), "rgb", strength,
+                                  texture_wrap(tex))
     nnode = _linked_node(I["Normal"])
     if nnode is not None:
         if nnode.type == "NORMAL_MAP" and nnode.space == "TANGENT":
@@ -753,6 +757,10 @@ class SceneExport:
                 b.set_attribute(tex, "float4", "inputs:scale", [2.0 * s, 2.0 * s, 2.0, 1.0])
                 b.set_attribute(tex, "float4", "inputs:bias", [-s, -s, -1.0, 0.0])
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
+            elif k == "emissiveColor":
+                if strength is not None and strength != 1.0:
+                    b.set_attribute(tex, "float4", "inputs:scale",
+                                    [strength, strength, strength, 1.0])
             elif k != "diffuseColor":
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
                 if strength == "invert":  # 1 - texel (a Mix Shader's Fac toward Transparent)

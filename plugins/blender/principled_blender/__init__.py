@@ -50,6 +50,8 @@ def _settings(scene, viewport):
     out["maxDepth"] = int(s.max_depth)
     out["seed"] = int(s.seed)
     out["defaultLighting"] = 0  # Blender adds no light to a scene without lights
+    # Film > Transparent: camera rays do not see the world (Cycles: background RGBA = 0).
+    out["domeLightCameraVisibility"] = 0 if scene.render.film_transparent else 1
     return out
 
 

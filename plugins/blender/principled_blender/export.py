@@ -38,6 +38,16 @@ def _socket_value(sock):
         return float(v)
 
 
+def _linked_socket(sock):
+    """The output socket feeding sock (reroutes skipped), or None."""
+    if not sock.is_linked:
+        return None
+    link = sock.links[0]
+    while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
+        link = link.from_node.inputs[0].links[0]
+    return link.from_socket
+
+
 def _linked_node(sock):
     if not sock.is_linked:
         return None
@@ -73,6 +83,25 @@ class TextureWriter:
         self.files[key] = path
         return path
 
+    def alpha_file_for(self, image):
+        """(file, channel) giving the image's alpha: its own file's 'a' channel, else a PGM of
+        the alpha written from the pixels (PPM/PFM have no alpha), read as its 'r'."""
+        path = self.file_for(image)
+        if not path.endswith((".ppm", ".pfm")):
+            return path, "a"
+        key = image.name + "\0alpha"
+        if key not in self.files:
+            w, h = image.size
+            px = np.empty(w * h * 4, np.float32)
+            image.pixels.foreach_get(px)
+            a = px.reshape(h, w, 4)[::-1, :, 3]
+            out = os.path.join(self.directory, usd_name(image.name, "Image") + "_alpha.pgm")
+            with open(out, "wb") as f:
+                f.write(b"P5\n%d %d\n255\n" % (w, h))
+                f.write(np.clip(np.round(a * 255.0), 0, 255).astype(np.uint8).tobytes())
+            self.files[key] = out
+        return self.files[key], "r"
+
     def _write_pixels(self, image):
         w, h = image.size
         if w == 0 or h == 0:
@@ -100,7 +129,108 @@ class TextureWriter:
         return path
 
 
-def principled_bsdf(material):
+# Image Texture node extension -> UsdUVTexture wrapS/wrapT. UsdUVTexture's own fallback
+# (useMetadata without metadata) is black, which darkens a border half a texel wide on every
+# repeating texture and turns a tangent-space normal map's edge into (-1, -1, -1).
+WRAP = {"REPEAT": "repeat", "EXTEND": "clamp", "CLIP": "black", "MIRROR": "mirror"}
+
+
+def texture_wrap(node):
+    """The wrap token of an Image Texture node (Blender's default extension is REPEAT)."""
+    return WRAP.get(getattr(node, "extension", "REPEAT"), "repeat")
+
+
+def link_signature(links, mapping=None):
+    """What a change of needs a rebuild (set_material_texture, the mesh's st): the linked
+    inputs, their wrap modes and the material's UV Mapping (uv_mapping)."""
+    return tuple(sorted((k, v[3]) for k, v in links.items())) + (mapping,)
+
+
+def _mapping_affine(node, warnings, where):
+    """A Mapping node on UVs -> (a, b, c, d, e, f): u' = a u + b v + e, v' = c u + d v + f.
+    Blender: Point u' = T + R (S u); Vector R (S u); Texture S^-1 R^-1 (u - T). Only the Z
+    rotation and the X/Y scale and location act on UVs."""
+    if any(node.inputs[n].is_linked for n in ("Location", "Rotation", "Scale")
+           if n in node.inputs):
+        warnings.append(f"{where}: Mapping inputs are linked; ignored")
+        return None
+    rot = [float(x) for x in node.inputs["Rotation"].default_value]
+    if abs(rot[0]) > 1e-6 or abs(rot[1]) > 1e-6:
+        warnings.append(f"{where}: Mapping X/Y rotation ignored on UVs")
+    sx, sy = [float(x) for x in node.inputs["Scale"].default_value][:2]
+    tx, ty = ([float(x) for x in node.inputs["Location"].default_value][:2]
+              if "Location" in node.inputs else (0.0, 0.0))
+    c, s = math.cos(rot[2]), math.sin(rot[2])
+    kind = node.vector_type
+    if kind == "POINT":
+        m = (c * sx, -s * sy, s * sx, c * sy, tx, ty)
+    elif kind == "VECTOR":
+        m = (c * sx, -s * sy, s * sx, c * sy, 0.0, 0.0)
+    elif kind == "TEXTURE":
+        if abs(sx) < 1e-12 or abs(sy) < 1e-12:
+            return None
+        # S^-1 R^T (u - T)
+        a, b2, c2, d = c / sx, s / sx, -s / sy, c / sy
+        m = (a, b2, c2, d, -(a * tx + b2 * ty), -(c2 * tx + d * ty))
+    else:
+        warnings.append(f"{where}: Mapping type {kind} on UVs ignored")
+        return None
+    return tuple(round(x, 9) for x in m)
+
+
+def uv_mapping(material, warnings):
+    """The UV transform of a material's Image Textures: a Mapping node between a UV source
+    (Texture Coordinate UV, UV Map) and the textures' Vector input (tiling, offset, rotation),
+    as _mapping_affine's 6 numbers, or None. Applied to the st of the meshes using the
+    material (one per material: textures with different Mappings use the first, warned)."""
+    bsdf = principled_bsdf(material)
+    if bsdf is None:
+        return None
+    texs = []
+    for sock in bsdf.inputs:
+        node = _linked_node(sock)
+        if node is not None and node.type == "NORMAL_MAP":
+            node = _linked_node(node.inputs["Color"])
+        if node is not None and node.type == "TEX_IMAGE":
+            texs.append(node)
+    found = []
+    where = f"material '{material.name}'"
+    for tex in texs:
+        vec = _linked_node(tex.inputs["Vector"])
+        m = None
+        if vec is not None and vec.type == "MAPPING":
+            src_sock = _linked_socket(vec.inputs["Vector"])
+            src = src_sock.node if src_sock is not None else None
+            if src is not None and ((src.type == "TEX_COORD" and src_sock.name == "UV") or
+                                    src.type == "UVMAP"):
+                m = _mapping_affine(vec, warnings, where)
+            else:
+                warnings.append(f"{where}: Mapping fed by "
+                                f"{src.type if src is not None else 'nothing'}; only UVs are "
+                                "translated, the Mapping is ignored")
+        elif vec is not None and vec.type not in ("TEX_COORD", "UVMAP"):
+            warnings.append(f"{where}: Image Texture vector from '{vec.type}'; using the UVs")
+        if m not in found:
+            found.append(m)
+    if len(found) > 1:
+        warnings.append(f"{where}: textures use different UV Mappings; using one for all")
+    return next((m for m in found if m is not None), None)
+
+
+def transform_st(st, m):
+    """Applies uv_mapping's affine to a flat faceVarying st array."""
+    if st is None or m is None:
+        return st
+    a, b, c, d, e, f = m
+    uv = np.asarray(st, np.float64).reshape(-1, 2)
+    out = np.empty_like(uv)
+    out[:, 0] = a * uv[:, 0] + b * uv[:, 1] + e
+    out[:, 1] = c * uv[:, 0] + d * uv[:, 1] + f
+    return out.astype(np.float32).ravel()
+
+
+def surface_node(material):
+    """The node feeding the active Material Output's Surface, or None."""
     if material is None or not material.use_nodes or material.node_tree is None:
         return None
     out = None
@@ -109,20 +239,134 @@ def principled_bsdf(material):
             out = n
     if out is None:
         return None
-    node = _linked_node(out.inputs["Surface"])
+    return _linked_node(out.inputs["Surface"])
+
+
+def transparent_mix(node):
+    """A Mix Shader of a Transparent BSDF and another shader (the classic cut-out setup) ->
+    (other shader node, Fac socket, True if the Transparent BSDF is the first input: then the
+    surface's presence is Fac, else 1 - Fac); None otherwise."""
+    if node is None or node.type != "MIX_SHADER":
+        return None
+    a, b = _linked_node(node.inputs[1]), _linked_node(node.inputs[2])
+    if a is not None and a.type == "BSDF_TRANSPARENT" and b is not None:
+        return b, node.inputs[0], True
+    if b is not None and b.type == "BSDF_TRANSPARENT" and a is not None:
+        return a, node.inputs[0], False
+    return None
+
+
+def shading_node(material):
+    """The shader that gives the surface its BSDF: the output's node, or the non-transparent
+    side of a transparent_mix."""
+    node = surface_node(material)
+    mix = transparent_mix(node)
+    return mix[0] if mix is not None else node
+
+
+def principled_bsdf(material):
+    node = shading_node(material)
     return node if node is not None and node.type == "BSDF_PRINCIPLED" else None
 
 
+def emission_params(node, material_name, warnings):
+    """An Emission shader alone on the output: Cycles renders a pure emitter (radiance colour x
+    strength, both sides) that reflects nothing. principled: emissiveColor, black diffuse,
+    specular 0, roughness 1 (Disney keeps a faint grazing Schlick lobe at specular 0)."""
+    for name in ("Color", "Strength"):
+        if node.inputs[name].is_linked:
+            warnings.append(f"material '{material_name}': Emission {name} is linked; using the "
+                            "socket value")
+    strength = float(node.inputs["Strength"].default_value)
+    color = [float(c) * strength for c in node.inputs["Color"].default_value[:3]]
+    return {"diffuseColor": [0.0, 0.0, 0.0], "specular": 0.0, "roughness": 1.0,
+            "metallic": 0.0, "emissiveColor": color}
+
+
+def bsdf_node_params(node, material_name, warnings):
+    """A single Diffuse, Glossy or Glass BSDF node on the output -> Disney inputs (socket values;
+    links are warned about and ignored), or None for other nodes.
+
+    - Diffuse BSDF (Lambert at Roughness 0, Oren-Nayar above): diffuseColor, specular 0,
+      roughness 0.25 (Burley's grazing factor F_D90 = 0.5 + 2 r cos^2(theta_d) is then 1 at
+      theta_d = 0: the Disney diffuse closest to Lambert); Oren-Nayar roughness not translated.
+    - Glossy BSDF (coloured mirror-like microfacet, no Fresnel): metallic 1 with F0 = Color,
+      roughness (Disney's Schlick edge brightening remains).
+    - Glass BSDF: specTrans 1, diffuseColor = Color (the transmission tint), roughness, ior,
+      specular = ((ior - 1)/(ior + 1))^2 / 0.08 (the same index for the reflection)."""
+    t = node.type
+    if t not in ("BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS"):
+        return None
+    for sock in node.inputs:
+        if sock.is_linked and sock.name != "Weight":
+            warnings.append(f"material '{material_name}': {node.name} input '{sock.name}' is "
+                            "linked; using the socket value")
+    color = [float(c) for c in node.inputs["Color"].default_value[:3]]
+    rough = float(node.inputs["Roughness"].default_value)
+    if t == "BSDF_DIFFUSE":
+        if rough > 0.0:
+            warnings.append(f"material '{material_name}': Diffuse BSDF roughness (Oren-Nayar) "
+                            "not translated")
+        return {"diffuseColor": color, "roughness": 0.25, "specular": 0.0, "metallic": 0.0}
+    if t == "BSDF_GLOSSY":
+        return {"diffuseColor": color, "roughness": rough, "metallic": 1.0, "specular": 0.5}
+    ior = max(1.0, float(node.inputs["IOR"].default_value))
+    spec = ((ior - 1.0) / (ior + 1.0)) ** 2 / 0.08
+    return {"diffuseColor": color, "roughness": rough, "metallic": 0.0, "specTrans": 1.0,
+            "ior": ior, "specular": min(spec, 1.0)}
+
+
 def material_params(material, textures):
+    """_base_material_params, then a Mix Shader with a Transparent BSDF on the output
+    (transparent_mix) multiplies the opacity by its Fac (or 1 - Fac): a constant, or an Image
+    Texture's Alpha/Color output linked as the opacity texture (inverted with scale -1, bias 1
+    when the Transparent BSDF is the second input)."""
+    inputs, links, warnings = _base_material_params(material, textures)
+    mix = transparent_mix(surface_node(material))
+    if mix is None:
+        return inputs, links, warnings
+    _node, fac, transparent_first = mix
+    src = _linked_node(fac)
+    if src is None:
+        f = float(fac.default_value)
+        inputs["opacity"] = inputs.get("opacity", 1.0) * (f if transparent_first else 1.0 - f)
+        return inputs, links, warnings
+    if src.type == "TEX_IMAGE" and src.image is not None and textures is not None:
+        if "opacity" in links:
+            warnings.append(f"material '{material.name}': both Alpha and a Mix Shader Fac are "
+                            "textured; using the Mix Shader's")
+        try:
+            if _linked_socket(fac).name == "Alpha":
+                file, channel = textures.alpha_file_for(src.image)
+            else:
+                file, channel = textures.file_for(src.image), "r"
+        except Exception as e:
+            warnings.append(f"material '{material.name}': image '{src.image.name}': {e}")
+            return inputs, links, warnings
+        links["opacity"] = (file, channel, None if transparent_first else "invert",
+                            texture_wrap(src))
+        inputs["opacity"] = 1.0
+        return inputs, links, warnings
+    warnings.append(f"material '{material.name}': Mix Shader Fac linked to '{src.type}'; "
+                    "using its socket value")
+    f = float(fac.default_value)
+    inputs["opacity"] = inputs.get("opacity", 1.0) * (f if transparent_first else 1.0 - f)
+    return inputs, links, warnings
+
+
+def _base_material_params(material, textures):
     """Principled BSDF (v1, Blender 3.4) -> UsdPreviewSurface + Disney inputs.
 
-    Returns (inputs: {name: float | [3 floats]}, links: {input: (file, channel, extra)},
+    Returns (inputs: {name: float | [3 floats]}, links: {input: (file, channel, extra, wrap)},
     warnings: [str]). Mapping: Base Color -> diffuseColor; Metallic, Roughness,
     Anisotropic, Sheen, Specular, IOR unchanged; Specular Tint -> specularTint; Sheen Tint ->
     sheenTint; Clearcoat -> clearcoat; Clearcoat Roughness r -> clearcoatGloss
     g = (0.1 - r^2)/0.099 (Cycles alpha = r^2, Disney alpha = mix(0.1, 0.001, g));
     Transmission -> specTrans; Emission * Emission Strength -> emissiveColor; Alpha ->
     opacity; a Normal Map node fed by an Image Texture -> the tangent-space normal input.
+    Every texture keeps its node's extension as wrapS/wrapT (texture_wrap). A scalar input fed
+    by an Image Texture's Alpha output reads the image's alpha (TextureWriter.alpha_file_for),
+    any other output its red channel.
     """
     warnings = []
     inputs = {}
@@ -131,9 +375,15 @@ def material_params(material, textures):
         return {"diffuseColor": [0.8, 0.8, 0.8], "roughness": 0.5}, links, warnings
     bsdf = principled_bsdf(material)
     if bsdf is None:
+        node = shading_node(material)
+        if node is not None and node.type == "EMISSION":
+            return emission_params(node, material.name, warnings), links, warnings
+        simple = bsdf_node_params(node, material.name, warnings) if node is not None else None
+        if simple is not None:
+            return simple, links, warnings
         c = list(material.diffuse_color)[:3]
-        warnings.append(f"material '{material.name}': no Principled BSDF on the output; "
-                        "using its viewport display color")
+        warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
+                        "output (nor a Diffuse, Glossy or Glass BSDF); using its viewport display color")
         return {"diffuseColor": c, "roughness": float(material.roughness),
                 "metallic": float(material.metallic)}, links, warnings
     I = bsdf.inputs
@@ -162,7 +412,7 @@ def material_params(material, textures):
     inputs["diffuseColor"] = value("Base Color")[:3]
     tex = image_link("Base Color")
     if tex is not None:
-        links["diffuseColor"] = (textures.file_for(tex.image), "rgb", None)
+        links["diffuseColor"] = (textures.file_for(tex.image), "rgb", None, texture_wrap(tex))
     for blender, usd in (("Metallic", "metallic"), ("Roughness", "roughness"),
                          ("Specular", "specular"), ("Specular Tint", "specularTint"),
                          ("Anisotropic", "anisotropic"), ("Sheen", "sheen"),
@@ -172,11 +422,19 @@ def material_params(material, textures):
         inputs[usd] = float(value(blender))
         tex = image_link(blender)
         if tex is not None:
-            links[usd] = (textures.file_for(tex.image), "r", None)
+            if _linked_socket(I[blender]).name == "Alpha":  # the Image Texture's Alpha output
+                file, channel = textures.alpha_file_for(tex.image)
+            else:
+                file, channel = textures.file_for(tex.image), "r"
+            links[usd] = (file, channel, None, texture_wrap(tex))
     r = float(value("Clearcoat Roughness"))
     inputs["clearcoatGloss"] = min(1.0, max(0.0, (0.1 - r * r) / 0.099))
     strength = float(value("Emission Strength"))
     inputs["emissiveColor"] = [c * strength for c in value("Emission")[:3]]
+    tex = image_link("Emission")
+    if tex is not None:  # an emission map (screens, signs): colour data, times the strength
+        links["emissiveColor"] = (textures.file_for(tex.image), "rgb", strength,
+                                  texture_wrap(tex))
     nnode = _linked_node(I["Normal"])
     if nnode is not None:
         if nnode.type == "NORMAL_MAP" and nnode.space == "TANGENT":
@@ -184,7 +442,8 @@ def material_params(material, textures):
             if tex is not None and tex.type == "TEX_IMAGE" and tex.image is not None and \
                     image_file(tex.image):
                 links["normal"] = (textures.file_for(tex.image), "rgb",
-                                   float(nnode.inputs["Strength"].default_value))
+                                   float(nnode.inputs["Strength"].default_value),
+                                   texture_wrap(tex))
             else:
                 warnings.append(f"material '{material.name}': Normal Map without an Image "
                                 "Texture; ignored")
@@ -229,7 +488,7 @@ def light_params(light, obj_matrix):
     L pi r^2); exported as a UsdLux SphereLight of that radiance (r < 1 mm becomes 1 mm, I
     kept). A spot adds the ShapingAPI cone of spot_shaping().
     AREA, power P (W), area A: Cycles' area-lamp radiance is P/(4A) (cycles-peer.md); exported
-    as an emissive quad/disk of that radiance facing the light's -Z.
+    as a one-sided UsdLux RectLight/DiskLight of that radiance facing the light's -Z.
     """
     color = [float(c) for c in light.color]
     if light.type == "SUN":
@@ -257,6 +516,18 @@ def light_params(light, obj_matrix):
         L = float(light.energy) / (4.0 * max(area, 1e-12))
         return "area", {"size": (sx, sy), "disk": disk, "radiance": [c * L for c in color]}
     return None, {}
+
+
+def area_light_matrix(lp, mw):
+    """The UsdLux Rect/DiskLight transform of an area lamp: the object's matrix (its scale
+    sizes the lamp, as in Cycles), times diag(sx, sy, 1) for a disk (a unit-diameter
+    DiskLight, so an ellipse is a scaled disk)."""
+    from mathutils import Matrix
+
+    if not lp["disk"]:
+        return mw
+    sx, sy = lp["size"]
+    return mw @ Matrix.Diagonal((sx, sy, 1.0, 1.0))
 
 
 # Blender's equirectangular lookup (Cycles 3.4 direction_to_equirectangular) takes the world
@@ -451,6 +722,8 @@ class SceneExport:
         self.view_camera = view_camera  # (matrix, params) for a viewport camera
         self.meshes = {}          # mesh cache: evaluated object name -> MeshData
         self.world_texture = None  # the dome's texture file, if the world has one
+        self.st_mappings = {}     # material name -> uv_mapping() (applied to the meshes' st)
+        self.area_disks = {}      # area lamp name -> True for a DiskLight, False for a RectLight
         self._names = set()
 
     def _unique(self, base):
@@ -468,21 +741,32 @@ class SceneExport:
         path = "/World/Looks/" + self._unique(usd_name(key, "Mat"))
         inputs, links, warns = material_params(material, self.textures)
         self.warnings += warns
+        mapping = uv_mapping(material, self.warnings) if material is not None else None
+        self.st_mappings[key] = mapping
         b.add_material(path)
         for k, v in inputs.items():
             b.set_material_input(path, k, v)
-        for k, (file, channel, strength) in links.items():
+        for k, (file, channel, strength, wrap) in links.items():
             b.set_material_texture(path, k, file, channel)
             tex = f"{path}/{k}Texture"
+            b.set_attribute_string(tex, "token", "inputs:wrapS", wrap)
+            b.set_attribute_string(tex, "token", "inputs:wrapT", wrap)
             if k == "normal":
                 s = 1.0 if strength is None else strength
                 # Tangent-space map stored as 0.5 + 0.5 n: scale/bias to [-1, 1], raw data.
                 b.set_attribute(tex, "float4", "inputs:scale", [2.0 * s, 2.0 * s, 2.0, 1.0])
                 b.set_attribute(tex, "float4", "inputs:bias", [-s, -s, -1.0, 0.0])
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
+            elif k == "emissiveColor":
+                if strength is not None and strength != 1.0:
+                    b.set_attribute(tex, "float4", "inputs:scale",
+                                    [strength, strength, strength, 1.0])
             elif k != "diffuseColor":
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
-        self.materials[key] = (path, tuple(sorted(links)))
+                if strength == "invert":  # 1 - texel (a Mix Shader's Fac toward Transparent)
+                    b.set_attribute(tex, "float4", "inputs:scale", [-1.0, -1.0, -1.0, -1.0])
+                    b.set_attribute(tex, "float4", "inputs:bias", [1.0, 1.0, 1.0, 1.0])
+        self.materials[key] = (path, link_signature(links, mapping))
         return path
 
     def build(self):
@@ -538,10 +822,13 @@ class SceneExport:
                     mat = obj.material_slots[slot].material
                 gp = f"{xf}/Geom_{slot}"
                 counts = np.full(len(idx) // 3, 3, np.int32)
+                mpath = self.material_path(b, mat)
+                st = transform_st(st, self.st_mappings.get(
+                    mat.name if mat is not None else "__default__"))
                 b.add_mesh(gp, md.points, counts, idx, normals=nrm, st=st,
                            normals_interpolation="faceVarying", st_interpolation="faceVarying",
                            double_sided=True)
-                b.bind_material(gp, self.material_path(b, mat))
+                b.bind_material(gp, mpath)
                 self.mesh_prims.append((gp, name, pass_index))
         if self.view_camera is not None:
             mw, params = self.view_camera
@@ -617,26 +904,18 @@ class SceneExport:
                     self.warnings.append(f"light '{name}': square spot rendered as a round cone")
             self.lights[name] = (kind, xf, [xf])
             return
-        b.add_prim(xf, "Xform")
-        b.set_transform(xf, usd_matrix(mw))
-        mat = "/World/Looks/" + self._unique(usd_name(name, "Light") + "_Emission")
-        b.add_material(mat)
-        b.set_material_input(mat, "diffuseColor", [0.0, 0.0, 0.0])
-        b.set_material_input(mat, "specular", 0.0)
-        b.set_material_input(mat, "emissiveColor", lp["radiance"])
-        geom = xf + "/Emitter"
-        # Area light: an emissive quad or 32-gon.
-        sx, sy = lp["size"]
+        # Area lamp: a UsdLux RectLight (square/rectangle) or DiskLight (disk; an ellipse is a
+        # unit disk scaled by the transform), emitting along its local -Z from the front only
+        # and occluding nothing, like Cycles' area lamp. (Until the parity bench it was an
+        # emissive quad/32-gon: lit from both sides, +13% in a closed room, and it cast shadows.)
+        b.add_prim(xf, "DiskLight" if lp["disk"] else "RectLight")
+        b.set_transform(xf, usd_matrix(area_light_matrix(lp, mw)))
         if lp["disk"]:
-            n = 32
-            ang = np.arange(n) * 2 * math.pi / n
-            pts = np.stack([0.5 * sx * np.cos(ang), -0.5 * sy * np.sin(ang),
-                            np.zeros(n)], axis=1).ravel()
-            b.add_mesh(geom, pts, [n], list(range(n)))
+            b.set_attribute(xf, "float", "inputs:radius", 0.5)
         else:
-            # Wound clockwise seen from +Z: the normal faces -Z, the emitting side.
-            pts = [-sx / 2, -sy / 2, 0, -sx / 2, sy / 2, 0, sx / 2, sy / 2, 0, sx / 2, -sy / 2, 0]
-            b.add_mesh(geom, pts, [4], [0, 1, 2, 3])
-        self.mesh_prims.append((geom, name, 0))
-        b.bind_material(geom, mat)
-        self.lights[name] = (kind, xf, [mat + "/Surface"])
+            b.set_attribute(xf, "float", "inputs:width", lp["size"][0])
+            b.set_attribute(xf, "float", "inputs:height", lp["size"][1])
+        b.set_attribute(xf, "float", "inputs:intensity", 1.0)
+        b.set_attribute(xf, "color3f", "inputs:color", lp["radiance"])
+        self.lights[name] = (kind, xf, [xf])
+        self.area_disks[name] = lp["disk"]

@@ -70,6 +70,7 @@ class Session:
         self.rebuilds = 0
         self.last_update = {}
         self.camera_matrix = None
+        self.film_transparent = False
 
     def close(self, keep_textures=False):
         if self.delegate is not None:
@@ -90,6 +91,7 @@ class Session:
     def full_sync(self, depsgraph, width, height, view_camera=None):
         """Translates the whole depsgraph and opens it (a full rebuild)."""
         self.resize(width, height)
+        self.film_transparent = bool(depsgraph.scene.render.film_transparent)
         ex = export.SceneExport(self.p, depsgraph, self.texture_dir, width, height,
                                 view_camera=view_camera)
         builder = ex.build()
@@ -140,7 +142,7 @@ class Session:
                     continue
                 path, sig = entry
                 inputs, links, _ = export.material_params(idd.original, ex.textures)
-                if tuple(sorted(links)) != sig:
+                if export.link_signature(links, export.uv_mapping(idd.original, [])) != sig:
                     rebuild = True
                     continue
                 for k, v in inputs.items():
@@ -190,6 +192,9 @@ class Session:
 
                             loc, rot, _s = mw.decompose()
                             mw = Matrix.Translation(loc) @ rot.to_matrix().to_4x4()
+                        elif kind == "area":
+                            mw = export.area_light_matrix(
+                                export.light_params(obj.data, mw)[1], mw)
                         self.delegate.set_transform(xf, export.usd_matrix(mw))
                         done["transforms"] += 1
                         continue
@@ -233,7 +238,15 @@ class Session:
                 d.set_attribute(xf, "inputs:shaping:cone:softness", sh["softness"])
                 d.set_attribute(xf, "inputs:shaping:focus", sh["focus"])
         else:
-            d.set_attribute(targets[0], "inputs:emissiveColor", lp["radiance"])
+            if lp["disk"] != ex.area_disks.get(obj.name):
+                return False  # Rect <-> Disk: another prim type
+            d.set_attribute(xf, "inputs:color", lp["radiance"])
+            if lp["disk"]:
+                d.set_transform(xf, export.usd_matrix(
+                    export.area_light_matrix(lp, obj.matrix_world)))
+            else:
+                d.set_attribute(xf, "inputs:width", lp["size"][0])
+                d.set_attribute(xf, "inputs:height", lp["size"][1])
         return True
 
     # ---- results -----------------------------------------------------------------------
@@ -242,6 +255,12 @@ class Session:
         d = self.delegate
         if name == "Combined":
             img = d.aov("color")
+            if not self.film_transparent:
+                # Cycles' alpha is 1 everywhere unless Film > Transparent; the delegate's is
+                # the coverage (0 where the ray saw the dome), which made the background of a
+                # saved RGBA image transparent.
+                img = np.array(img, dtype=np.float32)
+                img[:, :, 3] = 1.0
         elif name == "Depth":
             # Cycles' Depth is the camera-space Z distance (planar), 1e10 where nothing hit.
             pos = d.aov("position")

@@ -1,0 +1,545 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Headless Blender regression tests for conversions found by bench/blender_parity.py.
+
+blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
+    [--module-dir build/lib/python]
+
+- Texture wrap: an Image Texture node's extension (REPEAT by default) becomes UsdUVTexture
+  wrapS/wrapT. Without it UsdUVTexture falls back to black, so bilinear lookups within half a
+  texel of a UV edge blend with black: a 4x4 texture on a plane rendered ~25% darker in a band
+  an eighth of the plane wide, and a tangent-space normal map decoded black as (-1, -1, -1)
+  there (the parity bench's normal-map and checker scenes). Rendered check: two planes under
+  an overhead delta sun (strength pi) seen by an overhead orthographic camera, one with a 4x4
+  base-colour texture, one with a flat 4x4 normal map; every pixel of each plane, edges
+  included, must have the Lambert radiance albedo (Cycles gives exactly that).
+- Emission shader: an Emission node alone on the Material Output (not the Principled BSDF's
+  Emission input) is a pure emitter in Cycles; it was translated as the viewport display
+  colour (no emission: the parity bench's emission_shader scene rendered black, -100%).
+  Rendered check: the emitter's pixels have radiance colour x strength, and it lights a plane.
+- Alpha from an Image Texture: Principled Alpha fed by the Image Texture's Alpha output reads
+  the image's alpha (it read the red channel: an opaque white texel with alpha 0.25 rendered
+  fully opaque). Generated/packed images are written as PPM (no alpha), so their alpha goes to
+  a PGM of its own. Rendered check: the plane's radiance is alpha x albedo over black.
+- Film alpha: Cycles' Combined alpha is 1 everywhere unless Film > Transparent, in which case
+  the world is not seen by camera rays (background RGBA = 0). The add-on passed the delegate's
+  coverage alpha through (0 over the world: a saved RGBA image had a transparent background)
+  and showed the world with Film > Transparent on.
+- UV Mapping: an Image Texture fed by Mapping <- Texture Coordinate UV (tiling, offset,
+  rotation) was looked up at the raw UVs. The add-on now transforms the mesh's st by the
+  Mapping (export.uv_mapping). Rendered check: an 8x1 black|white texture with Mapping scale
+  x 2 shows black, white, black, white quarters across the plane (was black, white halves);
+  the Texture type is the inverse of the Point type.
+- Area lamps: Cycles' area lamp emits from its front (-Z) only and occludes nothing; the
+  add-on exported an emissive two-sided quad (+13% in the bench's closed room). Now a UsdLux
+  RectLight/DiskLight. Rendered check: a small square lamp (power 4 pi, 1 m up, facing down)
+  lights the floor at radiance albedo h^2/d^4 (small-lamp limit); the same lamp facing up
+  leaves the floor black; a disk lamp facing down gives the same as the square.
+- Diffuse / Glossy / Glass BSDF nodes alone on the output were translated as the viewport
+  display colour (+11.7% on the bench's bsdf_nodes scene, the glass sphere opaque). Checked:
+  the Disney inputs they map to, and a Diffuse BSDF plane renders its colour under the
+  overhead sun (Burley = Lambert at normal incidence).
+- Mix Shader (Transparent BSDF, shader) by Fac: the classic cut-out setup was the viewport
+  colour. Now opacity = Fac (Transparent first) or 1 - Fac, Fac constant or an Image Texture
+  output (inverted by scale -1, bias 1). Rendered: alpha 0.25 texel -> 0.25 / 0.75 x albedo,
+  constant Fac 0.4 -> 0.4 x albedo.
+- Emission map: the Principled Emission input linked to an Image Texture used the socket
+  value (black). Now the texture (sRGB for 8-bit, like Base Color) times Emission Strength.
+  Rendered: texel 200 at strength 2 -> 2 x decode(200).
+Exit code 0 = pass.
+"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import test_render as tr  # noqa: E402  (argument parsing, module path, check())
+from principled_blender import export, session  # noqa: E402
+
+check = tr.check
+W, H = 100, 50
+TEXEL = 200
+ALBEDO = ((TEXEL / 255 + 0.055) / 1.055) ** 2.4
+
+
+def render_combined(scene):
+    captured = {}
+    session.CAPTURE = captured
+    try:
+        bpy.ops.render.render()
+    finally:
+        session.CAPTURE = None
+    return captured["Combined"].reshape(H, W, 4)[::-1]  # top row first
+
+
+def solid_image(name, rgb8, non_color=False):
+    img = bpy.data.images.new(name, 4, 4, alpha=False)
+    if non_color:  # before the pixels: a colour-space change regenerates a generated image
+        img.colorspace_settings.name = "Non-Color"
+    px = np.ones((4, 4, 4), np.float32)
+    px[:, :, :3] = np.array(rgb8, np.float32) / 255.0
+    img.pixels.foreach_set(px.ravel())
+    return img
+
+
+def build():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 8
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    mats = []
+    for i, kind in enumerate(("color", "normal")):
+        bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2 + 2.4 * i, 0, 0))
+        plane = bpy.context.active_object
+        m = bpy.data.materials.new(kind)
+        m.use_nodes = True
+        nt = m.node_tree
+        b = nt.nodes["Principled BSDF"]
+        b.inputs["Specular"].default_value = 0.0
+        b.inputs["Roughness"].default_value = 1.0
+        tex = nt.nodes.new("ShaderNodeTexImage")
+        if kind == "color":
+            tex.image = solid_image("Grey", (TEXEL, TEXEL, TEXEL))
+            nt.links.new(tex.outputs["Color"], b.inputs["Base Color"])
+        else:
+            b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+            tex.image = solid_image("Flat", (128, 128, 255), non_color=True)
+            nm = nt.nodes.new("ShaderNodeNormalMap")
+            nt.links.new(tex.outputs["Color"], nm.inputs["Color"])
+            nt.links.new(nm.outputs["Normal"], b.inputs["Normal"])
+        plane.data.materials.append(m)
+        mats.append(m)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    sun = bpy.context.active_object
+    sun.data.energy = math.pi
+    sun.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0  # 20 px per unit: each plane is 40 x 40 px
+    scene.camera = cam
+    return scene, mats
+
+
+def test_wrap_tokens(mats):
+    for ext, token in (("REPEAT", "repeat"), ("EXTEND", "clamp"), ("CLIP", "black")):
+        node = mats[0].node_tree.nodes["Image Texture"]
+        node.extension = ext
+        _inputs, links, _w = export.material_params(mats[0], export.TextureWriter(
+            os.path.join(bpy.app.tempdir or "/tmp", "principled-parity-test")))
+        got = links["diffuseColor"][3] if len(links["diffuseColor"]) > 3 else None
+        check(got == token, f"extension {ext} -> wrap '{token}' "
+              f"({got})")
+    mats[0].node_tree.nodes["Image Texture"].extension = "REPEAT"
+
+
+def test_render_edges(scene):
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    # Plane i spans x in [-2.2, -0.2] / [0.2, 2.2], y in [-1, 1]: pixels 6..46 / 54..94, 5..45.
+    for name, x0 in (("base-colour texture", 6), ("normal map", 54)):
+        inner = img[6:44, x0 + 1:x0 + 39]   # one pixel in from the edges (no partial coverage)
+        ring = np.concatenate([inner[:4].ravel(), inner[-4:].ravel(), inner[:, :4].ravel(),
+                               inner[:, -4:].ravel()])
+        centre = inner[10:-10, 10:-10]
+        check(abs(centre.mean() / ALBEDO - 1) < 0.02,
+              f"{name}: centre radiance {centre.mean():.4f} = albedo {ALBEDO:.4f}")
+        check(abs(ring.mean() / ALBEDO - 1) < 0.02 and ring.min() > 0.95 * ALBEDO,
+              f"{name}: edge band (4 px, half a texel) mean {ring.mean():.4f}, min "
+              f"{ring.min():.4f} = albedo {ALBEDO:.4f} (wrap repeat, not black)")
+
+
+def test_emission_shader():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 8
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    m = bpy.data.materials.new("Lamp")
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    em = nt.nodes.new("ShaderNodeEmission")
+    color, strength = (0.25, 0.5, 1.0), 2.0
+    em.inputs["Color"].default_value = (*color, 1.0)
+    em.inputs["Strength"].default_value = strength
+    nt.links.new(em.outputs["Emission"], nt.nodes["Material Output"].inputs["Surface"])
+    bpy.context.active_object.data.materials.append(m)
+    inputs, _links, warns = export.material_params(m, None)
+    check(inputs.get("emissiveColor") == [c * strength for c in color] and not warns,
+          f"Emission shader -> emissiveColor {inputs.get('emissiveColor')} ({warns})")
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    img = render_combined(scene)[:, :, :3]
+    centre = img[15:35, 16:36].reshape(-1, 3).mean(axis=0)
+    want = np.array(color) * strength
+    check(np.allclose(centre, want, rtol=0.01),
+          f"Emission shader: emitter radiance {centre.round(4).tolist()} = {want.tolist()}")
+
+
+def test_alpha_texture():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 64
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    img = bpy.data.images.new("Leaf", 4, 4, alpha=True)
+    px = np.ones((4, 4, 4), np.float32)
+    px[:, :, 3] = 0.25
+    img.pixels.foreach_set(px.ravel())
+    m = bpy.data.materials.new("Leaf")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    nt.links.new(tex.outputs["Alpha"], b.inputs["Alpha"])
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    centre = img[7:43, 8:44].mean()
+    want = 0.25 * ALBEDO
+    check(abs(centre / want - 1) < 0.05,
+          f"Alpha from an Image Texture's Alpha output: radiance {centre:.4f} = 0.25 x albedo "
+          f"{want:.4f}")
+
+
+def test_film_alpha():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 4
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0.5, 0.5, 0.5)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    m = bpy.data.materials.new("Lamp")
+    m.use_nodes = True
+    b = m.node_tree.nodes["Principled BSDF"]
+    b.inputs["Base Color"].default_value = (0, 0, 0, 1)
+    b.inputs["Emission"].default_value = (1, 1, 1, 1)
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    for transparent in (False, True):
+        scene.render.film_transparent = transparent
+        img = render_combined(scene)
+        bg, lamp = img[20:30, 70:90].reshape(-1, 4), img[15:35, 16:36].reshape(-1, 4)
+        want_bg = [0.0] * 4 if transparent else [0.5, 0.5, 0.5, 1.0]
+        check(np.allclose(bg, want_bg, atol=1e-4),
+              f"film_transparent={transparent}: background RGBA {bg.mean(axis=0).round(4).tolist()}"
+              f" = {want_bg}")
+        check(np.allclose(lamp[:, 3], 1.0, atol=1e-4) and np.allclose(lamp[:, :3], 1.0, rtol=0.03),
+              f"film_transparent={transparent}: emitter RGBA {lamp.mean(axis=0).round(4).tolist()}"
+              " = 1 (+ its specular reflection of the world)")
+
+
+def test_uv_mapping():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 4
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    img = bpy.data.images.new("Stripes", 8, 1, alpha=False)
+    px = np.ones((1, 8, 4), np.float32)
+    px[0, :4, :3] = 0.0
+    img.pixels.foreach_set(px.ravel())
+    m = bpy.data.materials.new("Tiled")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    mp = nt.nodes.new("ShaderNodeMapping")
+    mp.inputs["Scale"].default_value = (2.0, 1.0, 1.0)
+    tc = nt.nodes.new("ShaderNodeTexCoord")
+    nt.links.new(tc.outputs["UV"], mp.inputs["Vector"])
+    nt.links.new(mp.outputs["Vector"], tex.inputs["Vector"])
+    nt.links.new(tex.outputs["Color"], b.inputs["Base Color"])
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    cols = [float(img[15:35, x - 1:x + 2].mean()) for x in (11, 21, 31, 41)]  # u = 1/8, 3/8, ...
+    check(cols[0] < 0.02 and cols[2] < 0.02 and cols[1] > 0.98 and cols[3] > 0.98,
+          f"Mapping scale x 2: quarters black/white/black/white {[round(c, 3) for c in cols]}")
+    warns = []
+    check(export.uv_mapping(m, warns) == (2.0, 0.0, 0.0, 1.0, 0.0, 0.0) and not warns,
+          f"Mapping scale (2, 1) -> {export.uv_mapping(m, [])} ({warns})")
+    # Texture type = inverse of Point type.
+    mp.inputs["Location"].default_value = (0.3, -0.2, 0.0)
+    mp.inputs["Rotation"].default_value = (0.0, 0.0, 0.7)
+    mp.inputs["Scale"].default_value = (1.5, 0.5, 1.0)
+    pt = export._mapping_affine(mp, [], "t")
+    mp.vector_type = "TEXTURE"
+    tx = export._mapping_affine(mp, [], "t")
+    A = np.array([[pt[0], pt[1], pt[4]], [pt[2], pt[3], pt[5]], [0, 0, 1]])
+    B = np.array([[tx[0], tx[1], tx[4]], [tx[2], tx[3], tx[5]], [0, 0, 1]])
+    check(np.allclose(B @ A, np.eye(3), atol=1e-6), "Mapping Texture type inverts the Point type")
+
+
+def test_area_one_sided():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 64
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=20.0, location=(0, 0, 0))
+    m = bpy.data.materials.new("Floor")
+    m.use_nodes = True
+    b = m.node_tree.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.light_add(type="AREA", location=(0, 0, 1.0))
+    lamp = bpy.context.active_object
+    lamp.data.energy = 4 * math.pi
+    lamp.data.size = 0.1
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    # Floor patch of 3 x 3 px around x = 0.625 (pixel centres: x = (col + 0.5)/20 - 2.5,
+    # y = 1.25 - (row + 0.5)/20), d^2 = 1 + x^2 + y^2.
+    xs = (np.arange(61, 64) + 0.5) / 20.0 - 2.5
+    ys = 1.25 - (np.arange(24, 27) + 0.5) / 20.0
+    X, Y = np.meshgrid(xs, ys)
+    want = float(np.mean(ALBEDO / (1.0 + X * X + Y * Y) ** 2))
+    for shape, rot, expect in (("SQUARE", 0.0, want), ("DISK", 0.0, want), ("SQUARE", math.pi, 0.0)):
+        lamp.data.shape = shape
+        lamp.rotation_euler = (rot, 0.0, 0.0)
+        img = render_combined(scene)[:, :, :3].mean(axis=2)
+        got = float(img[24:27, 61:64].mean())
+        ok = abs(got - expect) < 0.03 * want
+        check(ok, f"area lamp {shape} facing {'down' if rot == 0 else 'up'}: floor radiance "
+                  f"{got:.4f} = {expect:.4f}")
+
+
+def test_bsdf_nodes():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 8
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+
+    def node_mat(kind, **values):
+        m = bpy.data.materials.new(kind)
+        m.use_nodes = True
+        nt = m.node_tree
+        nt.nodes.remove(nt.nodes["Principled BSDF"])
+        n = nt.nodes.new(kind)
+        for k, v in values.items():
+            n.inputs[k].default_value = v
+        nt.links.new(n.outputs["BSDF"], nt.nodes["Material Output"].inputs["Surface"])
+        return m
+
+    glass = node_mat("ShaderNodeBsdfGlass", IOR=1.5, Roughness=0.1)
+    p, _l, w = export.material_params(glass, None)
+    check(p.get("specTrans") == 1.0 and abs(p.get("ior", 0) - 1.5) < 1e-6 and
+          abs(p.get("specular", 0) - 0.5) < 1e-6 and abs(p.get("roughness", 0) - 0.1) < 1e-6
+          and not w, f"Glass BSDF -> specTrans 1, ior 1.5, specular 0.5 ({p}, {w})")
+    glossy = node_mat("ShaderNodeBsdfGlossy", Color=(0.9, 0.6, 0.3, 1.0), Roughness=0.3)
+    p, _l, w = export.material_params(glossy, None)
+    check(p.get("metallic") == 1.0 and np.allclose(p.get("diffuseColor"), (0.9, 0.6, 0.3)),
+          f"Glossy BSDF -> metallic 1, F0 = Color ({p})")
+    diffuse = node_mat("ShaderNodeBsdfDiffuse", Color=(ALBEDO, ALBEDO, ALBEDO, 1.0))
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    bpy.context.active_object.data.materials.append(diffuse)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    centre = float(img[15:35, 16:36].mean())
+    check(abs(centre / ALBEDO - 1) < 0.01,
+          f"Diffuse BSDF plane: radiance {centre:.4f} = its colour {ALBEDO:.4f}")
+
+
+def test_mix_transparent():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 64
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    img = bpy.data.images.new("Cutout", 4, 4, alpha=True)
+    px = np.ones((4, 4, 4), np.float32)
+    px[:, :, 3] = 0.25
+    img.pixels.foreach_set(px.ravel())
+    m = bpy.data.materials.new("Cutout")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    tr_node = nt.nodes.new("ShaderNodeBsdfTransparent")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    out = nt.nodes["Material Output"]
+    nt.links.new(mix.outputs["Shader"], out.inputs["Surface"])
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    for label, transparent_first, textured, want in (("Fac = alpha, Transparent first", True, True, 0.25),
+                                                     ("Fac = alpha, Transparent second", False, True, 0.75),
+                                                     ("Fac 0.4, Transparent first", True, False, 0.4)):
+        for link in list(nt.links):
+            if link.to_node == mix:
+                nt.links.remove(link)
+        nt.links.new(tr_node.outputs["BSDF"], mix.inputs[1 if transparent_first else 2])
+        nt.links.new(b.outputs["BSDF"], mix.inputs[2 if transparent_first else 1])
+        if textured:
+            nt.links.new(tex.outputs["Alpha"], mix.inputs["Fac"])
+        else:
+            mix.inputs["Fac"].default_value = 0.4
+        centre = float(render_combined(scene)[7:43, 8:44, :3].mean())
+        check(abs(centre / (want * ALBEDO) - 1) < 0.05,
+              f"Mix Shader {label}: radiance {centre:.4f} = {want} x albedo {want * ALBEDO:.4f}")
+
+
+def test_emission_map():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = 4
+    scene.principled.max_depth = 1
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    m = bpy.data.materials.new("Screen")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    b.inputs["Base Color"].default_value = (0, 0, 0, 1)
+    b.inputs["Emission Strength"].default_value = 2.0
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = solid_image("Screen", (TEXEL, TEXEL, TEXEL))
+    nt.links.new(tex.outputs["Color"], b.inputs["Emission"])
+    bpy.context.active_object.data.materials.append(m)
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    centre = float(render_combined(scene)[15:35, 16:36, :3].mean())
+    check(abs(centre / (2 * ALBEDO) - 1) < 0.01,
+          f"Emission map x strength 2: radiance {centre:.4f} = {2 * ALBEDO:.4f}")
+
+
+def main():
+    tr.principled_blender.register()
+    try:
+        scene, mats = build()
+        test_render_edges(scene)
+        test_wrap_tokens(mats)
+        test_emission_shader()
+        test_alpha_texture()
+        test_film_alpha()
+        test_uv_mapping()
+        test_area_one_sided()
+        test_bsdf_nodes()
+        test_mix_transparent()
+        test_emission_map()
+    except Exception:
+        import traceback
+
+        traceback.print_exc()
+        tr.failures.append("exception")
+    print(f"{len(tr.failures)} failures" if tr.failures else "all passed")
+    sys.exit(1 if tr.failures else 0)
+
+
+main()

@@ -6,7 +6,7 @@
 
 namespace principled::embree {
 
-glm::vec3 validReflectionNormal(const glm::vec3& ng, const glm::vec3& wo, const glm::vec3& n) {
+glm::vec3 bendToValidReflection(const glm::vec3& ng, const glm::vec3& wo, const glm::vec3& n) {
     const float iz = glm::dot(wo, ng);
     const float threshold = std::min(0.9f * iz, 0.01f);
     const glm::vec3 r = 2.0f * glm::dot(n, wo) * n - wo;  // mirror direction of wo about n

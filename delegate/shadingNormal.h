@@ -14,6 +14,10 @@ namespace principled::embree {
 /// already does. ng, wo and n are unit vectors with wo . ng > 0 (ng faces the viewer).
 /// The rule and its threshold: Cycles (Blender 3.4), kernel/closure/bsdf_util.h,
 /// ensure_valid_reflection; the closed form below is derived in shadingNormal.cpp.
-glm::vec3 validReflectionNormal(const glm::vec3& ng, const glm::vec3& wo, const glm::vec3& n);
+glm::vec3 bendToValidReflection(const glm::vec3& ng, const glm::vec3& wo, const glm::vec3& n);
+inline glm::vec3 validReflectionNormal(const glm::vec3& ng, const glm::vec3& wo, const glm::vec3& n) {
+    if (n == ng) return n;  // flat shading: the mirror direction is above the surface
+    return bendToValidReflection(ng, wo, n);
+}
 
 }  // namespace principled::embree

@@ -2,9 +2,14 @@
 
     blender -b -noaudio --factory-startup --python bench/cycles_render.py -- \
         DESC.json OUTDIR --res 128 --threads 2 --spp 4,16,64 [--seed 0] [--max-bounces 8]
+        [--seeds 8,4,1]
 
 Writes OUTDIR/cycles_<spp>.exr and OUTDIR/cycles_times.json ({spp: seconds of
-bpy.ops.render.render, which includes Cycles' scene sync and BVH build}).
+bpy.ops.render.render, which includes Cycles' scene sync and BVH build}). With --seeds (one count
+per --spp entry) spp[i] is rendered with seeds seed .. seed + n_i - 1 in the same process (one
+scene build): seed `seed` is written as above, seed s > `seed` as OUTDIR/cycles_<spp>_seed<s>.exr
+with times under the key "<spp>_seed<s>" (independent images for bench/peer_equal_time.py's
+expected error).
 
 Conversions (verified in /work/shared/reference/cycles-peer.md; listed in docs/performance.md):
   * axes: USD Y-up -> Blender Z-up, p_b = (x, -z, y); camera/light local frames identical.
@@ -47,6 +52,8 @@ while i < len(argv):
     i += 2
 res, threads, seed, max_bounces = int(opts["res"]), int(opts["threads"]), int(opts["seed"]), int(opts["max_bounces"])
 ladder = [int(s) for s in str(opts["spp"]).split(",")]
+nseeds = [int(s) for s in str(opts.get("seeds", ",".join("1" for _ in ladder))).split(",")]
+assert len(nseeds) == len(ladder), "--seeds needs one count per --spp entry"
 sc = json.load(open(desc_path))
 off = sc.get("offset", [0, 0, 0])
 scene_dir = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(desc_path))))
@@ -227,14 +234,17 @@ times = {}
 # Cycles' sync and BVH build happen inside render() (principled's renderCpuSeconds excludes its
 # own parse/sync/BVH); the render_stats handler is not called in background mode, so the
 # fixed part is found by a straight-line fit of cpuSeconds against spp (bench/peer_equal_time.py).
-for spp in ladder:
-    cy.samples = spp
-    path = os.path.join(outdir, f"cycles_{spp}.exr")
-    scene.render.filepath = path
-    t0 = time.perf_counter()
-    c0 = time.process_time()
-    bpy.ops.render.render(write_still=True)
-    c1, t1 = time.process_time(), time.perf_counter()
-    times[spp] = {"wallSeconds": t1 - t0, "cpuSeconds": c1 - c0}
-    print(f"cycles: {sc['name']} {spp} spp {times[spp]['wallSeconds']:.2f}s", flush=True)
+for spp, n in zip(ladder, nseeds):
+    for s in range(seed, seed + n):
+        cy.samples = spp
+        cy.seed = s
+        key = str(spp) if s == seed else f"{spp}_seed{s}"
+        path = os.path.join(outdir, f"cycles_{key}.exr")
+        scene.render.filepath = path
+        t0 = time.perf_counter()
+        c0 = time.process_time()
+        bpy.ops.render.render(write_still=True)
+        c1, t1 = time.process_time(), time.perf_counter()
+        times[key] = {"wallSeconds": t1 - t0, "cpuSeconds": c1 - c0, "spp": spp, "seed": s}
+        print(f"cycles: {sc['name']} {spp} spp seed {s} {times[key]['wallSeconds']:.2f}s", flush=True)
 json.dump(times, open(os.path.join(outdir, "cycles_times.json"), "w"), indent=1)

@@ -36,9 +36,11 @@ constexpr Directions directions() {
 
 // Sobol points are XORs of direction numbers selected by the index bits, so each byte of the
 // index contributes independently: four 256-entry tables per dimension replace the 32-step
-// bit loop (scrambled indices use all 32 bits). 16 KiB in all, computed by the compiler (no
-// start-up cost, no guard on the hot path).
-constexpr detail::SobolByteTables byteTables() {
+// bit loop (scrambled indices use all 32 bits). 16 KiB per set, computed by the compiler (no
+// start-up cost, no guard on the hot path). contribution(v, bit) is what index bit `bit`
+// adds, given the dimension's direction numbers v.
+template <typename Contribution>
+constexpr detail::SobolByteTables byteTables(Contribution contribution) {
     const Directions d = directions();
     detail::SobolByteTables out{};
     for (int dim = 0; dim < 4; ++dim)
@@ -46,7 +48,7 @@ constexpr detail::SobolByteTables byteTables() {
             for (uint32_t b = 0; b < 256; ++b) {
                 uint32_t x = 0;
                 for (int k = 0; k < 8; ++k)
-                    if (b & (1u << k)) x ^= d[dim][byte * 8 + k];
+                    if (b & (1u << k)) x ^= contribution(d[dim], byte * 8 + k);
                 out[dim][byte][b] = x;
             }
     return out;
@@ -58,27 +60,15 @@ constexpr uint32_t reverse(uint32_t x) {
     return r;
 }
 
-// Bit m of a reversed index stands for bit 31 - m of the index, which selects direction number
-// 31 - m; reversing that direction number gives the reversed point's contribution.
-constexpr detail::SobolByteTables reversedByteTables() {
-    const Directions d = directions();
-    detail::SobolByteTables out{};
-    for (int dim = 0; dim < 4; ++dim)
-        for (int byte = 0; byte < 4; ++byte)
-            for (uint32_t b = 0; b < 256; ++b) {
-                uint32_t x = 0;
-                for (int k = 0; k < 8; ++k)
-                    if (b & (1u << k)) x ^= reverse(d[dim][31 - (byte * 8 + k)]);
-                out[dim][byte][b] = x;
-            }
-    return out;
-}
-
 }  // namespace
 
-constexpr detail::SobolByteTables detail::kSobolReversedByteTables = reversedByteTables();
+// Bit m of a reversed index stands for bit 31 - m of the index, which selects direction number
+// 31 - m; reversing that direction number gives the reversed point's contribution.
+constexpr detail::SobolByteTables detail::kSobolReversedByteTables =
+    byteTables([](const std::array<uint32_t, 32>& v, int bit) { return reverse(v[31 - bit]); });
 
 // External linkage from the declaration in sampler.h.
-constexpr detail::SobolByteTables detail::kSobolByteTables = byteTables();
+constexpr detail::SobolByteTables detail::kSobolByteTables =
+    byteTables([](const std::array<uint32_t, 32>& v, int bit) { return v[bit]; });
 
 }  // namespace principled::embree

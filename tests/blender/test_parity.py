@@ -84,18 +84,24 @@ def solid_image(name, rgb8, non_color=False):
     return img
 
 
-def build():
+def empty_scene(samples, max_depth):
+    """A factory-empty scene rendered by PRINCIPLED at W x H under a black world."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scene.render.engine = "PRINCIPLED"
     scene.render.resolution_x, scene.render.resolution_y = W, H
     scene.render.resolution_percentage = 100
-    scene.principled.samples = 8
-    scene.principled.max_depth = 1
+    scene.principled.samples = samples
+    scene.principled.max_depth = max_depth
     world = bpy.data.worlds.new("World")
     world.use_nodes = False
     world.color = (0, 0, 0)
     scene.world = world
+    return scene
+
+
+def build():
+    scene = empty_scene(samples=8, max_depth=1)
     mats = []
     for i, kind in enumerate(("color", "normal")):
         bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2 + 2.4 * i, 0, 0))
@@ -158,17 +164,7 @@ def test_render_edges(scene):
 
 
 def test_emission_shader():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = 8
-    scene.principled.max_depth = 1
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
+    scene = empty_scene(samples=8, max_depth=1)
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
     m = bpy.data.materials.new("Lamp")
     m.use_nodes = True
@@ -196,17 +192,7 @@ def test_emission_shader():
 
 
 def test_alpha_texture():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = 64
-    scene.principled.max_depth = 1
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
+    scene = empty_scene(samples=64, max_depth=1)
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
     img = bpy.data.images.new("Leaf", 4, 4, alpha=True)
     px = np.ones((4, 4, 4), np.float32)
@@ -277,17 +263,7 @@ def test_film_alpha():
 
 
 def test_uv_mapping():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = 4
-    scene.principled.max_depth = 1
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
+    scene = empty_scene(samples=4, max_depth=1)
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
     img = bpy.data.images.new("Stripes", 8, 1, alpha=False)
     px = np.ones((1, 8, 4), np.float32)
@@ -336,17 +312,7 @@ def test_uv_mapping():
 
 
 def test_area_one_sided():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = 64
-    scene.principled.max_depth = 1
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
+    scene = empty_scene(samples=64, max_depth=1)
     bpy.ops.mesh.primitive_plane_add(size=20.0, location=(0, 0, 0))
     m = bpy.data.materials.new("Floor")
     m.use_nodes = True
@@ -381,17 +347,7 @@ def test_area_one_sided():
 
 
 def test_bsdf_nodes():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = 8
-    scene.principled.max_depth = 1
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
+    scene = empty_scene(samples=8, max_depth=1)
 
     def node_mat(kind, **values):
         m = bpy.data.materials.new(kind)
@@ -431,17 +387,7 @@ def test_bsdf_nodes():
 
 
 def test_mix_transparent():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = 64
-    scene.principled.max_depth = 1
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
+    scene = empty_scene(samples=64, max_depth=1)
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
     img = bpy.data.images.new("Cutout", 4, 4, alpha=True)
     px = np.ones((4, 4, 4), np.float32)
@@ -487,17 +433,7 @@ def test_mix_transparent():
 
 
 def test_emission_map():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = 4
-    scene.principled.max_depth = 1
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
+    scene = empty_scene(samples=4, max_depth=1)
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
     m = bpy.data.materials.new("Screen")
     m.use_nodes = True

@@ -90,8 +90,8 @@ bool writeImage(const std::string& path, int width, int height,
         return false;
     }
     std::string reason;
-    // EXR and PNG are encoded here (zlib only), so writing the output does not load
-    // OpenImageIO; PRINCIPLED_IMAGE_WRITER=oiio writes through the backend instead.
+    // EXR and PNG are encoded with OpenEXRCore and libpng (nativeWriter.h), so writing the
+    // output does not load OpenImageIO; PRINCIPLED_IMAGE_WRITER=oiio writes through the backend.
     const char* writer = std::getenv("PRINCIPLED_IMAGE_WRITER");
     if (!writer || std::string(writer) != "oiio") {
         bool ok = ext == "exr"

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Image output: float EXR (linear, ZIP) and 8-bit PNG (sRGB transfer), encoded by
-// delegate/imageio/nativeWriter.cpp without OpenImageIO (PRINCIPLED_IMAGE_WRITER=oiio: through
-// the image I/O backend, delegate/imageio/imageIO.h).
+// delegate/imageio/nativeWriter.cpp with OpenEXRCore and libpng, without OpenImageIO
+// (PRINCIPLED_IMAGE_WRITER=oiio: through the image I/O backend, delegate/imageio/imageIO.h).
 #pragma once
 
 #include <string>

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -17,6 +16,7 @@
 #include "bsdf/bsdf.h"
 #include "bsdf/chi2.h"
 #include "bsdf/diagnostics.h"
+#include "delegate/imageio/nativeWriter.h"
 
 namespace principled::tools {
 namespace {
@@ -102,65 +102,6 @@ bool buildMaterial(const MaterialArgs& a, MaterialParams* p, Options* o, int* ex
     return true;
 }
 
-// ---- PNG output for `plot` (stored deflate blocks: no compression library needed) ----
-
-uint32_t crc32(const unsigned char* data, size_t n, uint32_t crc = 0) {
-    // ISO 3309 / PNG specification, annex D: reflected polynomial 0xEDB88320.
-    crc = ~crc;
-    for (size_t i = 0; i < n; ++i) {
-        crc ^= data[i];
-        for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-    }
-    return ~crc;
-}
-
-bool writePng(const std::string& path, int w, int h, const std::vector<unsigned char>& rgb) {
-    std::vector<unsigned char> raw;
-    for (int y = 0; y < h; ++y) {
-        raw.push_back(0);  // filter type none
-        raw.insert(raw.end(), rgb.begin() + size_t(y) * w * 3, rgb.begin() + size_t(y + 1) * w * 3);
-    }
-    std::vector<unsigned char> z = {0x78, 0x01};
-    uint32_t a = 1, b = 0;  // Adler-32 (RFC 1950)
-    for (unsigned char c : raw) {
-        a = (a + c) % 65521u;
-        b = (b + a) % 65521u;
-    }
-    for (size_t off = 0; off < raw.size(); off += 65535) {
-        size_t len = std::min<size_t>(65535, raw.size() - off);
-        z.push_back(off + len == raw.size() ? 1 : 0);  // RFC 1951 stored block
-        z.push_back(len & 0xff);
-        z.push_back(len >> 8);
-        z.push_back(~len & 0xff);
-        z.push_back((~len >> 8) & 0xff);
-        z.insert(z.end(), raw.begin() + off, raw.begin() + off + len);
-    }
-    uint32_t adler = (b << 16) | a;
-    for (int s = 24; s >= 0; s -= 8) z.push_back((adler >> s) & 0xff);
-    std::ofstream out(path, std::ios::binary);
-    if (!out) return false;
-    auto be32 = [&](uint32_t v) {
-        unsigned char c[4] = {(unsigned char)(v >> 24), (unsigned char)(v >> 16), (unsigned char)(v >> 8), (unsigned char)v};
-        out.write(reinterpret_cast<char*>(c), 4);
-    };
-    auto chunk = [&](const char* type, const std::vector<unsigned char>& data) {
-        be32(uint32_t(data.size()));
-        std::vector<unsigned char> td(type, type + 4);
-        td.insert(td.end(), data.begin(), data.end());
-        out.write(reinterpret_cast<const char*>(td.data()), std::streamsize(td.size()));
-        be32(crc32(td.data(), td.size()));
-    };
-    const unsigned char sig[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
-    out.write(reinterpret_cast<const char*>(sig), 8);
-    std::vector<unsigned char> ihdr = {(unsigned char)(w >> 24), (unsigned char)(w >> 16), (unsigned char)(w >> 8), (unsigned char)w,
-                                       (unsigned char)(h >> 24), (unsigned char)(h >> 16), (unsigned char)(h >> 8), (unsigned char)h,
-                                       8, 2, 0, 0, 0};
-    chunk("IHDR", ihdr);
-    chunk("IDAT", z);
-    chunk("IEND", {});
-    return bool(out);
-}
-
 struct Canvas {
     int w, h;
     std::vector<unsigned char> px;
@@ -211,8 +152,9 @@ void runPlot(const MaterialParams& p, const Options& o, float thetaDeg, const st
         c.line(cx + scale * perp[i] * std::sin(a0), cy - scale * perp[i] * std::cos(a0),
                cx + scale * perp[j] * std::sin(a1), cy - scale * perp[j] * std::cos(a1), {30, 60, 220});
     }
-    if (!writePng(path, size, size, c.px)) {
-        fail(exitCode, "cannot write '" + path + "'");
+    std::string err;
+    if (!imageio::writePng8(path, size, size, 3, c.px.data(), &err)) {
+        fail(exitCode, "cannot write '" + path + "': " + err);
         return;
     }
     std::printf("wrote %s (red: plane of incidence, blue: perpendicular plane, green: wo; max %.4g)\n",

@@ -4,7 +4,7 @@
 // OpenImageIO pulls in ~270 shared libraries (ffmpeg, OpenVDB, GDAL, DCMTK, ...) whose
 // relocation costs ~0.27 s of CPU at every process start. Nothing in the project links it:
 // every image read (textures, light images, checkpoints) and every write other than the EXR/PNG
-// output (nativeWriter.h) goes through imageio::backend(), which dlopen()s libprincipled_oiio.so
+// output (nativeWriter.h: OpenEXRCore and libpng) goes through imageio::backend(), which dlopen()s libprincipled_oiio.so
 // (the only module that links OpenImageIO) the first time it is needed. `principled info`,
 // `principled plugins` and a render of a scene without image files never load it.
 //

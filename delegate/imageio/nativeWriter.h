@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// The two output formats `principled render` writes, encoded here with zlib only, so writing
-// the image does not load OpenImageIO (libprincipled_oiio.so, ~0.25 s of CPU to load; see
-// imageIO.h). Readers (OpenImageIO, OpenEXR, libpng) see ordinary files.
+// The two output formats `principled render` writes, encoded with OpenEXRCore (OpenEXR's C
+// library) and libpng, so writing the image does not load OpenImageIO (libprincipled_oiio.so,
+// ~0.25 s of CPU to load; see imageIO.h). Both libraries depend only on zlib and libc/libm
+// (docs/performance.md, section 0, for the measured start-up cost).
 #pragma once
 
 #include <cstdint>
@@ -10,13 +11,15 @@
 
 namespace principled::imageio {
 
-/// A scanline OpenEXR 2 file of 32-bit float channels, ZIP-compressed in blocks of 16 lines
-/// (the layout OpenEXR's ZIP_COMPRESSION uses). `pixels` holds names.size() floats per pixel,
-/// interleaved, top row first; channels are stored sorted by name, as OpenEXR requires.
+/// A single-part scanline OpenEXR file of 32-bit float channels, ZIP-compressed (blocks of 16
+/// lines); names longer than 31 characters set the long-names flag. `pixels` holds
+/// names.size() floats per pixel, interleaved, top row first; OpenEXR stores the channels
+/// sorted by name. False with *error (OpenEXR's message).
 bool writeExrFloat(const std::string& path, int width, int height,
                    const std::vector<std::string>& names, const float* pixels, std::string* error);
 
-/// An 8-bit PNG of 3 (RGB) or 4 (RGBA) channels, interleaved, top row first.
+/// An 8-bit PNG of 3 (RGB) or 4 (RGBA, straight alpha) sRGB channels, interleaved, top row
+/// first (libpng's simplified API, which also records the sRGB colour space in the file).
 bool writePng8(const std::string& path, int width, int height, int channels,
                const uint8_t* pixels, std::string* error);
 

@@ -1,4 +1,5 @@
 #include "delegate/imageWriter.h"
+#include "delegate/imageio/nativeWriter.h"
 
 #include <gtest/gtest.h>
 
@@ -44,7 +45,8 @@ TEST(ImageWriter, ExrRoundTripsFloatsAndPngIsEncoded) {
     EXPECT_NE(err.find(".exr or .png"), std::string::npos);
 }
 
-// EXR and PNG are encoded by delegate/imageio/nativeWriter.cpp (no OpenImageIO at write time):
+// EXR and PNG are encoded by delegate/imageio/nativeWriter.cpp with OpenEXRCore and libpng (no
+// OpenImageIO at write time):
 // OpenImageIO must read back every value, across ZIP blocks of 16 lines with a partial last
 // block, layered and long (> 31 characters) channel names, and the same pixels as its own
 // writer (PRINCIPLED_IMAGE_WRITER=oiio).
@@ -91,4 +93,57 @@ TEST(ImageWriter, NativeExrAndPngReadBackExactlyAndMatchOpenImageIO) {
     ASSERT_TRUE(ok) << err;
     EXPECT_TRUE(read(exrO, nullptr) == back);
     EXPECT_TRUE(read(pngO, nullptr) == read(png, nullptr));
+}
+
+// Many AOV layers in one EXR (the render writes each AOV as "layer.channel"), an RGBA PNG through
+// libpng, and errors from OpenEXR / libpng naming the file.
+TEST(ImageWriter, ManyAovLayersRgbaPngAndErrors) {
+    auto dir = std::filesystem::temp_directory_path() / "principled_imageWriter_test";
+    std::filesystem::create_directories(dir);
+    const int w = 19, h = 33, layersN = 10;
+    std::vector<std::vector<float>> data(layersN);
+    std::vector<embree::ImageLayer> layers;
+    for (int l = 0; l < layersN; ++l) {
+        data[l].resize(size_t(w) * h * 4);
+        for (size_t i = 0; i < data[l].size(); ++i) data[l][i] = float(l) * 1000.0f + float(i) * 0.125f;
+        layers.push_back({l == 0 ? "" : "aov" + std::to_string(l), {"R", "G", "B", "A"}, data[l].data()});
+    }
+    std::string err;
+    std::string exr = (dir / "many.exr").string();
+    ASSERT_TRUE(embree::writeImage(exr, w, h, layers, &err)) << err;
+    auto in = OIIO::ImageInput::open(exr);
+    ASSERT_TRUE(in) << OIIO::geterror();
+    const auto& spec = in->spec();
+    ASSERT_EQ(spec.nchannels, layersN * 4);
+    EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(spec.alpha_channel, 3);
+    std::vector<float> back(size_t(w) * h * spec.nchannels);
+    ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, back.data()));
+    for (int c = 0; c < spec.nchannels; ++c) {
+        const std::string& name = spec.channelnames[size_t(c)];
+        auto dot = name.find('.');
+        int l = dot == std::string::npos ? 0 : std::stoi(name.substr(3, dot - 3));
+        int k = int(std::string("RGBA").find(name.back()));
+        ASSERT_GE(k, 0) << name;
+        for (size_t p = 0; p < size_t(w) * h; ++p)
+            ASSERT_EQ(back[p * spec.nchannels + c], data[size_t(l)][p * 4 + k]) << name << " " << p;
+    }
+
+    std::vector<uint8_t> rgba(size_t(w) * h * 4);
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = uint8_t(i * 37);
+    std::string png = (dir / "rgba.png").string();
+    ASSERT_TRUE(imageio::writePng8(png, w, h, 4, rgba.data(), &err)) << err;
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as written
+    auto pin = OIIO::ImageInput::open(png, &config);
+    ASSERT_TRUE(pin);
+    ASSERT_EQ(pin->spec().nchannels, 4);
+    std::vector<uint8_t> pb(rgba.size());
+    ASSERT_TRUE(pin->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, pb.data()));
+    EXPECT_TRUE(pb == rgba);
+
+    EXPECT_FALSE(embree::writeImage("/nonexistent/dir/x.exr", w, h, layers, &err));
+    EXPECT_NE(err.find("/nonexistent/dir/x.exr: OpenEXR"), std::string::npos) << err;
+    EXPECT_FALSE(embree::writeImage("/nonexistent/dir/x.png", w, h, layers, &err));
+    EXPECT_NE(err.find("/nonexistent/dir/x.png: libpng"), std::string::npos) << err;
 }

@@ -209,3 +209,23 @@ TEST(Cli, AssembledShotOfLayersReferencesPayloadsAndInstancesRendersInOneCommand
     EXPECT_TRUE(finite);
     EXPECT_GT(mean, 0.05);
 }
+
+// `principled bsdf plot` writes its PNG through libpng (delegate/imageio/nativeWriter.h).
+TEST(Cli, BsdfPlotWritesAReadablePng) {
+    fs::path png = tempDir() / "plot.png";
+    fs::remove(png);
+    Result r = run("bsdf plot --theta 45 -o " + png.string());
+    EXPECT_EQ(r.status, 0) << r.output;
+    auto in = OIIO::ImageInput::open(png.string());
+    ASSERT_TRUE(in) << OIIO::geterror();
+    EXPECT_EQ(in->spec().nchannels, 3);
+    EXPECT_EQ(in->spec().width, in->spec().height);
+    std::vector<unsigned char> px(size_t(in->spec().width) * in->spec().height * 3);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
+    size_t coloured = 0;  // the curves on the white canvas
+    for (size_t i = 0; i < px.size(); i += 3) coloured += !(px[i] == 255 && px[i + 1] == 255 && px[i + 2] == 255);
+    EXPECT_GT(coloured, 100u);
+    Result bad = run("bsdf plot --theta 45 -o /nonexistent/dir/plot.png");
+    EXPECT_NE(bad.status, 0);
+    EXPECT_NE(bad.output.find("cannot write '/nonexistent/dir/plot.png'"), std::string::npos) << bad.output;
+}

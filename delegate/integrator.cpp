@@ -459,8 +459,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::dot(ls.wi, hit.ng) > 0.0f) {
                 float bsdfPdf = 0.0f;
                 bsdf::LobeValues perLobe;
-                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf,
-                                        depth == 0 ? &perLobe : nullptr);
+                const bool split = depth == 0 && _settings.splitLobes;
+                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf, split ? &perLobe : nullptr);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
                     glm::vec3 shadowOrigin = offsetOrigin(hit.p, hit.ng, ls.wi);
@@ -475,8 +475,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                         glm::vec3 c = scale * f;
                         if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                             c *= _settings.clampIndirect / maxComponent(c);
-                        if (depth == 0) {
+                        if (split) {
                             for (int i = 0; i < bsdf::kLobeCount; ++i) out.lobes[i] += scale * perLobe[i];
+                        } else if (depth == 0) {
+                            out.lobes[0] += c;  // not split: every lobe's share in one slot
                         } else {
                             credit(c);
                         }
@@ -500,7 +502,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             out.invalid = true;
             return out;
         }
-        if (depth == 0) pathLobe = static_cast<int>(s->lobe);
+        if (depth == 0) pathLobe = _settings.splitLobes ? static_cast<int>(s->lobe) : 0;
         // NEE only samples the hemisphere facing the viewer: a transmitted direction could not
         // have come from it, so lights it reaches count fully (treated like a delta bounce).
         prevDelta = s->delta || transmit;

@@ -218,6 +218,13 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     const SceneSnapshot& scene = _delegate->snapshot();
     IntegratorSettings settings = _delegate->integratorSettings();
     settings.recorder = _recorder;
+    settings.splitLobes = std::any_of(aovs.begin(), aovs.end(), [](const BoundAov& a) {
+        switch (a.info.kind) {
+            case AovKind::Diffuse: case AovKind::Sheen: case AovKind::Specular:
+            case AovKind::Clearcoat: case AovKind::Transmission: return true;
+            default: return false;
+        }
+    });
     for (auto& a : aovs) {
         if (a.info.kind != AovKind::Primvar) continue;
         std::string name;

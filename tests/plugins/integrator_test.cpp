@@ -150,6 +150,24 @@ TEST(Integrator, BitIdenticalOnOneTwoAndFourThreads) {
     EXPECT_TRUE(one == four);
 }
 
+TEST(Integrator, ColorIsTheSameWithAndWithoutTheLobeSplit) {
+    // Without a lobe AOV the first hit's light is not split per lobe (no per-lobe evaluation);
+    // the colour must not depend on that, and with the split it must equal the lobes' sum.
+    auto render = [](std::vector<std::string> aovs) {
+        host::SessionOptions o;
+        o.width = 24;
+        o.height = 16;
+        o.samplesPerPixel = 4;
+        o.aovs = std::move(aovs);
+        auto s = run(kFurnace, o);
+        std::vector<float> px(s->color(), s->color() + 24 * 16 * 4);
+        return px;
+    };
+    std::vector<float> plain = render({"color"}), split = render({"color", "diffuse", "specular"});
+    ASSERT_EQ(plain.size(), split.size());
+    for (size_t i = 0; i < plain.size(); ++i) ASSERT_NEAR(plain[i], split[i], 1e-5f * std::max(1.0f, std::abs(split[i]))) << i;
+}
+
 TEST(Integrator, AdaptiveSamplingStopsFlatPixelsEarly) {
     // Half the image is a flat background (dome only, no noise): with a noise threshold those
     // pixels stop at the minimum sample count while the sphere keeps sampling.

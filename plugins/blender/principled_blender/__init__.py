@@ -5,7 +5,8 @@ Final renders (F12, `blender -b file.blend -E PRINCIPLED -f 1`) translate the ev
 depsgraph into a principled.SceneBuilder, render progressive passes through the C ABI and
 write Combined plus Depth, Normal, IndexOB, Diffuse, Glossy, Emit and the other principled
 AOVs into the render result. The viewport renders progressively and applies material, light,
-world and transform edits through the delegate's edit calls (no geometry rebuild).
+world, transform, mesh geometry and added/deleted object edits through the delegate's edit
+calls (session.Session.apply_updates lists what still needs a full sync).
 """
 
 bl_info = {

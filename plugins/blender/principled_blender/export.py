@@ -724,6 +724,15 @@ class SceneExport:
         self.world_texture = None  # the dome's texture file, if the world has one
         self.st_mappings = {}     # material name -> uv_mapping() (applied to the meshes' st)
         self.area_disks = {}      # area lamp name -> True for a DiskLight, False for a RectLight
+        # For the viewport's incremental geometry/object edits (session.Session.apply_updates):
+        self.top_objects = set()  # names of the depsgraph's own (non-instance) objects, any type
+        self.instancers = set()   # names of objects that generated instances (inst.parent)
+        self.instanced = set()    # names of objects with instance copies (lamps too)
+        self.xform_info = {}      # xform path -> {name, source, parent, parts {slot: mesh path},
+        #                           pass_index}
+        self.prim_state = {}      # mesh path -> {layout, idx, npts, st, mat} as last written
+        self.mesh_index = {}      # mesh path -> its index in mesh_prims (its primId)
+        self.camera_object = None  # the scene camera's name when exported as /World/Camera
         self._names = set()
 
     def _unique(self, base):
@@ -785,10 +794,18 @@ class SceneExport:
             src = inst.instance_object if inst.is_instance else obj
             name = src.name if src is not None else obj.name
             mw = inst.matrix_world
+            parent = None
+            if inst.is_instance:
+                parent = inst.parent.original.name if inst.parent is not None else "?"
+                self.instancers.add(parent)
+                self.instanced.add(name)
+            else:
+                self.top_objects.add(obj.name)
             if obj.type == "CAMERA":
                 if self.view_camera is None and scene_cam is not None and \
                         obj.original == scene_cam.original and not inst.is_instance:
                     self._camera(b, mw, obj.data)
+                    self.camera_object = obj.name
                 continue
             if obj.type == "LIGHT":
                 self._light(b, name, mw, obj.data)
@@ -816,6 +833,9 @@ class SceneExport:
             b.set_transform(xf, usd_matrix(mw))
             self.object_xforms.setdefault(name, []).append(xf)
             pass_index = int(src.pass_index if src is not None else obj.pass_index)
+            parts = {}
+            self.xform_info[xf] = {"name": name, "source": obj.original.name, "parent": parent,
+                                   "parts": parts, "pass_index": pass_index}
             for slot, idx, nrm, st in md.parts:
                 mat = None
                 if 0 <= slot < len(obj.material_slots):
@@ -829,6 +849,10 @@ class SceneExport:
                            normals_interpolation="faceVarying", st_interpolation="faceVarying",
                            double_sided=True)
                 b.bind_material(gp, mpath)
+                parts[slot] = gp
+                self.prim_state[gp] = {"layout": "indexed", "idx": idx,
+                                       "npts": len(md.points) // 3, "st": st, "mat": mpath}
+                self.mesh_index[gp] = len(self.mesh_prims)
                 self.mesh_prims.append((gp, name, pass_index))
         if self.view_camera is not None:
             mw, params = self.view_camera

@@ -34,6 +34,10 @@ PASSES = [
 #: render result buffers (name -> flat float32 array, rows bottom to top).
 CAPTURE = None
 
+#: Object types whose evaluated mesh is exported (export.MeshData) and edited incrementally.
+#: Metaballs (META) are not: one metaball's edit changes its family's base object.
+MESH_TYPES = ("MESH", "CURVE", "SURFACE", "FONT")
+
 #: Cycles' depth for pixels that hit nothing.
 BACKGROUND_DEPTH = 1.0e10
 
@@ -123,15 +127,37 @@ class Session:
 
         Material: every surface input is re-set (material tables only, no BVH build);
         a change in which inputs are texture-linked rebuilds. Light: intensity/color/angle/
-        radius/cone or the area emitter's radiance. Object transform only: set_transform on each of its instance
-        Xforms (no mesh rebuild). World color: the dome light's color (a world texture: rebuild). Anything else that
-        changes geometry or the set of objects: a full rebuild (the ABI cannot change
-        topology or add prims yet). Returns a dict of what was done."""
+        radius/cone or the area emitter's radiance. Object transform only: set_transform on its
+        Xform (no mesh rebuild). World color: the dome light's color (a world texture: rebuild).
+
+        Geometry (edit-mode data, modifiers, sculpting, material slots) of an exported mesh-like
+        object: only that object's evaluated mesh is re-exported (export.MeshData, as the full
+        export does) and written to its Geom_<slot> meshes: points and normals when the
+        triangles are unchanged, faceVertexCounts/Indices too when not, st when it changed,
+        material:binding when the slot's material changed; slots that appear become new Mesh
+        prims, slots that vanish are removed. The export has no prototypes (one mesh copy per
+        instance Xform), so every copy of an instanced object is rewritten.
+        Added objects (mesh-like, lights; cameras in the viewport) get their prims through
+        add_prim; deleted (or hidden) objects' prims are removed. New untextured materials are
+        added through the edit calls.
+
+        A full rebuild remains for: instancers (collection instances, particle/geometry-node
+        instances: their instance set may change) and their collections, removing an object
+        that is also instanced, metaballs, a new or changed mesh whose textured material needs
+        an st the edit calls cannot give the faceVarying interpolation of (new Mesh prims, a UV
+        map added or removed), new textured materials, the scene camera (final renders), world
+        textures, material link changes. Returns a dict of what was done: counts of
+        materials, lights, transforms, world, geometry (objects re-exported), added, removed,
+        and rebuild."""
         ex = self.export
-        done = {"materials": 0, "lights": 0, "transforms": 0, "world": 0, "rebuild": False}
+        done = {"materials": 0, "lights": 0, "transforms": 0, "world": 0, "geometry": 0,
+                "added": 0, "removed": 0, "rebuild": False}
         if ex is None:
             return done | {"rebuild": True}
         rebuild = False
+        membership = False  # objects may have been added, deleted, hidden or shown
+        geometry = {}       # object name -> evaluated object whose mesh changed
+        unknown = []        # objects not in the export: added below, or only instanced
         import bpy
 
         for u in updates:
@@ -151,7 +177,12 @@ class Session:
             elif isinstance(idd, bpy.types.Light):
                 for obj in depsgraph.objects:
                     if obj.type == "LIGHT" and obj.data.original == idd.original:
-                        if not self._update_light(obj):
+                        if obj.name not in ex.lights:
+                            if obj.name in ex.top_objects:
+                                rebuild = True  # an unsupported type until now
+                            else:
+                                membership = True  # a new lamp: added below
+                        elif not self._update_light(obj):
                             rebuild = True
                         else:
                             done["lights"] += 1
@@ -163,6 +194,13 @@ class Session:
                 self.delegate.set_attribute("/World/Environment", "inputs:color", wp["color"])
                 done["world"] += 1
             elif isinstance(idd, bpy.types.Object):
+                if idd.name not in ex.top_objects and idd.name not in ex.object_xforms:
+                    membership = True  # a new object (or one only instanced): see below
+                    unknown.append(idd.name)
+                    continue
+                if idd.name in ex.instancers:
+                    rebuild = True  # its instances may have changed with it
+                    continue
                 if idd.type == "LIGHT" and u.is_updated_geometry and not u.is_updated_transform:
                     # Light data edits tag the object's "geometry": parameters only.
                     if not self._update_light(idd):
@@ -172,8 +210,11 @@ class Session:
                     rebuild = rebuild or ex.camera_path == "/World/Camera"
                     continue
                 if u.is_updated_geometry:
-                    rebuild = True
-                    continue
+                    if idd.type in MESH_TYPES:
+                        geometry[idd.name] = idd
+                    elif idd.type not in ("EMPTY", "CAMERA", "LIGHT") or idd.is_instancer:
+                        rebuild = True  # metaballs, armatures, ...: not tracked
+                        continue
                 if u.is_updated_transform:
                     obj = idd
                     if obj.type == "CAMERA":
@@ -183,7 +224,8 @@ class Session:
                     if obj.type == "LIGHT":
                         entry = ex.lights.get(obj.name)
                         if entry is None:
-                            rebuild = True
+                            if obj.name not in ex.top_objects:
+                                rebuild = True
                             continue
                         kind, xf, _ = entry
                         mw = obj.matrix_world
@@ -199,20 +241,297 @@ class Session:
                         done["transforms"] += 1
                         continue
                     xfs = ex.object_xforms.get(obj.name)
+                    if not xfs and obj.name in ex.top_objects and obj.type not in MESH_TYPES:
+                        continue  # an empty (not an instancer): nothing drawn
+                    if not xfs and obj.name in geometry:
+                        continue  # no triangles before: the geometry sync adds its Xform
                     if not xfs or len(xfs) != 1:
                         rebuild = True  # instanced/new objects: instancer matrices unknown here
                         continue
                     self.delegate.set_transform(xfs[0], export.usd_matrix(obj.matrix_world))
                     done["transforms"] += 1
-            elif isinstance(idd, (bpy.types.Mesh, bpy.types.Collection, bpy.types.Scene)):
-                # Mesh datablock edits come with is_updated_geometry on the object; collection
-                # or scene membership changes: a rebuild.
-                if isinstance(idd, bpy.types.Collection) or \
-                        (isinstance(idd, bpy.types.Scene) and u.is_updated_geometry):
+            elif isinstance(idd, bpy.types.Collection):
+                # Membership or visibility of objects changed. A collection that may be
+                # instanced: its instances change with it (rebuild).
+                if ex.instancers and idd.original != depsgraph.scene.collection.original:
                     rebuild = True
+                membership = True
+            elif isinstance(idd, bpy.types.Scene):
+                membership = True
+            # Mesh datablock edits come with is_updated_geometry on every object using it.
+        if not rebuild:
+            for name, obj in geometry.items():
+                if not self._sync_geometry(depsgraph, obj):
+                    rebuild = True
+                    break
+                done["geometry"] += 1
+        if not rebuild and membership:
+            counts = self._sync_membership(depsgraph)
+            if counts is None:
+                rebuild = True
+            else:
+                done["added"], done["removed"] = counts
+                # An object edited that is not among the depsgraph's own objects: seen only
+                # through instances the export did not give a mesh (no triangles until now).
+                rebuild = any(n not in ex.top_objects for n in unknown)
         done["rebuild"] = rebuild
         self.last_update = done
         return done
+
+    # ---- incremental geometry and object edits (apply_updates) -------------------------
+    def _sync_geometry(self, depsgraph, obj):
+        """Re-exports one object's evaluated mesh into every Xform holding a copy of it.
+        False: the caller rebuilds."""
+        ex = self.export
+        name = obj.name
+        if obj.type not in MESH_TYPES or obj.is_instancer or name in ex.instancers:
+            return False
+        xfs = ex.object_xforms.get(name, [])
+        if not xfs:
+            if name not in ex.top_objects:
+                return False
+            return self._add_mesh_object(depsgraph, obj)  # had no triangles until now
+        try:
+            md = export.MeshData(obj.original.evaluated_get(depsgraph))
+        except RuntimeError:
+            return False
+        ex.meshes[name] = md
+        for xf in xfs:
+            if not self._write_parts(xf, obj, md):
+                return False
+        return True
+
+    def _material_path(self, material):
+        """The material prim of a Blender material, added through the edit calls if it is
+        new (untextured only: None for a textured one, the caller rebuilds)."""
+        ex = self.export
+        key = material.name if material is not None else "__default__"
+        if key in ex.materials:
+            return ex.materials[key][0]
+        inputs, links, warns = export.material_params(material, ex.textures)
+        if links:
+            return None
+        mapping = export.uv_mapping(material, []) if material is not None else None
+        d = self.delegate
+        if not ex.materials:
+            d.add_prim("/World/Looks", "Xform")
+        path = "/World/Looks/" + ex._unique(export.usd_name(key, "Mat"))
+        shader = path + "/Surface"
+        d.add_prim(path, "Material")
+        d.add_prim(shader, "Shader")
+        d.set_attribute(shader, "info:id", "UsdPreviewSurface")
+        d.connect(path, "outputs:surface", shader + ".outputs:surface")
+        for k, v in inputs.items():
+            n = len(v) if isinstance(v, (list, tuple)) else 1
+            t = ("int" if k == "useSpecularWorkflow" else "normal3f" if k == "normal"
+                 else "color3f" if n == 3 else "float")
+            d.set_attribute_typed(shader, "inputs:" + k, t, v)
+        ex.warnings += warns
+        ex.st_mappings[key] = mapping
+        ex.materials[key] = (path, export.link_signature(links, mapping))
+        return path
+
+    def _write_parts(self, xf, obj, md):
+        """Writes MeshData md into the Geom_<slot> meshes under xf (adding and removing slots)."""
+        ex = self.export
+        d = self.delegate
+        info = ex.xform_info[xf]
+        parts = info["parts"]
+        seen = set()
+        for slot, idx, nrm, st in md.parts:
+            mat = None
+            if 0 <= slot < len(obj.material_slots):
+                mat = obj.material_slots[slot].material
+            mpath = self._material_path(mat)
+            if mpath is None:
+                return False
+            key = mat.name if mat is not None else "__default__"
+            st = export.transform_st(st, ex.st_mappings.get(key))
+            textured = len(ex.materials[key][1]) > 1
+            seen.add(slot)
+            gp = parts.get(slot)
+            if gp is not None:
+                if not self._update_mesh(gp, md.points, idx, nrm, st, mpath, textured):
+                    return False
+                continue
+            if textured:
+                return False  # a new prim's st could not be faceVarying (see apply_updates)
+            gp = f"{xf}/Geom_{slot}"
+            d.add_prim(gp, "Mesh")
+            d.set_attribute_typed(gp, "doubleSided", "bool", 1)
+            ex.prim_state[gp] = {"layout": "expanded", "idx": None, "npts": 0, "st": None,
+                                 "mat": None}
+            self._update_mesh(gp, md.points, idx, nrm, st, mpath, textured)
+            parts[slot] = gp
+            ex.mesh_index[gp] = len(ex.mesh_prims)
+            ex.mesh_prims.append((gp, info["name"], info["pass_index"]))
+        for slot in [s for s in parts if s not in seen]:
+            self._remove_mesh(parts.pop(slot))
+        return True
+
+    def _update_mesh(self, gp, points, idx, nrm, st, mpath, textured):
+        """One Geom_<slot> mesh: points + normals when its triangles are unchanged, the
+        topology too otherwise. Builder-written meshes ('indexed': all the object's points,
+        faceVarying normals/st) keep their layout; meshes added through the edit calls
+        ('expanded': one point per triangle corner, vertex normals, since an edit cannot
+        author the faceVarying interpolation) keep theirs."""
+        d = self.delegate
+        stt = self.export.prim_state[gp]
+        tris = len(idx) // 3
+        if stt["layout"] == "expanded":
+            if stt["npts"] != len(idx):
+                d.set_attribute_typed(gp, "faceVertexCounts", "int[]",
+                                      np.full(tris, 3, np.int32))
+                d.set_attribute_typed(gp, "faceVertexIndices", "int[]",
+                                      np.arange(len(idx), dtype=np.int32))
+            d.set_attribute_typed(gp, "points", "point3f[]", points.reshape(-1, 3)[idx].ravel())
+            d.set_attribute_typed(gp, "normals", "normal3f[]", nrm)
+            stt["npts"] = len(idx)
+        else:
+            npts = len(points) // 3
+            if (st is None) != (stt["st"] is None):
+                return False  # a UV map added/removed: st's interpolation (rebuild)
+            topo = npts == stt["npts"] and np.array_equal(idx, stt["idx"])
+            if not topo:
+                d.set_attribute(gp, "faceVertexCounts", np.full(tris, 3, np.int32))
+                d.set_attribute(gp, "faceVertexIndices", idx)
+            d.set_attribute(gp, "points", points)
+            d.set_attribute(gp, "normals", nrm)
+            if st is not None and (not topo or not np.array_equal(st, stt["st"])):
+                d.set_attribute(gp, "primvars:st", st)
+            stt.update(idx=idx, npts=npts, st=st)
+        if mpath != stt["mat"]:
+            d.bind_material(gp, mpath)
+            stt["mat"] = mpath
+        return True
+
+    def _remove_mesh(self, gp):
+        ex = self.export
+        self.delegate.remove_prim(gp)
+        i = ex.mesh_index.pop(gp, None)
+        if i is not None:
+            ex.mesh_prims[i] = (None, None, 0)  # primIds are not reused
+        ex.prim_state.pop(gp, None)
+
+    def _add_mesh_object(self, depsgraph, obj):
+        ex = self.export
+        name = obj.name
+        if obj.is_instancer:
+            return False
+        try:
+            md = export.MeshData(obj.original.evaluated_get(depsgraph))
+        except RuntimeError as e:
+            ex.warnings.append(f"object '{name}': {e}")
+            ex.top_objects.add(name)
+            return True
+        ex.top_objects.add(name)
+        if md.triangles == 0:
+            return True
+        ex.meshes[name] = md
+        xf = "/World/" + ex._unique(export.usd_name(name, "Obj"))
+        self.delegate.add_prim(xf, "Xform")
+        self.delegate.set_transform(xf, export.usd_matrix(obj.matrix_world))
+        ex.object_xforms.setdefault(name, []).append(xf)
+        ex.xform_info[xf] = {"name": name, "source": name, "parent": None, "parts": {},
+                             "pass_index": int(obj.pass_index)}
+        return self._write_parts(xf, obj, md)
+
+    def _add_light(self, obj):
+        """A new lamp as the prim SceneExport._light writes, through the edit calls."""
+        from mathutils import Matrix
+
+        ex = self.export
+        d = self.delegate
+        name, mw = obj.name, obj.matrix_world
+        ex.top_objects.add(name)
+        kind, lp = export.light_params(obj.data, mw)
+        if kind is None:
+            ex.warnings.append(f"light '{name}': type {obj.data.type} not supported")
+            return True
+        xf = "/World/" + ex._unique(export.usd_name(name, "Light"))
+        loc, rot, _ = mw.decompose()
+        rigid = export.usd_matrix(Matrix.Translation(loc) @ rot.to_matrix().to_4x4())
+        f = lambda attr, v: d.set_attribute_typed(xf, attr, "float", v)  # noqa: E731
+        if kind == "sun":
+            d.add_prim(xf, "DistantLight")
+            d.set_transform(xf, rigid)
+            f("inputs:intensity", lp["intensity"])
+            f("inputs:angle", lp["angle"])
+            d.set_attribute_typed(xf, "inputs:color", "color3f", lp["color"])
+        elif kind in ("point", "spot"):
+            d.add_prim(xf, "SphereLight")
+            d.set_transform(xf, rigid)
+            f("inputs:radius", lp["radius"])
+            f("inputs:intensity", lp["intensity"])
+            d.set_attribute_typed(xf, "inputs:color", "color3f", lp["color"])
+            if kind == "spot":
+                sh = lp["shaping"]
+                f("inputs:shaping:cone:angle", sh["angle"])
+                f("inputs:shaping:cone:softness", sh["softness"])
+                f("inputs:shaping:focus", sh["focus"])
+        else:
+            d.add_prim(xf, "DiskLight" if lp["disk"] else "RectLight")
+            d.set_transform(xf, export.usd_matrix(export.area_light_matrix(lp, mw)))
+            if lp["disk"]:
+                f("inputs:radius", 0.5)
+            else:
+                f("inputs:width", lp["size"][0])
+                f("inputs:height", lp["size"][1])
+            f("inputs:intensity", 1.0)
+            d.set_attribute_typed(xf, "inputs:color", "color3f", lp["radiance"])
+            ex.area_disks[name] = lp["disk"]
+        ex.lights[name] = (kind, xf, [xf])
+        return True
+
+    def _remove_object(self, name):
+        ex = self.export
+        if name in ex.instancers or name == ex.camera_object:
+            return False
+        if name in ex.instanced:
+            return False  # also instanced: its instance copies stay or go with the instancer
+        xfs = ex.object_xforms.get(name, [])
+        for xf in xfs:
+            for gp in ex.xform_info.pop(xf)["parts"].values():
+                i = ex.mesh_index.pop(gp, None)
+                if i is not None:
+                    ex.mesh_prims[i] = (None, None, 0)
+                ex.prim_state.pop(gp, None)
+            self.delegate.remove_prim(xf)  # the Xform and its meshes
+        ex.object_xforms.pop(name, None)
+        ex.meshes.pop(name, None)
+        if name in ex.lights:
+            self.delegate.remove_prim(ex.lights.pop(name)[1])
+            ex.area_disks.pop(name, None)
+        ex.top_objects.discard(name)
+        return True
+
+    def _sync_membership(self, depsgraph):
+        """Objects added to / removed from the depsgraph since the export -> (added, removed),
+        or None when the caller must rebuild."""
+        ex = self.export
+        current = {o.name: o for o in depsgraph.objects}
+        removed = [n for n in ex.top_objects if n not in current]
+        added = [o for n, o in current.items() if n not in ex.top_objects]
+        for name in removed:
+            if not self._remove_object(name):
+                return None
+        for obj in added:
+            if obj.is_instancer:
+                return None
+            if obj.type in MESH_TYPES:
+                if not self._add_mesh_object(depsgraph, obj):
+                    return None
+            elif obj.type == "LIGHT":
+                self._add_light(obj)
+            elif obj.type == "CAMERA":
+                if ex.camera_path == "/World/Camera":
+                    return None  # it may be the scene camera (final render sessions)
+                ex.top_objects.add(obj.name)
+            elif obj.type == "EMPTY":
+                ex.top_objects.add(obj.name)
+            else:
+                return None  # metaballs, volumes, grease pencil, ...: a rebuild decides
+        return len(added), len(removed)
 
     def _update_light(self, obj):
         ex = self.export

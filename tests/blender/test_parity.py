@@ -191,20 +191,27 @@ def test_emission_shader():
           f"Emission shader: emitter radiance {centre.round(4).tolist()} = {want.tolist()}")
 
 
-def test_alpha_texture():
-    scene = empty_scene(samples=64, max_depth=1)
+def cutout_plane(name):
+    """A 2 m plane at x = -1.2 with a white Lambert-like Principled material of albedo ALBEDO
+    and a 4x4 white image whose alpha is 0.25 (not linked yet): (image, material, tree, bsdf)."""
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
-    img = bpy.data.images.new("Leaf", 4, 4, alpha=True)
+    img = bpy.data.images.new(name, 4, 4, alpha=True)
     px = np.ones((4, 4, 4), np.float32)
     px[:, :, 3] = 0.25
     img.pixels.foreach_set(px.ravel())
-    m = bpy.data.materials.new("Leaf")
+    m = bpy.data.materials.new(name)
     m.use_nodes = True
     nt = m.node_tree
     b = nt.nodes["Principled BSDF"]
     b.inputs["Specular"].default_value = 0.0
     b.inputs["Roughness"].default_value = 1.0
     b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    return img, m, nt, b
+
+
+def test_alpha_texture():
+    scene = empty_scene(samples=64, max_depth=1)
+    img, m, nt, b = cutout_plane("Leaf")
     tex = nt.nodes.new("ShaderNodeTexImage")
     tex.image = img
     nt.links.new(tex.outputs["Alpha"], b.inputs["Alpha"])
@@ -388,18 +395,7 @@ def test_bsdf_nodes():
 
 def test_mix_transparent():
     scene = empty_scene(samples=64, max_depth=1)
-    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
-    img = bpy.data.images.new("Cutout", 4, 4, alpha=True)
-    px = np.ones((4, 4, 4), np.float32)
-    px[:, :, 3] = 0.25
-    img.pixels.foreach_set(px.ravel())
-    m = bpy.data.materials.new("Cutout")
-    m.use_nodes = True
-    nt = m.node_tree
-    b = nt.nodes["Principled BSDF"]
-    b.inputs["Specular"].default_value = 0.0
-    b.inputs["Roughness"].default_value = 1.0
-    b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    img, m, nt, b = cutout_plane("Cutout")
     tr_node = nt.nodes.new("ShaderNodeBsdfTransparent")
     mix = nt.nodes.new("ShaderNodeMixShader")
     tex = nt.nodes.new("ShaderNodeTexImage")

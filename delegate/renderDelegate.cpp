@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/renderDelegate.h"
 
+#include "delegate/sceneFeatures.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -543,7 +545,8 @@ void EmbreeRenderDelegate::addPassStats(long rays, long samples, long invalidSam
 
 std::map<std::string, double> EmbreeRenderDelegate::renderStats() const {
     double secs = _renderSeconds.load();
-    return {
+    std::map<std::string, double> stats = sceneFeatureStats(describeScene(_snapshot, integratorSettings().bsdf));
+    stats.merge(std::map<std::string, double>{
         {"rays", double(_rays.load())},
         {"samples", double(_samples.load())},
         {"invalidSamples", double(_invalidSamples.load())},
@@ -566,7 +569,12 @@ std::map<std::string, double> EmbreeRenderDelegate::renderStats() const {
         {"lights", double(_snapshot.lights.size())},
         {"materials", double(_snapshot.materials.size())},
         {"instances", double(_instances.load())},  // PointInstancer / instanceable instances
-    };
+    });
+    return stats;
+}
+
+std::string EmbreeRenderDelegate::sceneSummary() const {
+    return describeFeatures(describeScene(_snapshot, integratorSettings().bsdf));
 }
 
 }  // namespace principled::embree

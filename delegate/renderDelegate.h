@@ -45,6 +45,9 @@ public:
     unsigned contentVersion() const { return _contentVersion.load(); }
 
     std::map<std::string, double> renderStats() const override;
+    /// What the committed scene uses and what the renderer skips for it, in one line
+    /// (delegate/sceneFeatures.h); the same figures are in renderStats() as "scene.*".
+    std::string sceneSummary() const;
 
     /// What the committed scene holds, for `principled info` and hosts' scene statistics.
     struct Summary {

@@ -14,6 +14,7 @@
 #include <tbb/global_control.h>
 
 #include "delegate/imageWriter.h"
+#include "delegate/renderDelegate.h"
 #include "plugins/renderSession.h"
 #include "scene_adapter/usda/error.h"
 #include "tools/aovLayers.h"
@@ -191,6 +192,7 @@ int runRender(const RenderArgs& a) {
         std::fprintf(stderr, "principled: rendered %dx%d at %d spp in %.2fs (%.1f Mrays/s)\n",
                      session->width(), session->height(), session->completedSamples(),
                      renderSeconds, session->stats()["mraysPerSecond"]);
+    if (!a.quiet) std::fprintf(stderr, "principled: scene: %s\n", session->delegate()->sceneSummary().c_str());
     return 0;
 }
 

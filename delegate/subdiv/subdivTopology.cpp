@@ -309,6 +309,15 @@ bool SubdivTopology::build(std::string* error) {
     const Far::TopologyLevel& base = refiner->GetLevel(0);
     const Far::TopologyLevel& last = refiner->GetLevel(_level);
     _refinedPoints = size_t(last.GetNumVertices());
+    // Exact sizes first: growing by push_back would copy (and fault in) these arrays several
+    // times and leave up to half of each allocation unused.
+    size_t triangleCount = 0;
+    for (int f = 0; f < last.GetNumFaces(); ++f)
+        if (!base.IsFaceHole(coarse[f])) triangleCount += size_t(last.GetFaceVertices(f).size() - 2);
+    _triangles.reserve(triangleCount);
+    _triangleFace.reserve(triangleCount);
+    for (size_t c = 0; c < _fvar.size(); ++c)
+        if (osdChannel[c] >= 0) _fvar[c].corners.reserve(3 * triangleCount);
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         if (base.IsFaceHole(coarse[f])) continue;
         Far::ConstIndexArray fv = last.GetFaceVertices(f);

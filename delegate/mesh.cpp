@@ -220,6 +220,11 @@ bool Mesh::buildSubdivided(SceneDelegate* delegate, EmbreeRenderParam* param,
             }
             pending.push_back(std::move(p));
         }
+    // Varying (linear) stencils only when a varying primvar needs them: about 19 bytes per
+    // refined point otherwise held for nothing. A varying primvar added later changes the
+    // options, so matches() rebuilds.
+    opts.varying = false;
+    for (const auto& p : pending) opts.varying = opts.varying || p.interp == Interpolation::Varying;
     memTrace("before subdiv create");
     if (!_subdiv || !_subdiv->matches(topo, tags, points.size(), opts)) {
         std::string error;

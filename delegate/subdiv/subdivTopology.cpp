@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -82,6 +83,19 @@ bool isIdentity(const Stencils& s) {
         if (s.indices[s.offsets[r]] != int(r) || s.weights[s.offsets[r]] != 1.0f) return false;
     }
     return true;
+}
+
+/// PRINCIPLED_MEM_TRACE=1: resident memory after each build phase, on stderr (the refiner is
+/// the largest transient: docs/geometry.md, subdivision memory).
+void memTrace(const char* phase) {
+    static const bool on = std::getenv("PRINCIPLED_MEM_TRACE") != nullptr;
+    if (!on) return;
+    long pages = 0, rss = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%ld %ld", &pages, &rss) != 2) rss = 0;
+        std::fclose(f);
+    }
+    std::fprintf(stderr, "[mem]   subdiv build, %-14s rss %7.1f MB\n", phase, rss * 4096.0 / 1e6);
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -232,7 +246,9 @@ bool SubdivTopology::build(std::string* error) {
 
     Far::TopologyRefiner::UniformOptions uniform(_level);
     uniform.fullTopologyInLastLevel = true;  // PrimvarRefiner::Limit needs vertex neighbourhoods
+    memTrace("factory");
     refiner->RefineUniform(uniform);
+    memTrace("refiner");
     lap(&_timings.refiner);
 
     // The tables only read the refiner, so they are built concurrently (TBB). Each task
@@ -280,6 +296,7 @@ bool SubdivTopology::build(std::string* error) {
         });
     }
     tbb::parallel_for(size_t(0), tasks.size(), [&tasks](size_t i) { tasks[i](); });
+    memTrace("stencils");
     for (double t : fvarSeconds) _timings.faceVarying += t;
     clock = std::chrono::steady_clock::now();
     if (!failure.empty()) {
@@ -337,6 +354,7 @@ bool SubdivTopology::build(std::string* error) {
     }
     if (_limitP.rows() && isIdentity(_limitP)) _limitP = Stencils();
     lap(&_timings.triangles);
+    memTrace("triangles");
     return true;  // the refiner is released here: only stencils are kept
 }
 

@@ -275,7 +275,7 @@ bool Mesh::buildSubdivided(SceneDelegate* delegate, EmbreeRenderParam* param,
     // Normals per point (vertexNormals, indexed by the triangles), not per corner.
     std::vector<glm::vec3>().swap(_record.cornerNormals);
     // Primvars on the refined mesh: vertex and varying ones per point (perVertex), uniform
-    // ones per triangle (perPrimitive), face-varying ones per triangle corner.
+    // ones per triangle (perPrimitive), face-varying ones per value (cornerIndex).
     _record.primvars.clear();
     for (auto& p : pending) {
         PrimvarChannel ch;
@@ -290,7 +290,11 @@ bool Mesh::buildSubdivided(SceneDelegate* delegate, EmbreeRenderParam* param,
                 ok = ch.data.size() == size_t(p.components);
                 break;
             case Interpolation::FaceVarying:
-                ok = _subdiv->refineFaceVarying(p.channel, p.flat.data(), count, p.components, &ch.data);
+                // Limit values + the topology's shared corner -> value map, not per corner.
+                ok = _subdiv->refineFaceVaryingValues(p.channel, p.flat.data(), count,
+                                                      p.components, &ch.data);
+                ch.cornerIndex = _subdiv->faceVaryingCorners(p.channel);
+                ok = ok && ch.cornerIndex;
                 break;
             case Interpolation::Uniform:
                 ch.perPrimitive = true;

@@ -28,7 +28,8 @@ struct MaterialRecord {
 /// One primvar of a mesh: by default three values per triangle (one per corner); or one value
 /// (constant), one per Embree primitive (perPrimitive: a point, a curve segment, a triangle of
 /// a uniform primvar), or one per point indexed through GeometryRecord::triangles (perVertex:
-/// vertex and varying primvars of refined meshes, no per-corner copy).
+/// vertex and varying primvars of refined meshes, no per-corner copy), or indexed per corner
+/// through cornerIndex (refined face-varying primvars).
 /// GeometryRecord::cornerValue() reads any of them.
 struct PrimvarChannel {
     hd::Token name;
@@ -37,6 +38,9 @@ struct PrimvarChannel {
     bool perPrimitive = false;  ///< one value per Embree primitive (a point, a curve segment)
     bool perVertex = false;     ///< one value per point (triangles index it)
     std::vector<float> data;
+    /// When set: the value index of each triangle corner (3 per triangle) into data (refined
+    /// face-varying primvars: shared with the subdivision topology, not copied per corner).
+    std::shared_ptr<const std::vector<int>> cornerIndex;
 };
 
 /// One rprim's geometry as the integrator sees it. Owned by the rprim; the Embree instance of
@@ -81,10 +85,12 @@ struct GeometryRecord {
         size_t element = ch.constant       ? 0
                          : ch.perPrimitive ? size_t(t)
                          : ch.perVertex    ? size_t(triangles[t][k])
+                         : ch.cornerIndex  ? size_t((*ch.cornerIndex)[3 * size_t(t) + size_t(k)])
                                            : 3 * size_t(t) + size_t(k);
         return &ch.data[element * size_t(ch.components)];
     }
     /// Bytes held by the arrays (capacity, not size): for memory accounting and tests.
+    /// Shared cornerIndex arrays are not counted (the subdivision topology holds them).
     size_t memoryBytes() const {
         auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
         size_t bytes = b(points) + b(triangles) + b(cornerNormals) + b(vertexNormals) +

@@ -167,7 +167,7 @@ void SubdivTopology::buildCage() {
     for (size_t c = 0; c < _fvar.size(); ++c) {
         if (!_fvar[c].available) continue;
         const auto& idx = _options.faceVarying[c].indices;
-        auto& corners = _fvar[c].corners;
+        auto& corners = *_fvar[c].corners;
         corners.reserve(cage.corners.size() * 3);
         for (const glm::uvec3& tri : cage.corners)
             for (int k = 0; k < 3; ++k) corners.push_back(idx[tri[k]]);
@@ -334,7 +334,7 @@ bool SubdivTopology::build(std::string* error) {
     _triangles.reserve(triangleCount);
     _triangleFace.reserve(triangleCount);
     for (size_t c = 0; c < _fvar.size(); ++c)
-        if (osdChannel[c] >= 0) _fvar[c].corners.reserve(3 * triangleCount);
+        if (osdChannel[c] >= 0) _fvar[c].corners->reserve(3 * triangleCount);
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         if (base.IsFaceHole(coarse[f])) continue;
         Far::ConstIndexArray fv = last.GetFaceVertices(f);
@@ -346,9 +346,9 @@ bool SubdivTopology::build(std::string* error) {
             if (osdChannel[c] < 0) continue;
             Far::ConstIndexArray vals = last.GetFaceFVarValues(f, osdChannel[c]);
             for (int k = 1; k + 1 < vals.size(); ++k) {
-                _fvar[c].corners.push_back(vals[0]);
-                _fvar[c].corners.push_back(vals[k]);
-                _fvar[c].corners.push_back(vals[k + 1]);
+                _fvar[c].corners->push_back(vals[0]);
+                _fvar[c].corners->push_back(vals[k]);
+                _fvar[c].corners->push_back(vals[k + 1]);
             }
         }
     }
@@ -387,7 +387,7 @@ size_t SubdivTopology::memoryBytes() const {
                    _limitDv.bytes() + _triangles.size() * sizeof(glm::uvec3) +
                    _triangleFace.size() * sizeof(int);
     for (const auto& f : _fvar)
-        bytes += chainBytes(f.toLevel) + f.limit.bytes() + f.corners.size() * sizeof(int);
+        bytes += chainBytes(f.toLevel) + f.limit.bytes() + f.corners->size() * sizeof(int);
     return bytes;
 }
 

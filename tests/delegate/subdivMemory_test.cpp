@@ -1,6 +1,7 @@
 // Memory held per refined triangle by a subdivided mesh's GeometryRecord (docs/geometry.md,
-// "Subdivision meshes: memory"). Pins the layout: normals and vertex primvars per point, not
-// per triangle corner, and no spare capacity.
+// "Subdivision meshes: memory per refined triangle"). Pins the layout: normals and vertex
+// primvars per point, face-varying ones per value through the shared corner map, not per
+// triangle corner, and no spare capacity.
 #include <gtest/gtest.h>
 
 #include "delegate/mesh.h"
@@ -62,10 +63,12 @@ TEST(SubdivMemory, RecordBytesPerRefinedTriangle) {
     ASSERT_NE(rec.primvar(hd::Token("displayColor")), nullptr);
     EXPECT_FALSE(rec.vertexNormals.empty());
     const double perTriangle = double(rec.memoryBytes()) / double(tris);
-    // Per triangle: indices 12, coarse face 4, st per corner 24; per point (about half a point
-    // per triangle): position, normal and displayColor 12 each: about 58 bytes. Normals and
-    // displayColor per corner (36 + 36 bytes) took it to about 118.
-    EXPECT_LT(perTriangle, 64.0) << "record bytes per refined triangle";
+    // Per triangle: indices 12, coarse face 4; per point (about half a point per triangle):
+    // position, normal and displayColor 12 each; st per face-varying value (about half a
+    // value per triangle) 8: about 38 bytes. Normals, displayColor and st per corner
+    // (36 + 36 + 24 bytes) took it to about 118.
+    EXPECT_LT(perTriangle, 48.0) << "record bytes per refined triangle";
+    ASSERT_TRUE(rec.primvar(hd::Token("st"))->cornerIndex);
     // The whole mesh, with the stencils kept for re-posing (they dominate).
     const double meshPerTriangle = double(mesh->memoryBytes()) / double(tris);
     EXPECT_LT(meshPerTriangle, 400.0) << "mesh bytes per refined triangle";

@@ -77,3 +77,36 @@ TEST(SubdivMemory, RecordBytesPerRefinedTriangle) {
     std::printf("record %.1f B/tri, mesh (record + stencils) %.1f B/tri\n", perTriangle,
                 meshPerTriangle);
 }
+
+// Re-posing (new points, same topology) refines into the same arrays: the triangles are not
+// copied again and the record's layout and size stay the same.
+TEST(SubdivMemory, ReposeReusesTheRecordArrays) {
+    embree::EmbreeRenderDelegate delegate;
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    const hd::Path id("/grid");
+    addGrid(scene, id, 4, 3);
+    index.sync();
+    auto* mesh = dynamic_cast<embree::Mesh*>(index.rprim(id));
+    ASSERT_NE(mesh, nullptr);
+    const embree::GeometryRecord& rec = *mesh->record();
+    const std::vector<glm::vec3> before = rec.points;
+    const std::vector<glm::uvec3> triangles = rec.triangles;
+    const void* triangleData = rec.triangles.data();
+    const size_t bytes = mesh->memoryBytes();
+    const uint64_t builds = subdiv::SubdivTopology::refinerBuildCount();
+    auto points = std::get<std::vector<glm::vec3>>(scene.prim(id).values[hd::tokens::points()]);
+    for (auto& p : points) p.z += 1.0f;
+    scene.prim(id).values[hd::tokens::points()] = points;
+    index.changeTracker().markRprimDirty(id, hd::RprimDirty::Points);
+    index.sync();
+    ASSERT_EQ(rec.points.size(), before.size());
+    for (size_t i = 0; i < before.size(); ++i)
+        ASSERT_NEAR(rec.points[i].z, before[i].z + 1.0f, 1e-5f) << i;
+    EXPECT_EQ(rec.triangles, triangles);
+    EXPECT_EQ(rec.triangles.data(), triangleData);
+    EXPECT_EQ(mesh->memoryBytes(), bytes);
+    EXPECT_EQ(subdiv::SubdivTopology::refinerBuildCount(), builds) << "re-posed, not rebuilt";
+    EXPECT_EQ(rec.vertexNormals.size(), rec.points.size());
+}
+

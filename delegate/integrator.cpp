@@ -123,6 +123,10 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
             float u = rh.hit.u, v = rh.hit.v;
             const glm::vec3* n = &rec.cornerNormals[3 * size_t(rh.hit.primID)];
             nsObj = (1.0f - u - v) * n[0] + u * n[1] + v * n[2];
+        } else if (!rec.vertexNormals.empty()) {
+            float u = rh.hit.u, v = rh.hit.v;
+            const auto& n = rec.vertexNormals;
+            nsObj = (1.0f - u - v) * n[t.x] + u * n[t.y] + v * n[t.z];
         }
     }
     glm::vec3 ng = normalToWorld * ngObj;
@@ -182,10 +186,12 @@ public:
             for (int c = 0; c < n; ++c) out[c] = d[c];
             return true;
         }
-        const float* d = &ch->data[size_t(_hit.triangle) * 3 * ch->components];
+        const GeometryRecord& rec = *_hit.record;
+        const float* d0 = rec.cornerValue(*ch, _hit.triangle, 0);
+        const float* d1 = rec.cornerValue(*ch, _hit.triangle, 1);
+        const float* d2 = rec.cornerValue(*ch, _hit.triangle, 2);
         float w0 = 1.0f - _hit.u - _hit.v;
-        for (int c = 0; c < n; ++c)
-            out[c] = w0 * d[c] + _hit.u * d[ch->components + c] + _hit.v * d[2 * ch->components + c];
+        for (int c = 0; c < n; ++c) out[c] = w0 * d0[c] + _hit.u * d1[c] + _hit.v * d2[c];
         return true;
     }
 
@@ -203,9 +209,11 @@ Frame tangentFrame(const Hit& hit, const glm::vec3& n) {
     if (rec.kind == GeometryRecord::Kind::Triangles && st && !st->constant && st->components >= 2) {
         const glm::uvec3& t = rec.triangles[hit.triangle];
         glm::vec3 e1 = rec.points[t.y] - rec.points[t.x], e2 = rec.points[t.z] - rec.points[t.x];
-        const float* uv = &st->data[size_t(hit.triangle) * 3 * st->components];
-        glm::vec2 d1(uv[st->components] - uv[0], uv[st->components + 1] - uv[1]);
-        glm::vec2 d2(uv[2 * st->components] - uv[0], uv[2 * st->components + 1] - uv[1]);
+        const float* uv0 = rec.cornerValue(*st, hit.triangle, 0);
+        const float* uv1 = rec.cornerValue(*st, hit.triangle, 1);
+        const float* uv2 = rec.cornerValue(*st, hit.triangle, 2);
+        glm::vec2 d1(uv1[0] - uv0[0], uv1[1] - uv0[1]);
+        glm::vec2 d2(uv2[0] - uv0[0], uv2[1] - uv0[1]);
         float det = d1.x * d2.y - d1.y * d2.x;
         if (std::abs(det) > 1e-12f) {
             glm::vec3 dpdu = (e1 * d2.y - e2 * d1.y) / det;

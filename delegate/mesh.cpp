@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <cstdio>
+#include <cstdlib>
+#include <sys/resource.h>
 
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
@@ -19,6 +22,25 @@ namespace {
 constexpr Interpolation kInterpolations[] = {Interpolation::Constant, Interpolation::Uniform,
                                              Interpolation::Varying, Interpolation::Vertex,
                                              Interpolation::FaceVarying};
+
+// PRINCIPLED_MEM_TRACE=1: resident and peak memory and minor faults at each stage of a
+// subdivided mesh's build, on stderr (docs/geometry.md, subdivision memory).
+bool memTraceOn() {
+    static const bool on = std::getenv("PRINCIPLED_MEM_TRACE") != nullptr;
+    return on;
+}
+void memTrace(const char* what) {
+    if (!memTraceOn()) return;
+    long pages = 0, rss = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%ld %ld", &pages, &rss) != 2) rss = 0;
+        std::fclose(f);
+    }
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    std::fprintf(stderr, "[mem] %-28s rss %7.1f MB  peak %7.1f MB  minflt %ld\n", what,
+                 rss * 4096.0 / 1e6, ru.ru_maxrss * 1024.0 / 1e6, ru.ru_minflt);
+}
 
 bool isGeometryPrimvar(const Token& name) {
     return name == tokens::normals() || name == tokens::points();
@@ -86,13 +108,24 @@ RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* pa
                                _record.triangles.data(), 0, sizeof(glm::uvec3),
                                _record.triangles.size());
     param->meshesRebuilt++;
+    memTrace("end rebuildGeometry");
+    if (memTraceOn())
+        std::fprintf(stderr, "[mem] %zu tris record %.1f B/tri mesh %.1f B/tri\n", _record.triangles.size(),
+                     double(_record.memoryBytes()) / double(_record.triangles.size()),
+                     double(memoryBytes()) / double(_record.triangles.size()));
     return geom;
+}
+
+size_t Mesh::memoryBytes() const {
+    return _record.memoryBytes() + (_subdiv ? _subdiv->memoryBytes() : 0);
 }
 
 bool Mesh::buildCage(SceneDelegate* delegate, EmbreeRenderParam* param, const MeshTopology& topo,
                      const std::vector<glm::vec3>& points) {
     _level = 0;
     _subdiv.reset();
+    _refinedTopologyId = 0;
+    std::vector<glm::vec3>().swap(_record.vertexNormals);
     Triangulation tri;
     std::string error;
     if (!triangulate(topo, points.size(), &tri, &error)) {
@@ -187,6 +220,12 @@ bool Mesh::buildSubdivided(SceneDelegate* delegate, EmbreeRenderParam* param,
             }
             pending.push_back(std::move(p));
         }
+    // Varying (linear) stencils only when a varying primvar needs them: about 19 bytes per
+    // refined point otherwise held for nothing. A varying primvar added later changes the
+    // options, so matches() rebuilds.
+    opts.varying = false;
+    for (const auto& p : pending) opts.varying = opts.varying || p.interp == Interpolation::Varying;
+    memTrace("before subdiv create");
     if (!_subdiv || !_subdiv->matches(topo, tags, points.size(), opts)) {
         std::string error;
         _subdiv = subdiv::SubdivTopology::create(topo, tags, points.size(), opts, &error);
@@ -196,31 +235,53 @@ bool Mesh::buildSubdivided(SceneDelegate* delegate, EmbreeRenderParam* param,
         }
         for (const auto& w : _subdiv->warnings()) param->warn(id(), w);
     }
+    // Refine straight into the record's arrays (no second copy of the refined mesh): they move
+    // into a RefinedMesh for refine() and back. Capacity for one spare element is reserved
+    // first, for Embree's 16-byte loads (rebuildGeometry), so nothing is reallocated later.
+    subdiv::RefinedMesh refined;
+    refined.points.swap(_record.points);
+    refined.normals.swap(_record.vertexNormals);
+    refined.triangles.swap(_record.triangles);
+    refined.triangleFace.swap(_record.triangleFace);
+    refined.topologyId = _refinedTopologyId;
+    if (refined.topologyId != _subdiv->id()) {
+        refined.triangles.clear();
+        refined.triangles.shrink_to_fit();
+        refined.triangles.reserve(_subdiv->triangleCount() + 1);
+        refined.triangleFace.clear();
+        refined.triangleFace.shrink_to_fit();
+        refined.triangleFace.reserve(_subdiv->triangleCount());
+    }
+    if (refined.points.capacity() < _subdiv->refinedPointCount() + 1) {
+        refined.points.clear();
+        refined.points.shrink_to_fit();
+        refined.points.reserve(_subdiv->refinedPointCount() + 1);
+    }
+    memTrace("after subdiv create");
     std::string error;
-    if (!_subdiv->refine(points, &_refined, &error)) {
+    const bool refinedOk = _subdiv->refine(points, &refined, &error);
+    _record.points.swap(refined.points);
+    _record.vertexNormals.swap(refined.normals);
+    _record.triangles.swap(refined.triangles);
+    _record.triangleFace.swap(refined.triangleFace);
+    _refinedTopologyId = refinedOk ? refined.topologyId : 0;
+    if (!refinedOk) {
         param->warn(id(), "mesh not rendered: " + error);
         return false;
     }
+    memTrace("after refine");
     _level = _subdiv->level();
     _record.kind = GeometryRecord::Kind::Triangles;
-    _record.points = _refined.points;
-    _record.triangles = _refined.triangles;
-    _record.triangleFace = _refined.triangleFace;
-    _record.cornerNormals.clear();
-    if (!_refined.normals.empty()) {
-        _record.cornerNormals.resize(_record.triangles.size() * 3);
-        for (size_t t = 0; t < _record.triangles.size(); ++t)
-            for (int k = 0; k < 3; ++k) _record.cornerNormals[3 * t + k] = _refined.normals[_record.triangles[t][k]];
-    }
-    // Primvars on the refined triangles.
+    // Normals per point (vertexNormals, indexed by the triangles), not per corner.
+    std::vector<glm::vec3>().swap(_record.cornerNormals);
+    // Primvars on the refined mesh: vertex and varying ones per point (perVertex), uniform
+    // ones per triangle (perPrimitive), face-varying ones per value (cornerIndex).
     _record.primvars.clear();
-    size_t triCount = _record.triangles.size();
     for (auto& p : pending) {
         PrimvarChannel ch;
         ch.name = p.name;
         ch.components = p.components;
         size_t count = p.flat.size() / size_t(p.components);
-        std::vector<float> refined;
         bool ok = true;
         switch (p.interp) {
             case Interpolation::Constant:
@@ -229,30 +290,21 @@ bool Mesh::buildSubdivided(SceneDelegate* delegate, EmbreeRenderParam* param,
                 ok = ch.data.size() == size_t(p.components);
                 break;
             case Interpolation::FaceVarying:
-                ok = _subdiv->refineFaceVarying(p.channel, p.flat.data(), count, p.components, &ch.data);
+                // Limit values + the topology's shared corner -> value map, not per corner.
+                ok = _subdiv->refineFaceVaryingValues(p.channel, p.flat.data(), count,
+                                                      p.components, &ch.data);
+                ch.cornerIndex = _subdiv->faceVaryingCorners(p.channel);
+                ok = ok && ch.cornerIndex;
                 break;
             case Interpolation::Uniform:
-                ok = _subdiv->refineUniform(p.flat.data(), count, p.components, &refined);
-                if (ok) {
-                    ch.data.resize(triCount * 3 * p.components);
-                    for (size_t t = 0; t < triCount; ++t)
-                        for (int k = 0; k < 3; ++k)
-                            for (int c = 0; c < p.components; ++c)
-                                ch.data[(3 * t + k) * p.components + c] = refined[t * p.components + c];
-                }
+                ch.perPrimitive = true;
+                ok = _subdiv->refineUniform(p.flat.data(), count, p.components, &ch.data);
                 break;
             default:  // vertex, varying
+                ch.perVertex = true;
                 ok = p.interp == Interpolation::Vertex
-                         ? _subdiv->refineVertex(p.flat.data(), count, p.components, &refined)
-                         : _subdiv->refineVarying(p.flat.data(), count, p.components, &refined);
-                if (ok) {
-                    ch.data.resize(triCount * 3 * p.components);
-                    for (size_t t = 0; t < triCount; ++t)
-                        for (int k = 0; k < 3; ++k)
-                            for (int c = 0; c < p.components; ++c)
-                                ch.data[(3 * t + k) * p.components + c] =
-                                    refined[size_t(_record.triangles[t][k]) * p.components + c];
-                }
+                         ? _subdiv->refineVertex(p.flat.data(), count, p.components, &ch.data)
+                         : _subdiv->refineVarying(p.flat.data(), count, p.components, &ch.data);
         }
         if (!ok) {
             param->warn(id(), "primvar '" + p.name.str() + "' could not be refined (wrong count for its interpolation); ignored");

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Mesh: the Embree rprim for UsdGeomMesh. Polygonal meshes are fan-triangulated; subdivision
 // meshes are refined with OpenSubdiv (uniform level, fixed or picked from the projected size),
-// their topology refined once and re-posed by stencils. Primvars are kept per triangle corner.
+// their topology refined once and re-posed by stencils. Primvars are kept per triangle corner,
+// except on refined meshes: vertex/varying primvars and normals per point, uniform per triangle.
 #pragma once
 
 #include <memory>
@@ -15,6 +16,10 @@ namespace principled::embree {
 class Mesh : public GeometryPrim {
 public:
     using GeometryPrim::GeometryPrim;
+
+    /// Bytes held for this mesh: its GeometryRecord plus the subdivision topology (stencils,
+    /// triangles) kept for re-posing. Not Embree's BVH.
+    size_t memoryBytes() const;
 
     /// The subdivision level used at the last rebuild (0: the polygons themselves).
     int refineLevel() const { return _level; }
@@ -33,7 +38,9 @@ private:
                          int level);
 
     std::unique_ptr<subdiv::SubdivTopology> _subdiv;
-    subdiv::RefinedMesh _refined;
+    /// SubdivTopology::id() whose triangles _record holds (0: none). The refined mesh is
+    /// built in _record's own arrays, so re-posing copies points and normals only.
+    uint64_t _refinedTopologyId = 0;
     int _level = 0;
 };
 

@@ -25,13 +25,22 @@ struct MaterialRecord {
     bool mayBePartlyPresent = false;  ///< opacity < 1 somewhere: shadow rays must evaluate it
 };
 
-/// One primvar of a mesh, expanded to three values per triangle (or one value if constant).
+/// One primvar of a mesh: by default three values per triangle (one per corner); or one value
+/// (constant), one per Embree primitive (perPrimitive: a point, a curve segment, a triangle of
+/// a uniform primvar), or one per point indexed through GeometryRecord::triangles (perVertex:
+/// vertex and varying primvars of refined meshes, no per-corner copy), or indexed per corner
+/// through cornerIndex (refined face-varying primvars).
+/// GeometryRecord::cornerValue() reads any of them.
 struct PrimvarChannel {
     hd::Token name;
     int components = 0;
     bool constant = false;
     bool perPrimitive = false;  ///< one value per Embree primitive (a point, a curve segment)
+    bool perVertex = false;     ///< one value per point (triangles index it)
     std::vector<float> data;
+    /// When set: the value index of each triangle corner (3 per triangle) into data (refined
+    /// face-varying primvars: shared with the subdivision topology, not copied per corner).
+    std::shared_ptr<const std::vector<int>> cornerIndex;
 };
 
 /// One rprim's geometry as the integrator sees it. Owned by the rprim; the Embree instance of
@@ -49,11 +58,14 @@ struct GeometryRecord {
     glm::mat4 objectToWorld{1.0f};
     glm::mat4 worldToObject{1.0f};
     glm::mat3 normalToWorld{1.0f};  ///< inverse transpose of objectToWorld's 3x3
-    // Triangles: object-space positions, per-corner normals (empty = flat), coarse face of
-    // each triangle (for elementId and per-face materials).
+    // Triangles: object-space positions, per-corner normals, coarse face of each triangle
+    // (for elementId and per-face materials). Shading normals come from cornerNormals when it
+    // is not empty, else from vertexNormals (one per point, indexed by triangles: refined
+    // subdivision meshes, 12 bytes per point instead of 36 per triangle), else flat.
     std::vector<glm::vec3> points;
     std::vector<glm::uvec3> triangles;
     std::vector<glm::vec3> cornerNormals;
+    std::vector<glm::vec3> vertexNormals;
     std::vector<int> triangleFace;
     std::vector<PrimvarChannel> primvars;  ///< the mesh's float primvars (st, displayColor...)
     /// GeomSubset materials: per triangle, into SceneSnapshot::materials (empty: none).
@@ -66,6 +78,25 @@ struct GeometryRecord {
         for (const auto& p : primvars)
             if (p.name == name) return &p;
         return nullptr;
+    }
+    /// The `components` floats of channel ch at corner k (0..2) of triangle t, whatever its
+    /// layout (constant, perPrimitive, perVertex or per corner).
+    const float* cornerValue(const PrimvarChannel& ch, unsigned t, int k) const {
+        size_t element = ch.constant       ? 0
+                         : ch.perPrimitive ? size_t(t)
+                         : ch.perVertex    ? size_t(triangles[t][k])
+                         : ch.cornerIndex  ? size_t((*ch.cornerIndex)[3 * size_t(t) + size_t(k)])
+                                           : 3 * size_t(t) + size_t(k);
+        return &ch.data[element * size_t(ch.components)];
+    }
+    /// Bytes held by the arrays (capacity, not size): for memory accounting and tests.
+    /// Shared cornerIndex arrays are not counted (the subdivision topology holds them).
+    size_t memoryBytes() const {
+        auto b = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+        size_t bytes = b(points) + b(triangles) + b(cornerNormals) + b(vertexNormals) +
+                       b(triangleFace) + b(triangleMaterial) + b(primvars);
+        for (const auto& p : primvars) bytes += b(p.data);
+        return bytes;
     }
     // Sphere: centre and radius in object space.
     glm::vec3 center{0.0f};

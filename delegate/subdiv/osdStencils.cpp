@@ -38,8 +38,10 @@ class RowRecorder {
     };
     Row operator[](int i) { return {this, i}; }
 
-    explicit RowRecorder(size_t rowCount) : _rowCount(rowCount), _slot(rowCount, -1) {
+    /// weightsPerRow: expected weights per row (after merging), to reserve the table once.
+    RowRecorder(size_t rowCount, size_t weightsPerRow) : _rowCount(rowCount), _slot(rowCount, -1) {
         _order.reserve(rowCount);
+        _builder.reserve(rowCount, rowCount * weightsPerRow);
     }
 
     Stencils finish() {
@@ -50,6 +52,7 @@ class RowRecorder {
         if (inOrder) return built;
         // Permute (rows never written stay empty, i.e. evaluate to zero).
         StencilsBuilder b;
+        b.reserve(_rowCount, built.entries());
         for (size_t r = 0; r < _rowCount; ++r) {
             b.beginRow();
             if (_slot[r] >= 0) {
@@ -151,7 +154,9 @@ std::vector<Stencils> levelStencils(const Far::TopologyRefiner& refiner, Interpo
         const size_t rows = mode == Interpolation::FaceVarying
                                 ? size_t(child.GetNumFVarValues(channel))
                                 : size_t(child.GetNumVertices());
-        RowRecorder dst(rows);
+        // Catmull-Clark face, edge and vertex points of quads take 4, 6 and 9 weights, a
+        // quarter, half and quarter of the rows; varying ones at most 4.
+        RowRecorder dst(rows, mode == Interpolation::Varying ? 4 : 7);
         switch (mode) {
             case Interpolation::Vertex:
                 primvars.Interpolate(level, src, dst);
@@ -174,7 +179,8 @@ LimitMasks vertexLimitMasks(const Far::TopologyRefiner& refiner) {
     const size_t n = static_cast<size_t>(refiner.GetLevel(refiner.GetMaxLevel()).GetNumVertices());
     // One pass records all three masks: each recorder streams its rows, so memory is the
     // final tables only.
-    RowRecorder pos(n), du(n), dv(n);
+    // Regular quad-mesh vertices: 9 position weights, 6 per tangent.
+    RowRecorder pos(n, 9), du(n, 6), dv(n, 6);
     primvars.Limit(src, pos, du, dv);
     LimitMasks masks;
     masks.position = pos.finish();
@@ -187,7 +193,7 @@ Stencils faceVaryingLimitMasks(const Far::TopologyRefiner& refiner, int channel)
     const Far::PrimvarRefiner primvars(refiner);
     const size_t n =
         static_cast<size_t>(refiner.GetLevel(refiner.GetMaxLevel()).GetNumFVarValues(channel));
-    RowRecorder values(n);
+    RowRecorder values(n, 9);
     primvars.LimitFaceVarying(SymbolicSource(), values, channel);
     return values.finish();
 }

@@ -36,6 +36,13 @@ using StencilChain = std::vector<Stencils>;
 /// Incrementally builds a Stencils table row by row (rows appended in order).
 class StencilsBuilder {
   public:
+    /// Capacity for `rows` rows and `entries` weights: a table built without it grows by
+    /// doubling, copying (and faulting in) its arrays about once more.
+    void reserve(size_t rows, size_t entries) {
+        _table.offsets.reserve(rows + 1);
+        _table.indices.reserve(entries);
+        _table.weights.reserve(entries);
+    }
     void beginRow() { _open = true; }
     void add(int index, float weight);
     void endRow();  ///< merges duplicate indices, drops exact zeros

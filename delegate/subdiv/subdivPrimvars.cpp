@@ -64,35 +64,59 @@ bool SubdivTopology::refineVarying(const float* values, size_t count, int compon
 bool SubdivTopology::refineFaceVarying(int channel, const float* values, size_t count,
                                        int components, std::vector<float>* out,
                                        std::string* error) const {
+    // coarse values -> last-level values -> limit values, then gathered per triangle corner.
+    // Per-thread scratch: repeated calls reuse the pages (the gather below reads it through a
+    // plain pointer, so TBB workers never name the thread_local).
+    thread_local std::vector<float> limitValues;
+    if (!refineFaceVaryingValues(channel, values, count, components, &limitValues, error))
+        return false;
+    const size_t n = size_t(components);
+    const std::vector<int>& cornerList = *_fvar[size_t(channel)].corners;
+    out->resize(cornerList.size() * n);
+    float* dst = out->data();
+    const float* src = limitValues.data();
+    const int* corners = cornerList.data();
+    parallelRange(cornerList.size(), [=](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k)
+            std::copy_n(src + size_t(corners[k]) * n, n, dst + k * n);
+    });
+    return true;
+}
+
+bool SubdivTopology::refineFaceVaryingValues(int channel, const float* values, size_t count,
+                                             int components, std::vector<float>* out,
+                                             std::string* error) const {
     if (!faceVaryingAvailable(channel))
         return fail(error, "face-varying channel " + std::to_string(channel) + " is not available");
     const FaceVaryingTables& fv = _fvar[size_t(channel)];
     if (!checkInput(values, count, fv.coarseValues, components, "face-varying primvar", error))
         return false;
     const size_t n = size_t(components);
-    // coarse values -> last-level values -> limit values, then gathered per triangle corner.
-    // Per-thread scratch: repeated calls reuse the pages (the gather below reads them through
-    // plain pointers, so TBB workers never name these thread_locals).
-    thread_local std::vector<float> level, limit;
+    // coarse values -> last-level values -> limit values (either step may be the identity).
+    if (fv.toLevel.empty() && fv.limit.empty()) {
+        out->assign(values, values + count * n);
+        return true;
+    }
+    if (fv.limit.empty()) {
+        out->resize(chainRows(fv.toLevel, count) * n);
+        applyChain(fv.toLevel, values, count, components, out->data());
+        return true;
+    }
     const float* src = values;
+    thread_local std::vector<float> level;  // per-thread scratch, as in refine()
     if (!fv.toLevel.empty()) {
         level.resize(chainRows(fv.toLevel, count) * n);
         applyChain(fv.toLevel, values, count, components, level.data());
         src = level.data();
     }
-    if (!fv.limit.empty()) {
-        limit.resize(fv.limit.rows() * n);
-        fv.limit.apply(src, components, limit.data());
-        src = limit.data();
-    }
-    out->resize(fv.corners.size() * n);
-    float* dst = out->data();
-    const int* corners = fv.corners.data();
-    parallelRange(fv.corners.size(), [=](size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k)
-            std::copy_n(src + size_t(corners[k]) * n, n, dst + k * n);
-    });
+    out->resize(fv.limit.rows() * n);
+    fv.limit.apply(src, components, out->data());
     return true;
+}
+
+std::shared_ptr<const std::vector<int>> SubdivTopology::faceVaryingCorners(int channel) const {
+    if (!faceVaryingAvailable(channel)) return nullptr;
+    return _fvar[size_t(channel)].corners;
 }
 
 bool SubdivTopology::refineUniform(const float* values, size_t count, int components,

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -84,6 +85,19 @@ bool isIdentity(const Stencils& s) {
     return true;
 }
 
+/// PRINCIPLED_MEM_TRACE=1: resident memory after each build phase, on stderr (the refiner is
+/// the largest transient: docs/geometry.md, subdivision memory).
+void memTrace(const char* phase) {
+    static const bool on = std::getenv("PRINCIPLED_MEM_TRACE") != nullptr;
+    if (!on) return;
+    long pages = 0, rss = 0;
+    if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+        if (std::fscanf(f, "%ld %ld", &pages, &rss) != 2) rss = 0;
+        std::fclose(f);
+    }
+    std::fprintf(stderr, "[mem]   subdiv build, %-14s rss %7.1f MB\n", phase, rss * 4096.0 / 1e6);
+}
+
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -153,7 +167,7 @@ void SubdivTopology::buildCage() {
     for (size_t c = 0; c < _fvar.size(); ++c) {
         if (!_fvar[c].available) continue;
         const auto& idx = _options.faceVarying[c].indices;
-        auto& corners = _fvar[c].corners;
+        auto& corners = *_fvar[c].corners;
         corners.reserve(cage.corners.size() * 3);
         for (const glm::uvec3& tri : cage.corners)
             for (int k = 0; k < 3; ++k) corners.push_back(idx[tri[k]]);
@@ -232,7 +246,9 @@ bool SubdivTopology::build(std::string* error) {
 
     Far::TopologyRefiner::UniformOptions uniform(_level);
     uniform.fullTopologyInLastLevel = true;  // PrimvarRefiner::Limit needs vertex neighbourhoods
+    memTrace("factory");
     refiner->RefineUniform(uniform);
+    memTrace("refiner");
     lap(&_timings.refiner);
 
     // The tables only read the refiner, so they are built concurrently (TBB). Each task
@@ -280,6 +296,7 @@ bool SubdivTopology::build(std::string* error) {
         });
     }
     tbb::parallel_for(size_t(0), tasks.size(), [&tasks](size_t i) { tasks[i](); });
+    memTrace("stencils");
     for (double t : fvarSeconds) _timings.faceVarying += t;
     clock = std::chrono::steady_clock::now();
     if (!failure.empty()) {
@@ -309,6 +326,15 @@ bool SubdivTopology::build(std::string* error) {
     const Far::TopologyLevel& base = refiner->GetLevel(0);
     const Far::TopologyLevel& last = refiner->GetLevel(_level);
     _refinedPoints = size_t(last.GetNumVertices());
+    // Exact sizes first: growing by push_back would copy (and fault in) these arrays several
+    // times and leave up to half of each allocation unused.
+    size_t triangleCount = 0;
+    for (int f = 0; f < last.GetNumFaces(); ++f)
+        if (!base.IsFaceHole(coarse[f])) triangleCount += size_t(last.GetFaceVertices(f).size() - 2);
+    _triangles.reserve(triangleCount);
+    _triangleFace.reserve(triangleCount);
+    for (size_t c = 0; c < _fvar.size(); ++c)
+        if (osdChannel[c] >= 0) _fvar[c].corners->reserve(3 * triangleCount);
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         if (base.IsFaceHole(coarse[f])) continue;
         Far::ConstIndexArray fv = last.GetFaceVertices(f);
@@ -320,14 +346,15 @@ bool SubdivTopology::build(std::string* error) {
             if (osdChannel[c] < 0) continue;
             Far::ConstIndexArray vals = last.GetFaceFVarValues(f, osdChannel[c]);
             for (int k = 1; k + 1 < vals.size(); ++k) {
-                _fvar[c].corners.push_back(vals[0]);
-                _fvar[c].corners.push_back(vals[k]);
-                _fvar[c].corners.push_back(vals[k + 1]);
+                _fvar[c].corners->push_back(vals[0]);
+                _fvar[c].corners->push_back(vals[k]);
+                _fvar[c].corners->push_back(vals[k + 1]);
             }
         }
     }
     if (_limitP.rows() && isIdentity(_limitP)) _limitP = Stencils();
     lap(&_timings.triangles);
+    memTrace("triangles");
     return true;  // the refiner is released here: only stencils are kept
 }
 
@@ -360,7 +387,7 @@ size_t SubdivTopology::memoryBytes() const {
                    _limitDv.bytes() + _triangles.size() * sizeof(glm::uvec3) +
                    _triangleFace.size() * sizeof(int);
     for (const auto& f : _fvar)
-        bytes += chainBytes(f.toLevel) + f.limit.bytes() + f.corners.size() * sizeof(int);
+        bytes += chainBytes(f.toLevel) + f.limit.bytes() + f.corners->size() * sizeof(int);
     return bytes;
 }
 

@@ -100,6 +100,15 @@ class SubdivTopology {
     /// faceVaryingLinearInterpolation.
     bool refineFaceVarying(int channel, const float* values, size_t count, int components,
                            std::vector<float>* out, std::string* error = nullptr) const;
+    /// The same primvar as its refined (limit) values, one element per face-varying value of
+    /// the last level, without the per-corner gather: faceVaryingCorners(channel) gives the
+    /// value of each triangle corner. Same floats as refineFaceVarying().
+    bool refineFaceVaryingValues(int channel, const float* values, size_t count, int components,
+                                 std::vector<float>* out, std::string* error = nullptr) const;
+    /// Value index of each triangle corner of channel (3 per triangle), into
+    /// refineFaceVaryingValues() output; null for an unavailable channel. Immutable and shared,
+    /// so a record can keep it instead of a per-corner copy of the values.
+    std::shared_ptr<const std::vector<int>> faceVaryingCorners(int channel) const;
     /// Uniform (per coarse face) primvar -> one element per refined triangle.
     bool refineUniform(const float* values, size_t count, int components, std::vector<float>* out,
                        std::string* error = nullptr) const;
@@ -137,7 +146,9 @@ class SubdivTopology {
         size_t coarseValues = 0;
         StencilChain toLevel;      ///< coarse values -> last-level values (empty: identity)
         Stencils limit;            ///< last-level values -> limit values (empty: identity)
-        std::vector<int> corners;  ///< value of each triangle corner (3 per triangle)
+        /// Value of each triangle corner (3 per triangle); shared with the records that index
+        /// refineFaceVaryingValues() output through it (faceVaryingCorners()).
+        std::shared_ptr<std::vector<int>> corners = std::make_shared<std::vector<int>>();
     };
 
     // Inputs (kept for matches()).

@@ -281,3 +281,34 @@ TEST(SubdivPrimvars, PerLevelChainsMatchFlatFarStencilTables) {
         for (size_t i = 0; i < va.size(); ++i) ASSERT_NEAR(va[i], vb[i], 1e-5f) << k;
     }
 }
+
+// The record keeps face-varying primvars as values + the shared corner map: gathering through
+// faceVaryingCorners() must give exactly refineFaceVarying()'s per-corner floats, at every
+// level (0 = the cage) and in linear and smooth modes.
+TEST(SubdivPrimvars, FaceVaryingValuesThroughTheCornerMapEqualThePerCornerGather) {
+    Cage g = test::grid(3);
+    std::vector<float> st;
+    FaceVaryingChannel ch = islands(g, &st);
+    for (int level : {0, 1, 3})
+        for (const char* mode : {"all", "cornersPlus1"}) {
+            hd::SubdivTags tags;
+            tags.faceVaryingLinearInterpolation = mode;
+            BuildOptions o{level};
+            o.faceVarying = {ch};
+            auto t = make(g, o, tags);
+            std::vector<float> perCorner, values;
+            ASSERT_TRUE(t->refineFaceVarying(0, st.data(), ch.valueCount, 2, &perCorner));
+            ASSERT_TRUE(t->refineFaceVaryingValues(0, st.data(), ch.valueCount, 2, &values));
+            auto corners = t->faceVaryingCorners(0);
+            ASSERT_TRUE(corners);
+            ASSERT_EQ(corners->size(), 3 * t->triangleCount());
+            ASSERT_EQ(perCorner.size(), 2 * corners->size());
+            for (size_t k = 0; k < corners->size(); ++k) {
+                const size_t v = size_t((*corners)[k]);
+                ASSERT_LT(2 * v + 1, values.size());
+                ASSERT_EQ(perCorner[2 * k], values[2 * v]) << level << mode << k;
+                ASSERT_EQ(perCorner[2 * k + 1], values[2 * v + 1]) << level << mode << k;
+            }
+        }
+    EXPECT_FALSE(make(g, BuildOptions{1})->faceVaryingCorners(0));
+}

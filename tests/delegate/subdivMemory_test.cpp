@@ -1,0 +1,112 @@
+// Memory held per refined triangle by a subdivided mesh's GeometryRecord (docs/geometry.md,
+// "Subdivision meshes: memory per refined triangle"). Pins the layout: normals and vertex
+// primvars per point, face-varying ones per value through the shared corner map, not per
+// triangle corner, and no spare capacity.
+#include <gtest/gtest.h>
+
+#include "delegate/mesh.h"
+#include "delegate/renderDelegate.h"
+#include "tests/support/testSceneDelegate.h"
+
+using namespace principled;
+using principled::test::TestSceneDelegate;
+
+namespace {
+
+/// An n x n quad grid, Catmull-Clark at `level`, with face-varying st and vertex displayColor.
+void addGrid(TestSceneDelegate& scene, const hd::Path& id, int n, int level) {
+    scene.addQuad(id, 1.0f);
+    auto& p = scene.prim(id);
+    std::vector<glm::vec3> points, colors;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            points.emplace_back(float(i) / n, float(j) / n, 0.1f * float((i * 7 + j * 3) % 5) / n);
+            colors.emplace_back(float(i) / n, float(j) / n, 0.5f);
+        }
+    std::vector<glm::vec2> st;
+    p.topology.faceVertexCounts.clear();
+    p.topology.faceVertexIndices.clear();
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            p.topology.faceVertexCounts.push_back(4);
+            const int v = j * (n + 1) + i;
+            for (int c : {v, v + 1, v + n + 2, v + n + 1}) {
+                p.topology.faceVertexIndices.push_back(c);
+                st.emplace_back(points[size_t(c)].x, points[size_t(c)].y);
+            }
+        }
+    p.topology.scheme = hd::Token("catmullClark");
+    p.topology.refineLevel = level;
+    p.values[hd::tokens::points()] = points;
+    p.values[hd::Token("st")] = st;
+    p.values[hd::Token("displayColor")] = colors;
+    p.interpolation[hd::Token("st")] = hd::Interpolation::FaceVarying;
+    p.interpolation[hd::Token("displayColor")] = hd::Interpolation::Vertex;
+}
+
+}  // namespace
+
+TEST(SubdivMemory, RecordBytesPerRefinedTriangle) {
+    embree::EmbreeRenderDelegate delegate;
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    const hd::Path id("/grid");
+    addGrid(scene, id, 8, 4);  // 64 quads -> 16384 refined quads, 32768 triangles
+    index.sync();
+    auto* mesh = dynamic_cast<embree::Mesh*>(index.rprim(id));
+    ASSERT_NE(mesh, nullptr);
+    EXPECT_EQ(mesh->refineLevel(), 4);
+    const embree::GeometryRecord& rec = *mesh->record();
+    const size_t tris = rec.triangles.size();
+    ASSERT_EQ(tris, size_t(32768));
+    ASSERT_NE(rec.primvar(hd::Token("st")), nullptr);
+    ASSERT_NE(rec.primvar(hd::Token("displayColor")), nullptr);
+    EXPECT_FALSE(rec.vertexNormals.empty());
+    const double perTriangle = double(rec.memoryBytes()) / double(tris);
+    // Per triangle: indices 12, coarse face 4; per point (about half a point per triangle):
+    // position, normal and displayColor 12 each; st per face-varying value (about half a
+    // value per triangle) 8: about 38 bytes. Normals, displayColor and st per corner
+    // (36 + 36 + 24 bytes) took it to about 118.
+    EXPECT_LT(perTriangle, 48.0) << "record bytes per refined triangle";
+    ASSERT_TRUE(rec.primvar(hd::Token("st"))->cornerIndex);
+    // The whole mesh, with the stencils kept for re-posing (they dominate).
+    const double meshPerTriangle = double(mesh->memoryBytes()) / double(tris);
+    EXPECT_LT(meshPerTriangle, 400.0) << "mesh bytes per refined triangle";
+    RecordProperty("recordBytesPerTriangle", std::to_string(perTriangle));
+    RecordProperty("meshBytesPerTriangle", std::to_string(meshPerTriangle));
+    std::printf("record %.1f B/tri, mesh (record + stencils) %.1f B/tri\n", perTriangle,
+                meshPerTriangle);
+}
+
+// Re-posing (new points, same topology) refines into the same arrays: the triangles are not
+// copied again and the record's layout and size stay the same.
+TEST(SubdivMemory, ReposeReusesTheRecordArrays) {
+    embree::EmbreeRenderDelegate delegate;
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    const hd::Path id("/grid");
+    addGrid(scene, id, 4, 3);
+    index.sync();
+    auto* mesh = dynamic_cast<embree::Mesh*>(index.rprim(id));
+    ASSERT_NE(mesh, nullptr);
+    const embree::GeometryRecord& rec = *mesh->record();
+    const std::vector<glm::vec3> before = rec.points;
+    const std::vector<glm::uvec3> triangles = rec.triangles;
+    const void* triangleData = rec.triangles.data();
+    const size_t bytes = mesh->memoryBytes();
+    const uint64_t builds = subdiv::SubdivTopology::refinerBuildCount();
+    auto points = std::get<std::vector<glm::vec3>>(scene.prim(id).values[hd::tokens::points()]);
+    for (auto& p : points) p.z += 1.0f;
+    scene.prim(id).values[hd::tokens::points()] = points;
+    index.changeTracker().markRprimDirty(id, hd::RprimDirty::Points);
+    index.sync();
+    ASSERT_EQ(rec.points.size(), before.size());
+    for (size_t i = 0; i < before.size(); ++i)
+        ASSERT_NEAR(rec.points[i].z, before[i].z + 1.0f, 1e-5f) << i;
+    EXPECT_EQ(rec.triangles, triangles);
+    EXPECT_EQ(rec.triangles.data(), triangleData);
+    EXPECT_EQ(mesh->memoryBytes(), bytes);
+    EXPECT_EQ(subdiv::SubdivTopology::refinerBuildCount(), builds) << "re-posed, not rebuilt";
+    EXPECT_EQ(rec.vertexNormals.size(), rec.points.size());
+}
+

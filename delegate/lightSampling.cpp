@@ -41,11 +41,18 @@ float toSolidAngle(float areaPdf, float dist, float cosLight) {
     return cosLight > 1e-7f ? areaPdf * dist * dist / cosLight : 0.0f;
 }
 
+// The texel of an image that holds the point (u, v) of [0, 1]^2, v = 0 the top row: nearest
+// texel, the lookup of both the dome and the rect light (their sampling distributions are
+// piecewise constant over the same texels).
+const glm::vec3& nearestTexel(const EnvironmentMap& img, float u, float v) {
+    int x = std::clamp(int(u * img.width), 0, img.width - 1);
+    int y = std::clamp(int(v * img.height), 0, img.height - 1);
+    return img.texels[size_t(y) * img.width + x];
+}
+
 glm::vec3 envLookup(const EnvironmentMap& env, const glm::vec3& dWorld) {
     glm::vec2 uv = directionToLatLong(env.worldToLocal * dWorld);
-    int x = std::clamp(int(uv.x * env.width), 0, env.width - 1);
-    int y = std::clamp(int(uv.y * env.height), 0, env.height - 1);
-    return env.texels[size_t(y) * env.width + x] * env.scale;
+    return nearestTexel(env, uv.x, uv.y) * env.scale;
 }
 
 // A rect light's texture at rectangle coordinates (a, b) in [-1, 1]^2 along (axisU, axisV):
@@ -54,10 +61,7 @@ glm::vec3 envLookup(const EnvironmentMap& env, const glm::vec3& dWorld) {
 // dome's lookup.
 glm::vec3 rectTexel(const LightRecord& l, float a, float b) {
     if (!l.rectTexture) return glm::vec3(1.0f);
-    const EnvironmentMap& img = *l.rectTexture;
-    int x = std::clamp(int(0.5f * (1.0f - a) * img.width), 0, img.width - 1);
-    int y = std::clamp(int(0.5f * (1.0f - b) * img.height), 0, img.height - 1);
-    return img.texels[size_t(y) * img.width + x];
+    return nearestTexel(*l.rectTexture, 0.5f * (1.0f - a), 0.5f * (1.0f - b));
 }
 
 float envPdf(const EnvironmentMap& env, const glm::vec3& dWorld) {

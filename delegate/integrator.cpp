@@ -240,7 +240,7 @@ float presenceAt(const SceneSnapshot& scene, const Hit& hit) {
     if (!m.mayBePartlyPresent) return 1.0f;
     if (!m.program) return m.constant.presence();
     HitContext context(hit);
-    return m.program->evaluate(context).presence();
+    return m.program->presence(context);
 }
 
 // Visibility along a shadow ray: 0 when an opaque surface blocks it, else the product of

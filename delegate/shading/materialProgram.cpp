@@ -437,6 +437,7 @@ MaterialProgram MaterialProgram::compile(const MaterialNetwork& network, Texture
     }
     Compiler(network, cache, notes, prog).compileSurface(*surface);
     prog._constant = mapPreviewSurface(prog._base);
+    prog.findPresenceOps();
     return prog;
 }
 
@@ -448,46 +449,78 @@ glm::vec4 MaterialProgram::read(const glm::vec4* regs, const Operand& o) {
     return v;
 }
 
+void MaterialProgram::run(const Op& op, const ShadingContext& context, glm::vec4* regs) const {
+    switch (op.kind) {
+        case Op::Kind::Primvar: {
+            const PrimvarOp& pv = _primvars[op.index];
+            float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+            glm::vec4 out = pv.fallback;
+            if (context.primvar(pv.name, pv.components, v))
+                for (int i = 0; i < pv.components; ++i)
+                    out[i] = std::isfinite(v[i]) ? v[i] : pv.fallback[i];
+            regs[op.out] = out;
+            break;
+        }
+        case Op::Kind::Transform: {
+            glm::vec2 in(read(regs, op.in));
+            regs[op.out] = glm::vec4(_transforms[op.index].apply(in), 0.0f, 0.0f);
+            break;
+        }
+        case Op::Kind::Texture: {
+            const TextureOp& t = _textures[op.index];
+            glm::vec2 st(read(regs, op.in));
+            glm::vec4 footprint(0.0f);
+            glm::vec2 dx, dy;
+            if (!t.footprintPrimvar.empty() &&
+                context.primvarDerivatives(t.footprintPrimvar, &dx, &dy)) {
+                dx = t.footprintJacobian * dx;
+                dy = t.footprintJacobian * dy;
+                footprint = glm::vec4(dx.x, dx.y, dy.x, dy.y);
+            }
+            regs[op.out] = t.texture.sample(*_cache, st, footprint);
+            break;
+        }
+    }
+}
+
 ShadedMaterial MaterialProgram::evaluate(const ShadingContext& context) const {
     if (_ops.empty()) return _constant;
     glm::vec4 regs[kMaxRegisters];
     std::copy(_initial.begin(), _initial.end(), regs);
-    for (const Op& op : _ops) {
-        switch (op.kind) {
-            case Op::Kind::Primvar: {
-                const PrimvarOp& pv = _primvars[op.index];
-                float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-                glm::vec4 out = pv.fallback;
-                if (context.primvar(pv.name, pv.components, v))
-                    for (int i = 0; i < pv.components; ++i)
-                        out[i] = std::isfinite(v[i]) ? v[i] : pv.fallback[i];
-                regs[op.out] = out;
-                break;
-            }
-            case Op::Kind::Transform: {
-                glm::vec2 in(read(regs, op.in));
-                regs[op.out] = glm::vec4(_transforms[op.index].apply(in), 0.0f, 0.0f);
-                break;
-            }
-            case Op::Kind::Texture: {
-                const TextureOp& t = _textures[op.index];
-                glm::vec2 st(read(regs, op.in));
-                glm::vec4 footprint(0.0f);
-                glm::vec2 dx, dy;
-                if (!t.footprintPrimvar.empty() &&
-                    context.primvarDerivatives(t.footprintPrimvar, &dx, &dy)) {
-                    dx = t.footprintJacobian * dx;
-                    dy = t.footprintJacobian * dy;
-                    footprint = glm::vec4(dx.x, dx.y, dy.x, dy.y);
-                }
-                regs[op.out] = t.texture.sample(*_cache, st, footprint);
-                break;
-            }
-        }
-    }
+    for (const Op& op : _ops) run(op, context, regs);
     PreviewSurfaceParams p = _base;
     for (const Binding& b : _bindings) setSlot(p, b.slot, read(regs, b.source), b.source.count);
     return mapPreviewSurface(p);
+}
+
+// Walks the ops backwards from the opacity binding's register: an op is needed when it writes
+// a needed register, and then its input register is needed too (a superset if a register is
+// written twice).
+void MaterialProgram::findPresenceOps() {
+    _presenceOps.clear();
+    std::vector<bool> needed(kMaxRegisters, false);
+    bool any = false;
+    for (const Binding& b : _bindings)
+        if (b.slot == Slot::Opacity && b.source.reg >= 0) needed[size_t(b.source.reg)] = any = true;
+    if (!any) return;
+    for (size_t i = _ops.size(); i-- > 0;) {
+        const Op& op = _ops[i];
+        if (op.out < 0 || !needed[size_t(op.out)]) continue;
+        _presenceOps.push_back(uint16_t(i));
+        if (op.kind != Op::Kind::Primvar && op.in.reg >= 0) needed[size_t(op.in.reg)] = true;
+    }
+    std::reverse(_presenceOps.begin(), _presenceOps.end());
+}
+
+float MaterialProgram::presence(const ShadingContext& context) const {
+    if (_ops.empty()) return _constant.presence();
+    glm::vec4 regs[kMaxRegisters];
+    std::copy(_initial.begin(), _initial.end(), regs);
+    for (uint16_t i : _presenceOps) run(_ops[i], context, regs);
+    PreviewSurfaceParams p = _base;
+    for (const Binding& b : _bindings)
+        if (b.slot == Slot::Opacity) setSlot(p, b.slot, read(regs, b.source), b.source.count);
+    return mapPreviewSurface(p).presence();
 }
 
 bool MaterialProgram::mayBePartlyPresent() const {

@@ -54,6 +54,9 @@ class MaterialProgram {
     /// False when every shading point is fully present (opacity 1, or a cutout that always
     /// passes): shadow rays may then treat the surface as opaque without evaluating it.
     bool mayBePartlyPresent() const;
+    /// evaluate(context).presence(), running only the operations the opacity input depends on
+    /// (shadow rays through cutouts need nothing else: no normal map, no roughness texture).
+    float presence(const ShadingContext& context) const;
     /// Primvar names the program reads (e.g. {"st"}): the mesh must keep them.
     const std::vector<hd::Token>& primvarsRead() const { return _primvarsRead; }
 
@@ -111,6 +114,8 @@ class MaterialProgram {
     class Compiler;
 
     static glm::vec4 read(const glm::vec4* regs, const Operand& o);
+    void run(const Op& op, const ShadingContext& context, glm::vec4* regs) const;
+    void findPresenceOps();
 
     std::vector<glm::vec4> _initial;  ///< register file before the ops run (constants)
     std::vector<Op> _ops;
@@ -118,6 +123,7 @@ class MaterialProgram {
     std::vector<PrimvarOp> _primvars;
     std::vector<Transform2d> _transforms;
     std::vector<Binding> _bindings;
+    std::vector<uint16_t> _presenceOps;  ///< indices into _ops that opacity depends on, in order
     std::vector<hd::Token> _primvarsRead;
     PreviewSurfaceParams _base;  ///< constant inputs; bindings overwrite the rest
     ShadedMaterial _constant;

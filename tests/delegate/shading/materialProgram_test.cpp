@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <map>
+#include <set>
 #include <new>
 #include <thread>
 
@@ -531,4 +532,47 @@ TEST_F(MaterialProgramTest, UsdWgNormalMapEncodingsAgree) {
         }
     EXPECT_LT(worst, 0.03f);        // 8-bit quantisation: 2/255 per component after scale 2
     EXPECT_GT(tilted, n * n / 50);  // the "R" relief is there
+}
+
+TEST_F(MaterialProgramTest, PresenceRunsOnlyWhatOpacityNeeds) {
+    // Shadow rays ask for presence alone: it must equal evaluate().presence() and must not read
+    // the inputs that only feed other slots (here the "rough" primvar).
+    std::string rgba = dir.file("leaf_presence.png");
+    std::vector<float> px = {1, 0, 0, 0.2f, 0, 1, 0, 0.8f, 0, 0, 1, 0.6f, 1, 1, 1, 0.4f};
+    ASSERT_TRUE(writeImage(rgba, 2, 2, 4, px, OIIO::TypeDesc::UINT8));
+    Net n;
+    n.stReader()
+        .texture("/M/T", rgba)
+        .connect("/M/T", "st", "/M/St", "result")
+        .add("/M/R", "UsdPrimvarReader_float", {{Token("varname"), Value(std::string("rough"))}})
+        .surfaceFrom("diffuseColor", "/M/T", "rgb")
+        .surfaceFrom("roughness", "/M/R", "result")
+        .surfaceFrom("opacity", "/M/T", "a");
+    MaterialProgram p = compile(n);
+    class Counting : public Context {
+      public:
+        mutable std::set<std::string> read;
+        bool primvar(const Token& name, int components, float* out) const override {
+            read.insert(name.str());
+            return Context::primvar(name, components, out);
+        }
+    } counting;
+    counting.values["rough"] = glm::vec4(0.3f);
+    for (float s : {0.1f, 0.3f, 0.6f, 0.9f})
+        for (float t : {0.2f, 0.7f}) {
+            counting.values["st"] = glm::vec4(s, t, 0, 0);
+            float expected = p.evaluate(counting).presence();
+            counting.read.clear();
+            EXPECT_FLOAT_EQ(p.presence(counting), expected) << s << "," << t;
+            EXPECT_EQ(counting.read.count("rough"), 0u);
+            EXPECT_EQ(counting.read.count("st"), 1u);
+        }
+    // Without an opacity input, presence is the constant's and reads nothing.
+    Net plain;
+    plain.add("/M/R", "UsdPrimvarReader_float", {{Token("varname"), Value(std::string("rough"))}})
+        .surfaceFrom("roughness", "/M/R", "result");
+    MaterialProgram q = compile(plain);
+    counting.read.clear();
+    EXPECT_FLOAT_EQ(q.presence(counting), 1.0f);
+    EXPECT_TRUE(counting.read.empty());
 }

@@ -18,6 +18,7 @@ fresh full export of the same scene.
 blender -b -noaudio --factory-startup --python tests/blender/test_geometry_edits.py -- \
     --module-dir build/lib/python
 """
+import contextlib
 import os
 import sys
 import traceback
@@ -65,10 +66,10 @@ def compare(what, s, log, n0, expect):
     return a
 
 
-def main():
-    T.principled_blender.register()
-    scene, plane, sphere, sun, cam, mat, smat = T.build_scene()
-    dg = bpy.context.evaluated_depsgraph_get()
+@contextlib.contextmanager
+def edit_session():
+    """A viewport session whose depsgraph updates, once listen() is called, are applied and
+    logged (one apply_updates() result each); an exception in the body is a test failure."""
     s = session.Session(settings=SETTINGS)
     log = []
 
@@ -76,9 +77,24 @@ def main():
         log.append(s.apply_updates(depsgraph, depsgraph.updates))
 
     try:
+        yield s, log, lambda: bpy.app.handlers.depsgraph_update_post.append(handler)
+    except Exception:
+        traceback.print_exc()
+        T.failures.append("exception")
+    finally:
+        if handler in bpy.app.handlers.depsgraph_update_post:
+            bpy.app.handlers.depsgraph_update_post.remove(handler)
+        s.close()
+
+
+def main():
+    T.principled_blender.register()
+    scene, plane, sphere, sun, cam, mat, smat = T.build_scene()
+    dg = bpy.context.evaluated_depsgraph_get()
+    with edit_session() as (s, log, listen):
         s.full_sync(dg, T.W, T.H)
         img0 = render(s)
-        bpy.app.handlers.depsgraph_update_post.append(handler)
+        listen()
 
         n0 = len(log)
         plane.data.vertices[0].co.z += 1.0
@@ -131,13 +147,6 @@ def main():
         cube.hide_viewport = False
         bpy.context.view_layer.update()
         compare("shown cube", s, log, n0, {"added": 1})
-    except Exception:
-        traceback.print_exc()
-        T.failures.append("exception")
-    finally:
-        if handler in bpy.app.handlers.depsgraph_update_post:
-            bpy.app.handlers.depsgraph_update_post.remove(handler)
-        s.close()
 
 
 def test_shared_meshes():
@@ -166,18 +175,12 @@ def test_shared_meshes():
         e.location = (-1.5, y, 0)
         scene.collection.objects.link(e)
         empties.append(e)
-    s = session.Session(settings=SETTINGS)
-    log = []
-
-    def handler(_scene, depsgraph):
-        log.append(s.apply_updates(depsgraph, depsgraph.updates))
-
-    try:
+    with edit_session() as (s, log, listen):
         s.full_sync(bpy.context.evaluated_depsgraph_get(), T.W, T.H)
         T.check(len(s.export.object_xforms.get("Shared", [])) == 2,
                 "instanced object: two copies exported")
         render(s)
-        bpy.app.handlers.depsgraph_update_post.append(handler)
+        listen()
         n0 = len(log)
         for v in sphere.data.vertices[:40]:
             v.co.z += 0.25
@@ -189,13 +192,6 @@ def test_shared_meshes():
         bpy.data.objects.remove(empties[1])
         bpy.context.view_layer.update()
         T.check(any(e["rebuild"] for e in log[n0:]), "deleting an instancer: a rebuild")
-    except Exception:
-        traceback.print_exc()
-        T.failures.append("exception")
-    finally:
-        if handler in bpy.app.handlers.depsgraph_update_post:
-            bpy.app.handlers.depsgraph_update_post.remove(handler)
-        s.close()
 
 
 def report():

@@ -191,6 +191,20 @@ def test_emission_shader():
           f"Emission shader: emitter radiance {centre.round(4).tolist()} = {want.tolist()}")
 
 
+def overhead_sun_and_camera(scene):
+    """A delta sun of strength pi straight down (a Lambert plane's radiance = its albedo) and an
+    orthographic camera 5 m above the origin looking down, 5 m wide."""
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0
+    scene.camera = cam
+    return cam
+
+
 def cutout_plane(name):
     """A 2 m plane at x = -1.2 with a white Lambert-like Principled material of albedo ALBEDO
     and a 4x4 white image whose alpha is 0.25 (not linked yet): (image, material, tree, bsdf)."""
@@ -216,14 +230,7 @@ def test_alpha_texture():
     tex.image = img
     nt.links.new(tex.outputs["Alpha"], b.inputs["Alpha"])
     bpy.context.active_object.data.materials.append(m)
-    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
-    bpy.context.active_object.data.energy = math.pi
-    bpy.context.active_object.data.angle = 0.0
-    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
-    cam = bpy.context.active_object
-    cam.data.type = "ORTHO"
-    cam.data.ortho_scale = 5.0
-    scene.camera = cam
+    overhead_sun_and_camera(scene)
     img = render_combined(scene)[:, :, :3].mean(axis=2)
     centre = img[7:43, 8:44].mean()
     want = 0.25 * ALBEDO
@@ -291,14 +298,7 @@ def test_uv_mapping():
     nt.links.new(mp.outputs["Vector"], tex.inputs["Vector"])
     nt.links.new(tex.outputs["Color"], b.inputs["Base Color"])
     bpy.context.active_object.data.materials.append(m)
-    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
-    bpy.context.active_object.data.energy = math.pi
-    bpy.context.active_object.data.angle = 0.0
-    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
-    cam = bpy.context.active_object
-    cam.data.type = "ORTHO"
-    cam.data.ortho_scale = 5.0
-    scene.camera = cam
+    overhead_sun_and_camera(scene)
     img = render_combined(scene)[:, :, :3].mean(axis=2)
     cols = [float(img[15:35, x - 1:x + 2].mean()) for x in (11, 21, 31, 41)]  # u = 1/8, 3/8, ...
     check(cols[0] < 0.02 and cols[2] < 0.02 and cols[1] > 0.98 and cols[3] > 0.98,
@@ -379,14 +379,7 @@ def test_bsdf_nodes():
     diffuse = node_mat("ShaderNodeBsdfDiffuse", Color=(ALBEDO, ALBEDO, ALBEDO, 1.0))
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
     bpy.context.active_object.data.materials.append(diffuse)
-    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
-    bpy.context.active_object.data.energy = math.pi
-    bpy.context.active_object.data.angle = 0.0
-    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
-    cam = bpy.context.active_object
-    cam.data.type = "ORTHO"
-    cam.data.ortho_scale = 5.0
-    scene.camera = cam
+    overhead_sun_and_camera(scene)
     img = render_combined(scene)[:, :, :3].mean(axis=2)
     centre = float(img[15:35, 16:36].mean())
     check(abs(centre / ALBEDO - 1) < 0.01,
@@ -403,14 +396,7 @@ def test_mix_transparent():
     out = nt.nodes["Material Output"]
     nt.links.new(mix.outputs["Shader"], out.inputs["Surface"])
     bpy.context.active_object.data.materials.append(m)
-    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
-    bpy.context.active_object.data.energy = math.pi
-    bpy.context.active_object.data.angle = 0.0
-    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
-    cam = bpy.context.active_object
-    cam.data.type = "ORTHO"
-    cam.data.ortho_scale = 5.0
-    scene.camera = cam
+    overhead_sun_and_camera(scene)
     for label, transparent_first, textured, want in (("Fac = alpha, Transparent first", True, True, 0.25),
                                                      ("Fac = alpha, Transparent second", False, True, 0.75),
                                                      ("Fac 0.4, Transparent first", True, False, 0.4)):

@@ -12,6 +12,7 @@
 #include "delegate/renderDelegate.h"
 #include "delegate/renderPass.h"
 #include "delegate/sampler.h"
+#include "tests/support/orthoRender.h"
 #include "tests/support/seedStatistics.h"
 #include "tests/support/testSceneDelegate.h"
 
@@ -24,18 +25,9 @@ namespace {
 // A diffuse floor (4 x 4, z = 0) under a 1 x 1 emissive quad at z = 0.25, seen from above by an
 // orthographic camera; direct light only. Returns the red channel.
 std::vector<float> render(int solidAngle, int seed) {
-    embree::EmbreeRenderDelegate delegate;
-    hd::RenderIndex index(&delegate);
-    TestSceneDelegate scene(&index);
-    index.insertBprim(hd::tokens::renderBuffer(), &scene, hd::Path("/color"));
-    auto* color = static_cast<embree::EmbreeRenderBuffer*>(index.bprim(hd::tokens::renderBuffer(), hd::Path("/color")));
-    const int w = 32, h = 32;
-    color->allocate(w, h, hd::Format::Float32Vec4, true);
-    auto pass = delegate.createRenderPass(&index);
-    delegate.setRenderSetting(hd::Token("convergedSamplesPerPixel"), hd::Value(16));
-    delegate.setRenderSetting(hd::Token("maxDepth"), hd::Value(0));
-    delegate.setRenderSetting(hd::Token("seed"), hd::Value(seed));
-    delegate.setRenderSetting(hd::Token("lightSolidAngle"), hd::Value(solidAngle));
+    test::OrthoRender r(32, 32, {{"convergedSamplesPerPixel", hd::Value(16)}, {"maxDepth", hd::Value(0)},
+                                {"seed", hd::Value(seed)}, {"lightSolidAngle", hd::Value(solidAngle)}});
+    TestSceneDelegate& scene = r.scene;
     scene.addQuad(hd::Path("/floor"), 4.0f);
     scene.addMaterial(hd::Path("/white"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(0.8f))},
                                            {hd::Token("ior"), hd::Value(1.0f)},
@@ -45,18 +37,7 @@ std::vector<float> render(int solidAngle, int seed) {
     scene.addMaterial(hd::Path("/glow"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(0.0f))},
                                           {hd::Token("emissiveColor"), hd::Value(glm::vec3(4.0f))}});
     scene.bind(hd::Path("/lamp"), hd::Path("/glow"));
-    scene.addCamera(hd::Path("/cam"), translate(0, 0, 5),
-                    {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
-                     {hd::Token("horizontalAperture"), hd::Value(3.0f)},
-                     {hd::Token("verticalAperture"), hd::Value(3.0f)}});
-    index.sync();
-    hd::RenderPassState s{hd::Path("/cam"), w, h, {{hd::tokens::color(), color}}};
-    do pass->execute(s);
-    while (!pass->isConverged());
-    const float* p = static_cast<const float*>(color->map());
-    std::vector<float> red(size_t(w) * h);
-    for (size_t i = 0; i < red.size(); ++i) red[i] = p[4 * i];
-    return red;
+    return r.redFromAbove(5, 3.0f);
 }
 
 using Stats = test::SeedStats;

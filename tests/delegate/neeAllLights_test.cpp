@@ -10,6 +10,7 @@
 #include "delegate/renderBuffer.h"
 #include "delegate/renderDelegate.h"
 #include "delegate/renderPass.h"
+#include "tests/support/orthoRender.h"
 #include "tests/support/seedStatistics.h"
 #include "tests/support/testSceneDelegate.h"
 
@@ -22,18 +23,9 @@ namespace {
 // A sphere on a diffuse floor under a soft sun (a disc of 5 degrees, tilted) and a sky dome,
 // seen from above; red channel.
 std::vector<float> render(int allLights, int seed) {
-    embree::EmbreeRenderDelegate delegate;
-    hd::RenderIndex index(&delegate);
-    TestSceneDelegate scene(&index);
-    index.insertBprim(hd::tokens::renderBuffer(), &scene, hd::Path("/color"));
-    auto* color = static_cast<embree::EmbreeRenderBuffer*>(index.bprim(hd::tokens::renderBuffer(), hd::Path("/color")));
-    const int w = 24, h = 24;
-    color->allocate(w, h, hd::Format::Float32Vec4, true);
-    auto pass = delegate.createRenderPass(&index);
-    delegate.setRenderSetting(hd::Token("convergedSamplesPerPixel"), hd::Value(16));
-    delegate.setRenderSetting(hd::Token("maxDepth"), hd::Value(2));
-    delegate.setRenderSetting(hd::Token("seed"), hd::Value(seed));
-    delegate.setRenderSetting(hd::Token("neeAllLights"), hd::Value(allLights));
+    test::OrthoRender r(24, 24, {{"convergedSamplesPerPixel", hd::Value(16)}, {"maxDepth", hd::Value(2)},
+                                {"seed", hd::Value(seed)}, {"neeAllLights", hd::Value(allLights)}});
+    TestSceneDelegate& scene = r.scene;
     scene.addQuad(hd::Path("/floor"), 10.0f);
     scene.addMaterial(hd::Path("/white"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(0.7f))},
                                            {hd::Token("roughness"), hd::Value(0.6f)}});
@@ -48,18 +40,7 @@ std::vector<float> render(int allLights, int seed) {
                    {{hd::Token("intensity"), hd::Value(300.0f)}, {hd::Token("angle"), hd::Value(5.0f)}});
     scene.addLight(hd::Path("/sky"), hd::tokens::domeLight(), glm::dmat4(1.0),
                    {{hd::Token("intensity"), hd::Value(0.5f)}});
-    scene.addCamera(hd::Path("/cam"), translate(0, 0, 8),
-                    {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
-                     {hd::Token("horizontalAperture"), hd::Value(6.0f)},
-                     {hd::Token("verticalAperture"), hd::Value(6.0f)}});
-    index.sync();
-    hd::RenderPassState s{hd::Path("/cam"), w, h, {{hd::tokens::color(), color}}};
-    do pass->execute(s);
-    while (!pass->isConverged());
-    const float* p = static_cast<const float*>(color->map());
-    std::vector<float> red(size_t(w) * h);
-    for (size_t i = 0; i < red.size(); ++i) red[i] = p[4 * i];
-    return red;
+    return r.redFromAbove(8, 6.0f);
 }
 
 using Stats = test::SeedStats;

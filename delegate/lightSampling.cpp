@@ -3,6 +3,8 @@
 
 #include "delegate/sphericalTriangle.h"
 
+#include "bsdf/warp.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -19,21 +21,6 @@ void basis(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
     float c = n.x * n.y * a;
     *t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
     *b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
-}
-
-// Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square": concentric mapping.
-glm::vec2 concentricDisk(const glm::vec2& u) {
-    glm::vec2 o = 2.0f * u - 1.0f;
-    if (o.x == 0.0f && o.y == 0.0f) return glm::vec2(0.0f);
-    float r, theta;
-    if (std::abs(o.x) > std::abs(o.y)) {
-        r = o.x;
-        theta = (kPi / 4.0f) * (o.y / o.x);
-    } else {
-        r = o.y;
-        theta = kPi / 2.0f - (kPi / 4.0f) * (o.x / o.y);
-    }
-    return r * glm::vec2(std::cos(theta), std::sin(theta));
 }
 
 // Area-measure pdf of a point on a surface converted to solid angle at distance dist.
@@ -229,7 +216,7 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
                 q = l.center + a * l.axisU + b * l.axisV;
                 texel = rectTexel(l, a, b);
             } else {
-                glm::vec2 dsk = concentricDisk(u);
+                glm::vec2 dsk = bsdf::squareToConcentricDisk(u);
                 q = l.center + dsk.x * l.axisU + dsk.y * l.axisV;
             }
             glm::vec3 toQ = q - p;

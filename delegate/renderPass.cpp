@@ -18,6 +18,8 @@
 #include "delegate/renderDelegate.h"
 #include "delegate/sampler.h"
 
+#include "bsdf/warp.h"
+
 namespace principled::embree {
 
 using namespace hd;
@@ -27,20 +29,28 @@ namespace {
 constexpr int kTileSize = 16;
 constexpr int kMaxSamplesPerPass = 16;
 
-// A camera ray through image position (px, py) in pixels, top-left origin.
+// A camera ray through image position (px, py) in pixels, top-left origin. With a lens
+// (lensRadius > 0, perspective only) the ray starts at lens point lens * lensRadius on the
+// z = 0 plane and passes through the pinhole ray's point on the focus plane z = -focusDistance.
+// Thin lens: Pharr, Jakob & Humphreys 2023, "Physically Based Rendering" 4th ed., §5.2.3.
 Ray cameraRay(const Camera& cam, const glm::vec4& window, int width, int height, float px,
-              float py) {
+              float py, glm::vec2 lens = glm::vec2(0.0f)) {
     float sx = window.x + (px / width) * (window.y - window.x);
     float sy = window.w - (py / height) * (window.w - window.z);
     const glm::dmat4& m = cam.transform();
     glm::dvec3 o, d;
+    glm::dvec4 oCam(0.0, 0.0, 0.0, 1.0), dCam(sx, sy, -1.0, 0.0);
+    const float lensRadius = cam.lensRadius();
     if (cam.projection() == Camera::Projection::Orthographic) {
-        o = glm::dvec3(m * glm::dvec4(sx, sy, 0.0, 1.0));
-        d = glm::dvec3(m * glm::dvec4(0.0, 0.0, -1.0, 0.0));
-    } else {
-        o = glm::dvec3(m * glm::dvec4(0.0, 0.0, 0.0, 1.0));
-        d = glm::dvec3(m * glm::dvec4(sx, sy, -1.0, 0.0));
+        oCam = glm::dvec4(sx, sy, 0.0, 1.0);
+        dCam = glm::dvec4(0.0, 0.0, -1.0, 0.0);
+    } else if (lensRadius > 0.0f) {
+        const double f = cam.focusDistance();
+        oCam = glm::dvec4(double(lens.x) * lensRadius, double(lens.y) * lensRadius, 0.0, 1.0);
+        dCam = glm::dvec4(sx * f - oCam.x, sy * f - oCam.y, -f, 0.0) / f;  // z stays -1
     }
+    o = glm::dvec3(m * oCam);
+    d = glm::dvec3(m * dCam);
     double len = glm::length(d);
     Ray r;
     r.origin = glm::vec3(o);
@@ -238,6 +248,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     Integrator integrator(scene, settings);
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
     glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));
+    const bool thinLens = cam->lensRadius() > 0.0f;
     CameraFrame cf = cameraFrame(*cam);
     // The first pass is a single sample so a viewport shows an image at once; later passes
     // double up to kMaxSamplesPerPass.
@@ -256,7 +267,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                     for (int s = first; s < first + batch; ++s) {
                         Sampler sampler(settings.sampler, seed, pixel, uint32_t(s));
                         glm::vec2 j = sampler.next2D();  // box filter: uniform in the pixel
-                        Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y);
+                        // The lens point takes a Sobol group of its own, only when there is a lens
+                        // (pinhole images keep their sample dimensions).
+                        glm::vec2 lens = thinLens ? bsdf::squareToConcentricDisk(sampler.next2D()) : glm::vec2(0.0f);
+                        Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y, lens);
                         PathSample ps = integrator.trace(r, sampler);
                         tileRays += ps.rays;
                         ++tileSamples;

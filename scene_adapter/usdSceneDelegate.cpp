@@ -418,6 +418,8 @@ Value UsdSceneDelegate::getCameraParamValue(const Path& id, const Token& param) 
     const std::string& k = param.str();
     bool isLength = k == "focalLength" || k == "horizontalAperture" || k == "verticalAperture" ||
                     k == "horizontalApertureOffset" || k == "verticalApertureOffset";
+    // Not a camera attribute: the stage's unit, which the lens needs (Camera::lensRadius).
+    if (k == "metersPerUnit") return Value(static_cast<float>(_stage.metersPerUnit()));
     if (id == _defaultCamera) {
         if (k == "focalLength") return Value(_defaultCameraFocal);
         if (k == "clippingRange") return Value(_defaultCameraClip);

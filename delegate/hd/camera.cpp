@@ -2,6 +2,7 @@
 #include "delegate/hd/camera.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "delegate/hd/sceneDelegate.h"
 
@@ -19,6 +20,9 @@ void Camera::sync(SceneDelegate* delegate, RenderParam*, DirtyBits* dirtyBits) {
         _vAperture = param("verticalAperture", _vAperture);
         _hOffset = param("horizontalApertureOffset", 0.0f);
         _vOffset = param("verticalApertureOffset", 0.0f);
+        _fStop = param("fStop", 0.0f);
+        _focusDistance = param("focusDistance", 0.0f);
+        _metersPerUnit = param("metersPerUnit", 0.01f);
         Value clip = delegate->getCameraParamValue(id(), Token("clippingRange"));
         if (auto* c = getIf<glm::vec2>(clip)) _clipping = *c;
         auto proj = getString(delegate->getCameraParamValue(id(), Token("projection")));
@@ -35,6 +39,16 @@ void Camera::set(const glm::dmat4& xform, float focalLength, float hAperture, fl
     _hAperture = hAperture;
     _vAperture = vAperture;
     _projection = projection;
+}
+
+float Camera::lensRadius() const {
+    if (_projection != Projection::Perspective) return 0.0f;
+    if (!(_fStop > 0.0f) || !(_focusDistance > 0.0f) || !std::isfinite(_focusDistance)) return 0.0f;
+    if (!(_metersPerUnit > 0.0f) || !std::isfinite(_metersPerUnit)) return 0.0f;
+    // _focalLength is the authored value / 10 (scene units on a centimetre stage, i.e. mm / 10);
+    // in millimetres that is 10 _focalLength, in scene units 10 _focalLength * 1e-3 / metersPerUnit.
+    float r = (_focalLength * 0.01f / _metersPerUnit) / (2.0f * _fStop);
+    return std::isfinite(r) && r > 0.0f ? r : 0.0f;
 }
 
 glm::vec4 Camera::screenWindow(double imageAspect) const {

@@ -26,6 +26,16 @@ public:
     float horizontalApertureOffset() const { return _hOffset; }
     float verticalApertureOffset() const { return _vOffset; }
     glm::vec2 clippingRange() const { return _clipping; }
+    /// UsdGeomCamera fStop (0 = pinhole, the schema fallback) and focusDistance (scene units).
+    float fStop() const { return _fStop; }
+    float focusDistance() const { return _focusDistance; }
+    /// Thin-lens aperture radius in scene units: f / (2 fStop) (the f-number N = f / D), with
+    /// the focal length f read as millimetres (the schema's "tenths of a scene unit" on its
+    /// fallback centimetre stage; Blender and other DCCs author millimetres on metre stages) and
+    /// converted with the stage's metersPerUnit. 0 (a pinhole) when fStop <= 0, focusDistance
+    /// <= 0 (the schema fallback would put the focus plane at the lens), orthographic, or any
+    /// value is not finite.
+    float lensRadius() const;
 
     /// The image-plane window at distance 1 (perspective) or in scene units (orthographic)
     /// for an image of the given aspect ratio: {xmin, xmax, ymin, ymax}. The aperture is fitted
@@ -35,6 +45,12 @@ public:
     /// Sets parameters directly (hosts and tests that build cameras without a scene delegate).
     void set(const glm::dmat4& xform, float focalLength, float hAperture, float vAperture,
              Projection projection = Projection::Perspective);
+    /// Sets the depth-of-field parameters directly (fStop 0 turns it off).
+    void setDepthOfField(float fStop, float focusDistance, float metersPerUnit = 0.01f) {
+        _fStop = fStop;
+        _focusDistance = focusDistance;
+        _metersPerUnit = metersPerUnit;
+    }
 
 private:
     glm::dmat4 _transform{1.0};
@@ -46,6 +62,9 @@ private:
     float _hOffset = 0.0f;
     float _vOffset = 0.0f;
     glm::vec2 _clipping{1.0f, 1e6f};
+    float _fStop = 0.0f;
+    float _focusDistance = 0.0f;
+    float _metersPerUnit = 0.01f;  ///< the stage's unit (UsdGeom fallback: centimetres)
 };
 
 }  // namespace principled::hd

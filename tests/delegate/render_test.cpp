@@ -4,6 +4,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "delegate/hd/camera.h"
@@ -145,4 +146,75 @@ TEST(Render, BadMeshIsSkippedWithAWarning) {
     ASSERT_FALSE(warnings.empty());
     EXPECT_NE(warnings[0].find("/bad"), std::string::npos);
     for (float v : f.pixels()) EXPECT_TRUE(std::isfinite(v));
+}
+
+// Thin-lens depth of field (UsdGeomCamera fStop, focusDistance). An emissive half-plane x >= 0
+// at depth Z seen by a camera focused at F: a lens of radius R = focalLength / (2 fStop) spreads
+// each scene point over an image-plane disk of radius r = R |1/Z - 1/F| (window units at unit
+// distance; Pharr et al. 2023, PBR 4th ed., §5.2.3, circle of confusion), so the edge's profile
+// is the edge spread function of a uniform disk: the disk's area fraction left of the offset,
+// ESF(s) = 1/2 + (s sqrt(r^2 - s^2) + r^2 asin(s / r)) / (pi r^2), box-filtered over a pixel.
+namespace {
+
+std::vector<double> edgeProfile(float fStop, float focus, float depth, int w, int h, int spp) {
+    Fixture f(w, h);
+    f.delegate.setRenderSetting(hd::Token("convergedSamplesPerPixel"), hd::Value(spp));
+    f.scene.addQuad(hd::Path("/half"), 20.0f, translate(10.0, 0.0, -depth));  // x in [0, 20]
+    f.scene.addMaterial(hd::Path("/glow"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(0.0f))},
+                                            {hd::Token("emissiveColor"), hd::Value(glm::vec3(1.0f))},
+                                            {hd::Token("ior"), hd::Value(1.0f)}});
+    f.scene.bind(hd::Path("/half"), hd::Path("/glow"));
+    // Window 1 x (h / w) at unit distance: focal length 0.5, apertures 0.5 and 0.5 h / w.
+    f.scene.addCamera(hd::Path("/cam"), glm::dmat4(1.0),
+                      {{hd::Token("focalLength"), hd::Value(0.5f)},
+                       {hd::Token("horizontalAperture"), hd::Value(0.5f)},
+                       {hd::Token("verticalAperture"), hd::Value(0.5f * float(h) / float(w))},
+                       {hd::Token("clippingRange"), hd::Value(glm::vec2(0.01f, 100.0f))},
+                       {hd::Token("fStop"), hd::Value(fStop)},
+                       {hd::Token("focusDistance"), hd::Value(focus)}});
+    f.render();
+    auto px = f.pixels();
+    std::vector<double> profile(w, 0.0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) profile[x] += px[4 * (size_t(y) * w + x)] / h;
+    return profile;
+}
+
+// The uniform-disk edge spread function above, averaged over pixel x (window [-0.5, 0.5]).
+double expectedEdge(int x, int w, double r) {
+    double sum = 0.0;
+    const int sub = 64;
+    for (int i = 0; i < sub; ++i) {
+        double s = -0.5 + (x + (i + 0.5) / sub) / w;  // window position of the sub-sample
+        if (r <= 0.0) {
+            sum += s >= 0.0 ? 1.0 : 0.0;
+            continue;
+        }
+        double c = std::clamp(s, -r, r);
+        sum += 0.5 + (c * std::sqrt(r * r - c * c) + r * r * std::asin(c / r)) / (kPi * r * r);
+    }
+    return sum / sub;
+}
+
+double rmsAgainst(const std::vector<double>& profile, int w, double r) {
+    double e = 0.0;
+    for (int x = 0; x < w; ++x) e += std::pow(profile[x] - expectedEdge(x, w, r), 2);
+    return std::sqrt(e / w);
+}
+
+}  // namespace
+
+TEST(Render, DepthOfFieldBlursByTheThinLensCircleOfConfusion) {
+    const int w = 128, h = 8, spp = 256;
+    // R = 0.5 / (2 fStop) = 0.15625 at fStop 1.6; Z = 2, F = 1: r = R |1/2 - 1| = 0.078 (10 px).
+    const float fStop = 1.6f, focus = 1.0f, depth = 2.0f;
+    const double r = 0.5 / (2.0 * fStop) * std::abs(1.0 / depth - 1.0 / focus);
+    auto blurred = edgeProfile(fStop, focus, depth, w, h, spp);
+    EXPECT_LT(rmsAgainst(blurred, w, r), 0.004);  // measured 0.001; a 20 % larger r gives 0.017
+    EXPECT_GT(rmsAgainst(blurred, w, 0.0), 0.1);  // visibly not the sharp edge
+    // The same lens focused on the plane, and a pinhole (fStop 0): a sharp edge.
+    EXPECT_LT(rmsAgainst(edgeProfile(fStop, depth, depth, w, h, spp), w, 0.0), 0.01);
+    EXPECT_LT(rmsAgainst(edgeProfile(0.0f, focus, depth, w, h, spp), w, 0.0), 0.01);
+    // focusDistance 0 (the schema fallback) is a pinhole too, not a blur of everything.
+    EXPECT_LT(rmsAgainst(edgeProfile(fStop, 0.0f, depth, w, h, spp), w, 0.0), 0.01);
 }

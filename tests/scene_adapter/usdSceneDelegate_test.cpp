@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "delegate/hd/camera.h"
 #include "delegate/hd/tokens.h"
 #include "delegate/renderDelegate.h"
 #include "scene_adapter/usda/stage.h"
@@ -146,6 +147,35 @@ TEST(UsdSceneDelegate, CameraLengthsAreTenthsOfASceneUnit) {
     EXPECT_FLOAT_EQ(*hd::getFloat(p.scene->getCameraParamValue(cam, hd::Token("focalLength"))), 3.5f);
     EXPECT_FLOAT_EQ(*hd::getFloat(p.scene->getCameraParamValue(cam, hd::Token("horizontalAperture"))), 3.6f);
     EXPECT_FLOAT_EQ(*hd::getFloat(p.scene->getLightParamValue(hd::Path("/World/Sun"), hd::Token("intensity"))), 3.0f);
+}
+
+TEST(UsdSceneDelegate, DepthOfFieldInputsAndTheStageUnitReachTheCamera) {
+    // fStop is a ratio and focusDistance is in scene units: neither is scaled like the lens
+    // lengths. The stage's metersPerUnit (fallback 0.01) converts the focal length's millimetres.
+    const char* text = R"(#usda 1.0
+(
+    metersPerUnit = 1
+)
+def Camera "Cam"
+{
+    float focalLength = 50
+    float fStop = 2.8
+    float focusDistance = 4.5
+}
+)";
+    Populated p(text);
+    hd::Path cam("/Cam");
+    EXPECT_FLOAT_EQ(*hd::getFloat(p.scene->getCameraParamValue(cam, hd::Token("fStop"))), 2.8f);
+    EXPECT_FLOAT_EQ(*hd::getFloat(p.scene->getCameraParamValue(cam, hd::Token("focusDistance"))), 4.5f);
+    EXPECT_FLOAT_EQ(*hd::getFloat(p.scene->getCameraParamValue(cam, hd::Token("metersPerUnit"))), 1.0f);
+    EXPECT_FLOAT_EQ(*hd::getFloat(Populated(kScene).scene->getCameraParamValue(
+                        hd::Path("/World/Cam"), hd::Token("metersPerUnit"))),
+                    0.01f);  // not authored: the UsdGeom fallback
+    // Synced into the camera sprim: 50 mm / (2 x 2.8) on a metre stage = 8.93 mm.
+    p.index.sync();
+    auto* c = dynamic_cast<hd::Camera*>(p.index.sprim(hd::tokens::camera(), cam));
+    ASSERT_TRUE(c);
+    EXPECT_NEAR(c->lensRadius(), 0.050f / 5.6f, 1e-6f);
 }
 
 TEST(UsdSceneDelegate, EveryCorpusFileLoadsWithoutCrashing) {

@@ -195,7 +195,7 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
             from . import export
 
             cam = context.scene.camera
-            return cam.matrix_world.copy(), export.camera_params(cam.data, w, h)
+            return cam.matrix_world.copy(), export.camera_params(cam.data, w, h, cam.matrix_world)
         # Free view: Blender's viewport uses a 72 mm sensor along the larger side.
         sensor = 72.0
         if w >= h:
@@ -204,7 +204,7 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
             vap, hap = sensor, sensor * w / h
         params = {"focalLength": float(space.lens), "horizontalAperture": hap,
                   "verticalAperture": vap, "clippingRange": (space.clip_start, space.clip_end),
-                  "projection": "perspective"}
+                  "projection": "perspective", "fStop": 0.0, "focusDistance": 1.0}  # no lens
         if rv3d.view_perspective == "ORTHO":
             params["projection"] = "orthographic"
             extent = rv3d.view_distance * sensor / space.lens

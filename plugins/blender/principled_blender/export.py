@@ -630,7 +630,7 @@ def world_params(world, textures=None):
     return p, warnings
 
 
-def camera_params(cam_data, width, height):
+def camera_params(cam_data, width, height, matrix_world=None):
     """Blender camera -> USD camera attributes (apertures match the image aspect exactly, so
     the delegate's fit does nothing). Sensor fit AUTO uses sensor_width along the larger image
     side; shift is in units of that fitted side."""
@@ -662,7 +662,27 @@ def camera_params(cam_data, width, height):
              horizontalAperture=float(hap), verticalAperture=float(vap),
              horizontalApertureOffset=float(cam_data.shift_x * fitted),
              verticalApertureOffset=float(cam_data.shift_y * fitted))
+    p.update(depth_of_field(cam_data, matrix_world))
     return p
+
+
+def depth_of_field(cam_data, matrix_world=None):
+    """Blender's depth of field -> UsdGeomCamera fStop and focusDistance (scene units). The lens
+    is mm on a metre stage, so the delegate's aperture radius lens * 1e-3 / (2 fStop) is Cycles'
+    (round aperture: Cycles' polygonal blades and anamorphic ratio are not converted). A focus
+    object's distance is measured along the view axis, as Cycles does. fStop 0 when off."""
+    dof = getattr(cam_data, "dof", None)
+    if dof is None:
+        return {"fStop": 0.0, "focusDistance": 1.0}
+    focus = float(dof.focus_distance)  # authored even when off, so a viewport edit can enable it
+    if not dof.use_dof or not dof.aperture_fstop > 0.0:
+        return {"fStop": 0.0, "focusDistance": focus}
+    if dof.focus_object is not None and matrix_world is not None:
+        from mathutils import Vector
+
+        axis = -(matrix_world.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()
+        focus = abs(axis.dot(dof.focus_object.matrix_world.translation - matrix_world.translation))
+    return {"fStop": float(dof.aperture_fstop), "focusDistance": max(focus, 1e-6)}
 
 
 class MeshData:
@@ -874,7 +894,7 @@ class SceneExport:
 
     def _camera(self, b, mw, cam_data):
         self._camera_params(b, "/World/Camera", mw,
-                            camera_params(cam_data, self.width, self.height))
+                            camera_params(cam_data, self.width, self.height, mw))
 
     def _camera_params(self, b, path, mw, params):
         from mathutils import Matrix

@@ -118,7 +118,7 @@ class Session:
         self.delegate.set_transform("/World/ViewCamera", export.usd_matrix(m))
         for k, v in params.items():
             if k in ("focalLength", "horizontalAperture", "verticalAperture",
-                     "horizontalApertureOffset", "verticalApertureOffset"):
+                     "horizontalApertureOffset", "verticalApertureOffset", "fStop", "focusDistance"):
                 self.delegate.set_attribute("/World/ViewCamera", k, v)
         self.camera_matrix = matrix.copy()
 

@@ -210,7 +210,7 @@ def checker_png():
 
 
 def bump_normal_png():
-    """Tangent-space normal map of 8 x 8 cones tilting the normal up to ~35 degrees."""
+    """Tangent-space normal map of 4 x 4 cones tilting the normal up to ~45 degrees (corners)."""
     path = os.path.join(OUT, "normals.png")
     n, cells = 128, 4
     y, x = np.mgrid[0:n, 0:n].astype(np.float64)

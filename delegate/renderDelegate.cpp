@@ -460,6 +460,9 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Lights visible to camera", Token("lightCameraVisibility"), Value(0),
          "camera rays see the shapes of sphere, rect, disk and cylinder lights (0, as Cycles, Karma and hdEmbree: "
          "lights light the scene and show in reflections only)"},
+        {"Bump shadowing", Token("bumpShadowing"), Value(1),
+         "diffuse and sheen lobes shadowed where a normal map or bent normal leans away from the surface "
+         "(Chiang et al. 2019, as Cycles); 0: off"},
     };
 }
 
@@ -519,6 +522,7 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.clampIndirect = std::max(0.0f, floatSetting("clampIndirect", 0.0f));
     s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
     s.lightsVisible = intSetting("lightCameraVisibility", 0) != 0;
+    s.bumpShadowing = intSetting("bumpShadowing", 1) != 0;
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
     s.mis = intSetting("mis", 1) != 0;

@@ -146,3 +146,53 @@ TEST(Render, BadMeshIsSkippedWithAWarning) {
     EXPECT_NE(warnings[0].find("/bad"), std::string::npos);
     for (float v : f.pixels()) EXPECT_TRUE(std::isfinite(v));
 }
+
+// A normal map tilting the shading normal 30 degrees toward a distant light 60 degrees from the
+// plane's normal: Lambert gives a E / pi (n.wi) with n.wi = cos 30, and the diffuse lobe is
+// shadowed by the plane (Chiang et al. 2019, bsdf/bumpShadowing.h): G = cos 60 / cos^2 30 = 2/3,
+// factor -G^3 + G^2 + G = 22/27, as Cycles 3.4 renders it (bench/blender_parity.py normal_map).
+// bumpShadowing = 0 leaves the unshadowed a E / pi (n.wi).
+class TiltedNormalPlane : public ::testing::TestWithParam<int> {};
+
+TEST_P(TiltedNormalPlane, DiffuseIsShadowedByTheSurface) {
+    const int shadowing = GetParam();
+    Fixture f(8, 8);
+    f.delegate.setRenderSetting(hd::Token("convergedSamplesPerPixel"), hd::Value(4));
+    f.delegate.setRenderSetting(hd::Token("maxDepth"), hd::Value(0));
+    f.delegate.setRenderSetting(hd::Token("shadingModel"), hd::Value(hd::Token("ue4")));
+    f.delegate.setRenderSetting(hd::Token("bumpShadowing"), hd::Value(shadowing));
+    const float albedo = 0.5f, E = 3.0f, s30 = 0.5f, c30 = std::sqrt(3.0f) / 2.0f;
+    f.scene.addQuad(hd::Path("/plane"), 4.0f);
+    // st = (x, y): the tangent (dP/du) is +X.
+    f.scene.prim(hd::Path("/plane")).values[hd::Token("st")] =
+        std::vector<glm::vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    f.scene.prim(hd::Path("/plane")).interpolation[hd::Token("st")] = hd::Interpolation::Vertex;
+    f.scene.addMaterial(hd::Path("/mat"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(albedo))},
+                                           {hd::Token("ior"), hd::Value(1.0f)},
+                                           {hd::Token("roughness"), hd::Value(1.0f)},
+                                           {hd::Token("normal"), hd::Value(glm::vec3(s30, 0.0f, c30))}});
+    f.scene.bind(hd::Path("/plane"), hd::Path("/mat"));
+    // The light's +Z (toward the light; it shines along -Z) rotated 60 degrees toward +X: rows of
+    // the row-vector matrix, so (0, 0, 1) M = (sin 60, 0, cos 60).
+    glm::dmat4 rot(1.0);
+    rot[0] = glm::dvec4(s30, 0.0, -c30, 0.0);
+    rot[2] = glm::dvec4(c30, 0.0, s30, 0.0);
+    f.scene.addLight(hd::Path("/sun"), hd::tokens::distantLight(), rot,
+                     {{hd::Token("intensity"), hd::Value(E)}, {hd::Token("angle"), hd::Value(0.0f)}});
+    f.scene.addCamera(hd::Path("/cam"), translate(0, 0, 5),
+                      {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
+                       {hd::Token("horizontalAperture"), hd::Value(1.0f)},
+                       {hd::Token("verticalAperture"), hd::Value(1.0f)}});
+    f.render();
+    auto px = f.pixels();
+    double mean = 0.0;
+    for (int i = 0; i < f.w * f.h; ++i) mean += px[4 * i];
+    mean /= f.w * f.h;
+    const double unshadowed = albedo * E / kPi * c30;
+    const double expected = shadowing ? unshadowed * 22.0 / 27.0 : unshadowed;
+    EXPECT_NEAR(mean, expected, 0.01 * expected)
+        << "bumpShadowing " << shadowing << ": expected " << expected << " (unshadowed "
+        << unshadowed << ")";
+}
+
+INSTANTIATE_TEST_SUITE_P(BumpShadowing, TiltedNormalPlane, ::testing::Values(1, 0));

@@ -574,27 +574,32 @@ SCENES = [
 
 
 # ---- rendering ---------------------------------------------------------------------------
+def set_props(struct, **props):
+    """Sets RNA properties by name, refusing names the struct does not have: Cycles' settings
+    are a Python PropertyGroup, which silently keeps a misspelt attribute (this bench once set
+    `filter_glossy`, not `blur_glossy`, and so compared against Filter Glossy 1)."""
+    rna = struct.bl_rna.properties
+    for k, v in props.items():
+        if k not in rna:
+            raise AttributeError(f"bench/blender_parity.py: {struct.bl_rna.identifier} has no "
+                                 f"property '{k}' in Blender {bpy.app.version_string}")
+        setattr(struct, k, v)
+
+
+def cycles_settings(seed):
+    """The Cycles settings of a fair comparison (docs/hosts.md, "Parity with Cycles")."""
+    return dict(device="CPU", samples=SPP, use_adaptive_sampling=False, use_denoising=False,
+                seed=seed, blur_glossy=0.0, sample_clamp_direct=0.0, sample_clamp_indirect=0.0,
+                caustics_reflective=True, caustics_refractive=True, max_bounces=MAXB,
+                diffuse_bounces=MAXB, glossy_bounces=MAXB, transmission_bounces=MAXB,
+                transparent_max_bounces=MAXB, volume_bounces=0, pixel_filter_type="BOX",
+                filter_width=1.0)
+
+
 def setup_cycles(sc, seed):
     sc.render.engine = "CYCLES"
-    cy = sc.cycles
-    cy.device = "CPU"
-    cy.samples = SPP
-    cy.use_adaptive_sampling = False
-    cy.use_denoising = False
-    cy.seed = seed
-    cy.filter_glossy = 0.0
-    cy.sample_clamp_direct = 0.0
-    cy.sample_clamp_indirect = 0.0
-    cy.caustics_reflective = True
-    cy.caustics_refractive = True
-    cy.max_bounces = MAXB
-    cy.diffuse_bounces = cy.glossy_bounces = cy.transmission_bounces = MAXB
-    cy.transparent_max_bounces = MAXB
-    cy.volume_bounces = 0
-    cy.pixel_filter_type = "BOX"
-    cy.filter_width = 1.0
-    sc.render.threads_mode = "FIXED"
-    sc.render.threads = 2
+    set_props(sc.cycles, **cycles_settings(seed))
+    set_props(sc.render, threads_mode="FIXED", threads=2)
 
 
 def setup_principled(sc, seed):

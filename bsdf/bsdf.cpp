@@ -80,7 +80,7 @@ Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
         const Specular& sp = _set.specular;
         glm::vec3 F = sp.fModel == SpecularFresnel::Schlick
                           ? glm::mix(sp.f0, glm::vec3(1.0f), schlickWeight(std::max(wo.z, 0.0f)))
-                          : schlickFresnelSG(sp.f0, std::max(wo.z, 0.0f));
+                          : sp.fresnel(std::max(wo.z, 0.0f));
         w2 = std::max(sp.weight * luminance(F), 0.0f);
         v.g1Spec = sp.dist.G1(wo);
         v.g1SpecK = v.g1Spec * v.inv4CosO;

@@ -4,7 +4,7 @@
     blender -b -noaudio --factory-startup --python bench/blender_parity.py -- \
         [--out out/parity] [--res 128] [--spp 128] [--max-bounces 8] \
         [--only NAME[,NAME...]] [--module-dir build/lib/python] [--recycle] \
-        [--engines cycles,principled]
+        [--engines cycles,principled] [--set KEY=VALUE[,KEY=VALUE...]]
 
 Builds each scene of SCENES in Blender 3.4 and renders it twice with Cycles (seeds 0 and 1,
 SPP samples each: CPU, denoising off, Filter Glossy 0, box filter 1 px, no clamping, adaptive
@@ -19,6 +19,10 @@ RMSE / sqrt(2), i.e. the RMSE expected from noise alone), and the same means ove
 region (pixels whose 5x5-blurred luminance, averaged over both engines so the selection is
 symmetric, is above the scene's 60th percentile) and over each scene's named box. Diff images:
 OUT/<scene>.png = Cycles | PRINCIPLED | |difference| x 4 (sRGB, clipped).
+
+--set passes render settings to the delegate on top of the add-on's (e.g. --set
+specularFresnel=dielectric: the Disney specular Fresnel shaped like Cycles'); values that read
+as numbers are passed as int or float, others as tokens.
 
 The add-on and module are put on sys.path here (--factory-startup ignores user scripts), the
 same way tests/blender does.
@@ -43,6 +47,7 @@ def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     o = {"out": os.path.join(ROOT, "out", "parity"), "res": 128, "spp": 128,
          "max_bounces": 8, "only": None, "recycle": False, "engines": "cycles,principled",
+         "set": "",
          "module_dir": os.path.join(ROOT, "build", "lib", "python")}
     i = 0
     while i < len(argv):
@@ -66,6 +71,32 @@ try:
     principled_blender.register()
 except ValueError:
     pass  # already registered
+
+
+def setting_value(text):
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+EXTRA_SETTINGS = {}
+for item in filter(None, A["set"].split(",")):
+    if "=" not in item:
+        raise SystemExit(f"bench/blender_parity.py: --set expects KEY=VALUE, got '{item}'")
+    key, text = item.split("=", 1)
+    EXTRA_SETTINGS[key.strip()] = setting_value(text.strip())
+if EXTRA_SETTINGS:
+    _addon_settings = principled_blender._settings
+
+    def _settings_and_extra(scene, viewport):
+        out = _addon_settings(scene, viewport)
+        out.update(EXTRA_SETTINGS)
+        return out
+
+    principled_blender._settings = _settings_and_extra
 
 OUT = os.path.abspath(A["out"])
 os.makedirs(OUT, exist_ok=True)
@@ -700,6 +731,7 @@ def main():
             "box_cycles": float(lc[box].mean()), "box_ours": float(lp[box].mean()),
             "rel_box": rel(lp[box].mean(), lc[box].mean()),
             "times": times,
+            "principled_settings": EXTRA_SETTINGS,
         }
         rows.append(row)
         strip = np.concatenate([srgb8(cy), srgb8(pr), srgb8(np.abs(cy - pr) * 4)], axis=1)

@@ -12,7 +12,8 @@ Glossy 1: glossy closures blurred after a diffuse bounce, which dimmed the caust
 gold sphere on the floor (area_disk_metal: principled +1.10% at max bounces 1; 1.8x Cycles'
 one-bounce floor light). Checked: after setup_cycles() the settings read back as the bench
 asked (Filter Glossy 0, no clamping, caustics on, ...), and set_props() refuses an unknown
-name with an error naming it. Exit code 0 = pass.
+name with an error naming it; --set KEY=VALUE reaches the delegate settings the add-on sends.
+Exit code 0 = pass.
 """
 import os
 import runpy
@@ -26,7 +27,8 @@ module_dir = argv[argv.index("--module-dir") + 1] if "--module-dir" in argv else
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 out = tempfile.mkdtemp(prefix="parity_bench_test_")
 # The bench runs at import: with --only none it renders nothing and leaves its functions.
-sys.argv = [sys.argv[0], "--", "--out", out, "--only", "none", "--spp", "7", "--max-bounces", "5"]
+sys.argv = [sys.argv[0], "--", "--out", out, "--only", "none", "--spp", "7", "--max-bounces", "5",
+            "--set", "specularFresnel=dielectric,bumpShadowing=0"]
 if module_dir:
     sys.argv += ["--module-dir", module_dir]
 bench = runpy.run_path(os.path.join(ROOT, "bench", "blender_parity.py"), run_name="parity_bench")
@@ -52,6 +54,14 @@ for name, want in bench.get("cycles_settings", lambda seed: {})(1).items():
     same = abs(got - want) < 1e-6 if isinstance(want, float) else got == want
     check(same, f"cycles.{name} = {want!r} (read back {got!r})")
 check(cy.samples == 7 and cy.max_bounces == 5, "samples and bounces from the command line")
+# --set: extra delegate settings on top of the add-on's, typed (int, float, else token).
+import principled_blender  # noqa: E402  (the bench put it on sys.path)
+
+bench["setup_principled"](sc, 0)
+extra = principled_blender._settings(sc, False)
+check(extra.get("specularFresnel") == "dielectric" and extra.get("bumpShadowing") == 0
+      and extra.get("maxDepth") == 5 and extra.get("convergedSamplesPerPixel") == 7,
+      f"--set reaches the add-on's settings ({extra})")
 set_props = bench.get("set_props")
 check(set_props is not None, "the bench sets Cycles' settings through set_props()")
 if set_props is not None:

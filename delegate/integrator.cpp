@@ -434,7 +434,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // wo.z < 0 and refracts with the inverse index of refraction.
         bool solidTransmission = mat->params.specTrans > 0.0f && !mat->params.thin;
         if (mat->hasNormalMap && !(solidTransmission && hit.backface)) {
-            Frame tf = tangentFrame(hit, ns);
+            // Mapped around the surface's own interpolated normal, then bent once (Cycles: the
+            // Normal Map node uses the smooth normal; the closure applies the bending).
+            Frame tf = tangentFrame(hit, hit.ns);
             glm::vec3 mapped = glm::normalize(tf.toWorld(mat->tangentNormal));
             if (std::isfinite(mapped.x)) ns = validReflectionNormal(hit.ng, wo, mapped);
         }

@@ -4,7 +4,7 @@
     blender -b -noaudio --factory-startup --python bench/blender_parity.py -- \
         [--out out/parity] [--res 128] [--spp 128] [--max-bounces 8] \
         [--only NAME[,NAME...]] [--module-dir build/lib/python] [--recycle] \
-        [--engines cycles,principled]
+        [--engines cycles,principled] [--set KEY=VALUE[,KEY=VALUE...]]
 
 Builds each scene of SCENES in Blender 3.4 and renders it twice with Cycles (seeds 0 and 1,
 SPP samples each: CPU, denoising off, Filter Glossy 0, box filter 1 px, no clamping, adaptive
@@ -19,6 +19,10 @@ RMSE / sqrt(2), i.e. the RMSE expected from noise alone), and the same means ove
 region (pixels whose 5x5-blurred luminance, averaged over both engines so the selection is
 symmetric, is above the scene's 60th percentile) and over each scene's named box. Diff images:
 OUT/<scene>.png = Cycles | PRINCIPLED | |difference| x 4 (sRGB, clipped).
+
+--set passes render settings to the delegate on top of the add-on's (e.g. --set
+specularFresnel=dielectric: the Disney specular Fresnel shaped like Cycles'); values that read
+as numbers are passed as int or float, others as tokens.
 
 The add-on and module are put on sys.path here (--factory-startup ignores user scripts), the
 same way tests/blender does.
@@ -43,6 +47,7 @@ def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     o = {"out": os.path.join(ROOT, "out", "parity"), "res": 128, "spp": 128,
          "max_bounces": 8, "only": None, "recycle": False, "engines": "cycles,principled",
+         "set": "",
          "module_dir": os.path.join(ROOT, "build", "lib", "python")}
     i = 0
     while i < len(argv):
@@ -66,6 +71,32 @@ try:
     principled_blender.register()
 except ValueError:
     pass  # already registered
+
+
+def setting_value(text):
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+EXTRA_SETTINGS = {}
+for item in filter(None, A["set"].split(",")):
+    if "=" not in item:
+        raise SystemExit(f"bench/blender_parity.py: --set expects KEY=VALUE, got '{item}'")
+    key, text = item.split("=", 1)
+    EXTRA_SETTINGS[key.strip()] = setting_value(text.strip())
+if EXTRA_SETTINGS:
+    _addon_settings = principled_blender._settings
+
+    def _settings_and_extra(scene, viewport):
+        out = _addon_settings(scene, viewport)
+        out.update(EXTRA_SETTINGS)
+        return out
+
+    principled_blender._settings = _settings_and_extra
 
 OUT = os.path.abspath(A["out"])
 os.makedirs(OUT, exist_ok=True)
@@ -210,7 +241,7 @@ def checker_png():
 
 
 def bump_normal_png():
-    """Tangent-space normal map of 8 x 8 cones tilting the normal up to ~35 degrees."""
+    """Tangent-space normal map of 4 x 4 cones tilting the normal up to ~45 degrees (corners)."""
     path = os.path.join(OUT, "normals.png")
     n, cells = 128, 4
     y, x = np.mgrid[0:n, 0:n].astype(np.float64)
@@ -574,27 +605,32 @@ SCENES = [
 
 
 # ---- rendering ---------------------------------------------------------------------------
+def set_props(struct, **props):
+    """Sets RNA properties by name, refusing names the struct does not have: Cycles' settings
+    are a Python PropertyGroup, which silently keeps a misspelt attribute (this bench once set
+    `filter_glossy`, not `blur_glossy`, and so compared against Filter Glossy 1)."""
+    rna = struct.bl_rna.properties
+    for k, v in props.items():
+        if k not in rna:
+            raise AttributeError(f"bench/blender_parity.py: {struct.bl_rna.identifier} has no "
+                                 f"property '{k}' in Blender {bpy.app.version_string}")
+        setattr(struct, k, v)
+
+
+def cycles_settings(seed):
+    """The Cycles settings of a fair comparison (docs/hosts.md, "Parity with Cycles")."""
+    return dict(device="CPU", samples=SPP, use_adaptive_sampling=False, use_denoising=False,
+                seed=seed, blur_glossy=0.0, sample_clamp_direct=0.0, sample_clamp_indirect=0.0,
+                caustics_reflective=True, caustics_refractive=True, max_bounces=MAXB,
+                diffuse_bounces=MAXB, glossy_bounces=MAXB, transmission_bounces=MAXB,
+                transparent_max_bounces=MAXB, volume_bounces=0, pixel_filter_type="BOX",
+                filter_width=1.0)
+
+
 def setup_cycles(sc, seed):
     sc.render.engine = "CYCLES"
-    cy = sc.cycles
-    cy.device = "CPU"
-    cy.samples = SPP
-    cy.use_adaptive_sampling = False
-    cy.use_denoising = False
-    cy.seed = seed
-    cy.filter_glossy = 0.0
-    cy.sample_clamp_direct = 0.0
-    cy.sample_clamp_indirect = 0.0
-    cy.caustics_reflective = True
-    cy.caustics_refractive = True
-    cy.max_bounces = MAXB
-    cy.diffuse_bounces = cy.glossy_bounces = cy.transmission_bounces = MAXB
-    cy.transparent_max_bounces = MAXB
-    cy.volume_bounces = 0
-    cy.pixel_filter_type = "BOX"
-    cy.filter_width = 1.0
-    sc.render.threads_mode = "FIXED"
-    sc.render.threads = 2
+    set_props(sc.cycles, **cycles_settings(seed))
+    set_props(sc.render, threads_mode="FIXED", threads=2)
 
 
 def setup_principled(sc, seed):
@@ -695,6 +731,7 @@ def main():
             "box_cycles": float(lc[box].mean()), "box_ours": float(lp[box].mean()),
             "rel_box": rel(lp[box].mean(), lc[box].mean()),
             "times": times,
+            "principled_settings": EXTRA_SETTINGS,
         }
         rows.append(row)
         strip = np.concatenate([srgb8(cy), srgb8(pr), srgb8(np.abs(cy - pr) * 4)], axis=1)

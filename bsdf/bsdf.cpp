@@ -5,6 +5,7 @@
 
 #include <bit>
 
+#include "bsdf/bumpShadowing.h"
 #include "bsdf/disney.h"
 #include "bsdf/ue4.h"
 
@@ -79,7 +80,7 @@ Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
         const Specular& sp = _set.specular;
         glm::vec3 F = sp.fModel == SpecularFresnel::Schlick
                           ? glm::mix(sp.f0, glm::vec3(1.0f), schlickWeight(std::max(wo.z, 0.0f)))
-                          : schlickFresnelSG(sp.f0, std::max(wo.z, 0.0f));
+                          : sp.fresnel(std::max(wo.z, 0.0f));
         w2 = std::max(sp.weight * luminance(F), 0.0f);
         v.g1Spec = sp.dist.G1(wo);
         v.g1SpecK = v.g1Spec * v.inv4CosO;
@@ -101,6 +102,17 @@ Bsdf::View Bsdf::prepare(const glm::vec3& woIn) const {
     } else {
         float inv = 1.0f / float(std::popcount(a));
         for (int k = 0; k < kLobeCount; ++k) v.prob[k] = (a & (1u << k)) ? inv : 0.0f;
+    }
+    return v;
+}
+
+Bsdf::View Bsdf::prepare(const glm::vec3& woIn, const glm::vec3& smoothNormal) const {
+    View v = prepare(woIn);
+    // Mirrored like wo and wi when the lobes' frame is flipped (thin or inside).
+    const glm::vec3 n0(smoothNormal.x, smoothNormal.y, smoothNormal.z * v.flip);
+    if (n0 != glm::vec3(0.0f, 0.0f, 1.0f)) {
+        v.smoothNormal = n0;
+        v.bumped = true;
     }
     return v;
 }
@@ -136,17 +148,18 @@ glm::vec3 Bsdf::evalLive(const View& v, const glm::vec3& wi, LobeMask live, floa
     if (live & (kDiffuseBit | kSheenBit)) {
         const float cos2d = DisneyDiffuse::cos2ThetaD(wo, wi);
         const float pCos = wo.z > 0.0f ? cosineHemispherePdf(wi) : 0.0f;
+        const float shadow = (v.bumped && upper) ? bumpShadowing(v.smoothNormal, wi) : 1.0f;
         if (live & kDiffuseBit) {
             glm::vec3 fk(0.0f);
             if (upper)
-                fk = _set.lambertDiffuse ? _set.lambert.eval(wo, wi)
-                                         : _set.diffuse.eval(wo, wi, v.fv, cos2d);
+                fk = shadow * (_set.lambertDiffuse ? _set.lambert.eval(wo, wi)
+                                                   : _set.diffuse.eval(wo, wi, v.fv, cos2d));
             f += fk;
             if (perLobe) (*perLobe)[0] = fk;
             pdf += v.prob[0] * pCos;
         }
         if (live & kSheenBit) {
-            glm::vec3 fk = upper ? _set.sheen.eval(cos2d, wi) : glm::vec3(0.0f);
+            glm::vec3 fk = upper ? shadow * _set.sheen.eval(cos2d, wi) : glm::vec3(0.0f);
             f += fk;
             if (perLobe) (*perLobe)[1] = fk;
             pdf += v.prob[1] * pCos;

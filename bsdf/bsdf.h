@@ -50,8 +50,16 @@ public:
         float g1Spec = 0.0f, g1Coat = 0.0f, g1Trans = 0.0f;
         float inv4CosO = 0.0f;  ///< 1 / (4 wo.z)
         float g1SpecK = 0.0f;   ///< g1Spec / (4 wo.z)
+        /// The surface's own normal in the lobes' frame when the shading normal leans away from
+        /// it: the diffuse and sheen lobes are then shadowed by bumpShadowing(smoothNormal, wi).
+        glm::vec3 smoothNormal{0.0f, 0.0f, 1.0f};
+        bool bumped = false;
     };
     View prepare(const glm::vec3& wo) const;
+    /// prepare(wo) for a shading normal (+z) that differs from the surface's own unit normal
+    /// smoothNormal (same frame): eval() and sample() then scale the diffuse and sheen lobes by
+    /// bumpShadowing (bsdf/bumpShadowing.h), as Cycles 3.4 does; the pdfs are unchanged.
+    View prepare(const glm::vec3& wo, const glm::vec3& smoothNormal) const;
     glm::vec3 eval(const View& view, const glm::vec3& wi, float* pdf = nullptr,
                    LobeValues* perLobe = nullptr) const;
     std::optional<BsdfSample> sample(const View& view, float uLobe, const glm::vec2& u) const;

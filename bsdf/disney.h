@@ -44,6 +44,16 @@ inline LobeSet buildDisney(const MaterialParams& p, const Options& o) {
         s.specular.gModel = SpecularG::SmithRemapped;
         s.specular.gParam = sqr(0.5f + 0.5f * r);
     }
+    if (o.dielectricFresnel) {
+        // Cycles 3.4's Principled v1: the index of the Disney specular F0 = 0.08 specular,
+        // eta = 2 / (1 - sqrt(F0)) - 1, inverting F0 = ((eta - 1) / (eta + 1))^2 (Walter et al.
+        // 2007, eq. 22 at cos = 1); the specular workflow uses the material's ior.
+        float f0d = 0.08f * std::clamp(p.specular, 0.0f, 1.0f);
+        float eta = p.specularWorkflow ? std::max(p.ior, 1.0f) : 2.0f / (1.0f - std::sqrt(f0d)) - 1.0f;
+        s.specular.fModel = SpecularFresnel::DielectricBlend;
+        s.specular.eta = eta;
+        s.specular.fd0 = std::min(fresnelDielectric(1.0f, eta), 0.999f);
+    }
     s.specular.visible = o.vndfSampling;
     s.specular.delta = r < o.deltaRoughness;
     if (keepLobe(o, Lobe::Specular, s.specular.weight)) s.mask |= lobeBit(Lobe::Specular);

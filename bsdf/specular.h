@@ -22,6 +22,9 @@ enum class SpecularG : uint8_t {
 enum class SpecularFresnel : uint8_t {
     Schlick,    ///< mix(F0, 1, (1 - cos)^5) (Burley 2012)
     SchlickSG,  ///< spherical-Gaussian Schlick (Karis 2013)
+    /// mix(F0, 1, w), w = (F_d(cos, eta) - F_d(1, eta)) / (1 - F_d(1, eta)), F_d the exact
+    /// dielectric Fresnel: Cycles 3.4's Principled v1 (bsdf_util.h, interpolate_fresnel_color)
+    DielectricBlend,
 };
 
 struct Specular {
@@ -31,12 +34,26 @@ struct Specular {
     float gParam = 0.25f;  ///< alpha for SmithRemapped, k for SchlickSmith
     SpecularG gModel = SpecularG::Smith;
     SpecularFresnel fModel = SpecularFresnel::Schlick;
+    float eta = 1.5f;   ///< DielectricBlend: the index whose Fresnel curve shapes the blend
+    float fd0 = 0.04f;  ///< DielectricBlend: F_d(1, eta), below 1
     bool visible = true;  ///< VNDF sampling (Heitz 2018) instead of D sampling
     bool delta = false;   ///< perfect mirror (roughness below Options::deltaRoughness)
 
     glm::vec3 fresnel(float cosD) const {
-        return fModel == SpecularFresnel::Schlick ? schlickFresnel(f0, cosD)
-                                                  : schlickFresnelSG(f0, cosD);
+        switch (fModel) {
+            case SpecularFresnel::Schlick:
+                return schlickFresnel(f0, cosD);
+            case SpecularFresnel::SchlickSG:
+                return schlickFresnelSG(f0, cosD);
+            case SpecularFresnel::DielectricBlend: {
+                // Blender Foundation 2022, Cycles 3.4 kernel/closure/bsdf_util.h,
+                // interpolate_fresnel_color: the normalised dielectric Fresnel blends F0 to white.
+                // eta 1 (specular 0) gives 0/0 at grazing: w = 0 there (the comparison maps NaN to 0).
+                float w = (fresnelDielectric(cosD, eta) - fd0) / (1.0f - fd0);
+                return glm::mix(f0, glm::vec3(1.0f), w > 0.0f ? std::min(w, 1.0f) : 0.0f);
+            }
+        }
+        return f0;
     }
 
     float G(const glm::vec3& wo, const glm::vec3& wi) const {

@@ -46,6 +46,9 @@ struct MaterialParams {
 struct Options {
     Model model = Model::Disney;
     bool legacySpecularG = false;  ///< Burley 2012 course-notes G remap (0.5 + 0.5 r)^2.
+    /// Disney specular Fresnel shaped like Cycles 3.4's Principled v1 (SpecularFresnel::
+    /// DielectricBlend, eta from `specular`) instead of Schlick's (docs/hosts.md measures it).
+    bool dielectricFresnel = false;
     bool vndfSampling = true;      ///< Heitz 2018 visible normals; false = classic D sampling.
     float deltaRoughness = 1e-3f;  ///< Below this roughness specular becomes a perfect mirror.
     bool pruneLobes = true;        ///< Skip lobes whose weight is below pruneCutoff.

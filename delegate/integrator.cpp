@@ -434,13 +434,18 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // wo.z < 0 and refracts with the inverse index of refraction.
         bool solidTransmission = mat->params.specTrans > 0.0f && !mat->params.thin;
         if (mat->hasNormalMap && !(solidTransmission && hit.backface)) {
-            Frame tf = tangentFrame(hit, ns);
+            // Mapped around the surface's own interpolated normal, then bent once (Cycles: the
+            // Normal Map node uses the smooth normal; the closure applies the bending).
+            Frame tf = tangentFrame(hit, hit.ns);
             glm::vec3 mapped = glm::normalize(tf.toWorld(mat->tangentNormal));
             if (std::isfinite(mapped.x)) ns = validReflectionNormal(hit.ng, wo, mapped);
         }
         if (solidTransmission && hit.backface) ns = -ns;
         Frame frame(ns);
         glm::vec3 woLocal = frame.toLocal(wo);
+        // A shading normal other than the surface's own (mapped or bent): its diffuse lobes are
+        // shadowed by the surface (Bsdf::prepare with the smooth normal), as in Cycles.
+        const bool bumped = _settings.bumpShadowing && ns != hit.ns && !(solidTransmission && hit.backface);
         // maxDepth = N: N bounces after the camera hit, Cycles' max_bounces convention (0 = direct
         // light only: NEE at the camera hit plus the emitter its BSDF ray reaches). `>=` here
         // made maxDepth 0 render emitters only and gave every path one bounce fewer than Cycles.
@@ -450,7 +455,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         alignas(bsdf::Bsdf) std::byte builtStorage[sizeof(bsdf::Bsdf)];
         const bsdf::Bsdf& bsdf =
             constantBsdf ? *constantBsdf : *::new (builtStorage) bsdf::Bsdf(mat->params, _settings.bsdf);
-        const bsdf::Bsdf::View view = bsdf.prepare(woLocal);  // shared by NEE and sampling
+        const bsdf::Bsdf::View view =  // shared by NEE and sampling
+            bumped ? bsdf.prepare(woLocal, frame.toLocal(hit.ns)) : bsdf.prepare(woLocal);
 
         // Next-event estimation: one light picked by power, or every light in turn when the scene
         // has few (SceneSnapshot::neeAllLights; their pick probabilities are then 1).

@@ -30,6 +30,9 @@ struct IntegratorSettings {
     float clampIndirect = 0;  ///< max channel of an indirect contribution; 0 = off
     bool domeVisible = true;  ///< camera rays that escape see the dome light
     bool lightsVisible = false;  ///< camera rays see sphere/rect/disk/cylinder light shapes
+    /// Diffuse and sheen lobes are shadowed where the shading normal (normal map, bent normal)
+    /// leans away from the surface's own normal (bsdf/bumpShadowing.h; Cycles 3.4 does too).
+    bool bumpShadowing = true;
     /// PathSample::lobes holds the per-lobe split (some lobe AOV is bound); when false the
     /// whole first-hit contribution is in lobes[0] and no per-lobe values are computed.
     bool splitLobes = true;

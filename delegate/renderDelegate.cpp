@@ -449,6 +449,9 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"VNDF sampling", Token("vndf"), Value(1), "GGX visible-normal sampling (0: classic distribution sampling)"},
         {"Delta roughness", Token("deltaRoughness"), Value(1e-3f), "below this roughness specular is a perfect mirror"},
         {"Legacy specular G", Token("legacySpecularG"), Value(0), "Burley 2012 course-notes G remap (0.5 + 0.5 r)^2"},
+        {"Specular Fresnel", Token("specularFresnel"), Value(Token("schlick")),
+         "schlick (Burley 2012) | dielectric (Cycles 3.4 Principled v1: F0 blended to white along the exact "
+         "dielectric Fresnel of the index from specular)"},
         {"Lobe mask", Token("lobeMask"), Value(31), "diagnostics: BSDF lobes allowed (bits: 1 diffuse, 2 sheen, 4 specular, 8 clearcoat, 16 transmission)"},
         {"Noise threshold", Token("noiseThreshold"), Value(0.0f), "stop sampling a pixel when the relative standard error of its mean is below this; 0 = off"},
         {"Min samples", Token("minSamples"), Value(16), "adaptive sampling: samples before a pixel may stop"},
@@ -460,6 +463,9 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Lights visible to camera", Token("lightCameraVisibility"), Value(0),
          "camera rays see the shapes of sphere, rect, disk and cylinder lights (0, as Cycles, Karma and hdEmbree: "
          "lights light the scene and show in reflections only)"},
+        {"Bump shadowing", Token("bumpShadowing"), Value(1),
+         "diffuse and sheen lobes shadowed where a normal map or bent normal leans away from the surface "
+         "(Chiang et al. 2019, as Cycles); 0: off"},
     };
 }
 
@@ -519,6 +525,7 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.clampIndirect = std::max(0.0f, floatSetting("clampIndirect", 0.0f));
     s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
     s.lightsVisible = intSetting("lightCameraVisibility", 0) != 0;
+    s.bumpShadowing = intSetting("bumpShadowing", 1) != 0;
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
     s.mis = intSetting("mis", 1) != 0;
@@ -527,6 +534,8 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.bsdf.vndfSampling = intSetting("vndf", 1) != 0;
     s.bsdf.deltaRoughness = std::clamp(floatSetting("deltaRoughness", 1e-3f), 0.0f, 1.0f);
     s.bsdf.legacySpecularG = intSetting("legacySpecularG", 0) != 0;
+    auto fresnel = getString(renderSetting(Token("specularFresnel")));
+    s.bsdf.dielectricFresnel = fresnel && *fresnel == "dielectric";
     s.bsdf.lobeMask = bsdf::LobeMask(intSetting("lobeMask", 31)) & ((1u << bsdf::kLobeCount) - 1u);
     auto sampler = getString(renderSetting(Token("sampler")));
     s.sampler = (sampler && *sampler == "independent") ? SamplerKind::Independent : SamplerKind::Sobol;

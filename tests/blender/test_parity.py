@@ -45,6 +45,9 @@ blender -b -noaudio --factory-startup --python tests/blender/test_parity.py -- \
 - Emission map: the Principled Emission input linked to an Image Texture used the socket
   value (black). Now the texture (sRGB for 8-bit, like Base Color) times Emission Strength.
   Rendered: texel 200 at strength 2 -> 2 x decode(200).
+- Normal Map Strength: Cycles blends world normals by it, N = normalize(N0 + s (n - N0)); the
+  add-on scaled only the map's x and y. Now scale (2s, 2s, 2s), bias (-s, -s, 1 - 2s). Rendered:
+  40 degrees at s 0.5 and 20 degrees at s 2 give albedo N.z with Cycles' N (were 1.9-2.5% off).
 Exit code 0 = pass.
 """
 import math
@@ -386,6 +389,45 @@ def test_bsdf_nodes():
           f"Diffuse BSDF plane: radiance {centre:.4f} = its colour {ALBEDO:.4f}")
 
 
+def test_normal_map_strength():
+    """Normal Map Strength s: Cycles 3.4 blends world normals, N = normalize(N0 + s (n - N0))
+    (svm_node_normal_map). The add-on scaled only x and y by s, which tilts a 40-degree map at
+    s 0.5 to 22.8 degrees instead of 20 and a 20-degree map at s 2 to 36.0 instead of 37.9.
+    Two planes under the overhead sun: radiance = albedo N.z with N from Cycles' formula."""
+    scene = empty_scene(samples=8, max_depth=1)
+    want = []
+    for i, (deg, strength) in enumerate(((40.0, 0.5), (20.0, 2.0))):
+        a = math.radians(deg)
+        rgb8 = (128, round(255 * (0.5 + 0.5 * math.sin(a))), round(255 * (0.5 + 0.5 * math.cos(a))))
+        bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2 + 2.4 * i, 0, 0))
+        m = bpy.data.materials.new(f"Strength{i}")
+        m.use_nodes = True
+        nt = m.node_tree
+        b = nt.nodes["Principled BSDF"]
+        b.inputs["Specular"].default_value = 0.0
+        b.inputs["Roughness"].default_value = 1.0
+        b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+        tex = nt.nodes.new("ShaderNodeTexImage")
+        tex.image = solid_image(f"Tilt{i}", rgb8, non_color=True)
+        nm = nt.nodes.new("ShaderNodeNormalMap")
+        nm.inputs["Strength"].default_value = strength
+        nt.links.new(tex.outputs["Color"], nm.inputs["Color"])
+        nt.links.new(nm.outputs["Normal"], b.inputs["Normal"])
+        bpy.context.active_object.data.materials.append(m)
+        n = np.array(rgb8, np.float64) / 255.0 * 2.0 - 1.0
+        n /= np.linalg.norm(n)
+        blended = np.array([0.0, 0.0, 1.0]) + strength * (n - np.array([0.0, 0.0, 1.0]))
+        want.append(ALBEDO * blended[2] / np.linalg.norm(blended))
+    overhead_sun_and_camera(scene)
+    img = render_combined(scene)[:, :, :3].mean(axis=2)
+    for (deg, strength), got, expect in zip(((40, 0.5), (20, 2.0)),
+                                            (img[15:35, 16:36].mean(), img[15:35, 64:84].mean()),
+                                            want):
+        check(abs(got / expect - 1) < 0.005,
+              f"Normal Map {deg} deg at Strength {strength}: radiance {got:.4f} = albedo N.z "
+              f"{expect:.4f} (N = normalize(N0 + s (n - N0)))")
+
+
 def test_mix_transparent():
     scene = empty_scene(samples=64, max_depth=1)
     img, m, nt, b = cutout_plane("Cutout")
@@ -451,6 +493,7 @@ def main():
         test_bsdf_nodes()
         test_mix_transparent()
         test_emission_map()
+        test_normal_map_strength()
     except Exception:
         import traceback
 

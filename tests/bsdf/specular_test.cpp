@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bsdf/specular.h"
 
+#include "bsdf/bsdf.h"
 #include "testUtil.h"
 
 namespace principled::bsdf {
@@ -108,6 +109,43 @@ TEST(Specular, DeltaMirror) {
     EXPECT_NEAR(smp->f.x / smp->pdf, schlickFresnel(0.04f, wo.z), 1e-6f);
     EXPECT_FLOAT_EQ(s.eval(wo, smp->wi).x, 0.0f);
     EXPECT_FLOAT_EQ(s.pdf(wo, smp->wi), 0.0f);
+}
+
+// Options::dielectricFresnel (Cycles 3.4's Principled v1 Fresnel): a dielectric of specular
+// 0.5 follows the exact Fresnel of eta 1.5; a metal blends its base colour to white along the
+// same curve, normalised to 0 at normal incidence; Schlick stays the default.
+TEST(Specular, DielectricBlendFresnelThroughTheDisneyModel) {
+    MaterialParams p = cliDefaults();
+    p.metallic = 0.0f;
+    p.specular = 0.5f;
+    p.specularTint = 0.0f;
+    Options o;
+    o.dielectricFresnel = true;
+    const Specular d = Bsdf(p, o).lobeSet().specular;
+    EXPECT_EQ(d.fModel, SpecularFresnel::DielectricBlend);
+    EXPECT_NEAR(d.eta, 1.5f, 1e-5f);
+    for (float c : {1.0f, 0.8f, 0.5f, 0.2f, 0.05f})
+        EXPECT_NEAR(d.fresnel(c).x, fresnelDielectric(c, 1.5f), 1e-5f) << "cos " << c;
+    // At cos 0.5 the exact curve is above Schlick's (0.0892 against 0.0700).
+    EXPECT_GT(d.fresnel(0.5f).x, schlickFresnel(0.04f, 0.5f) + 0.015f);
+
+    p.metallic = 1.0f;
+    p.baseColor = glm::vec3(1.0f, 0.77f, 0.34f);
+    const Specular m = Bsdf(p, o).lobeSet().specular;
+    const float w = (fresnelDielectric(0.5f, 1.5f) - 0.04f) / 0.96f;
+    EXPECT_NEAR(m.fresnel(1.0f).z, 0.34f, 1e-5f);
+    EXPECT_NEAR(m.fresnel(0.5f).z, 0.34f + 0.66f * w, 1e-5f);
+    EXPECT_NEAR(m.fresnel(0.0f).z, 1.0f, 1e-5f);
+
+    const Specular schlick = Bsdf(p, Options{}).lobeSet().specular;
+    EXPECT_EQ(schlick.fModel, SpecularFresnel::Schlick);
+    EXPECT_NEAR(schlick.fresnel(0.5f).z, schlickFresnel(glm::vec3(0.34f), 0.5f).z, 1e-6f);
+
+    // Specular 0 (eta 1): no lobe colour from the blend, and nothing undefined.
+    p.metallic = 0.0f;
+    p.specular = 0.0f;
+    const Specular zero = Bsdf(p, o).lobeSet().specular;
+    for (float c : {1.0f, 0.5f, 0.0f}) EXPECT_EQ(zero.fresnel(c), glm::vec3(0.0f)) << "cos " << c;
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "delegate/renderBuffer.h"
 #include "delegate/renderDelegate.h"
 #include "delegate/renderPass.h"
+#include "delegate/shadingNormal.h"
 #include "tests/support/testSceneDelegate.h"
 
 using namespace principled;
@@ -217,4 +218,114 @@ TEST(Render, DepthOfFieldBlursByTheThinLensCircleOfConfusion) {
     EXPECT_LT(rmsAgainst(edgeProfile(0.0f, focus, depth, w, h, spp), w, 0.0), 0.01);
     // focusDistance 0 (the schema fallback) is a pinhole too, not a blur of everything.
     EXPECT_LT(rmsAgainst(edgeProfile(fStop, 0.0f, depth, w, h, spp), w, 0.0), 0.01);
+}
+
+// A normal map tilting the shading normal 30 degrees toward a distant light 60 degrees from the
+// plane's normal: Lambert gives a E / pi (n.wi) with n.wi = cos 30, and the diffuse lobe is
+// shadowed by the plane (Chiang et al. 2019, bsdf/bumpShadowing.h): G = cos 60 / cos^2 30 = 2/3,
+// factor -G^3 + G^2 + G = 22/27, as Cycles 3.4 renders it (bench/blender_parity.py normal_map).
+// bumpShadowing = 0 leaves the unshadowed a E / pi (n.wi).
+class TiltedNormalPlane : public ::testing::TestWithParam<int> {};
+
+TEST_P(TiltedNormalPlane, DiffuseIsShadowedByTheSurface) {
+    const int shadowing = GetParam();
+    Fixture f(8, 8);
+    f.delegate.setRenderSetting(hd::Token("convergedSamplesPerPixel"), hd::Value(4));
+    f.delegate.setRenderSetting(hd::Token("maxDepth"), hd::Value(0));
+    f.delegate.setRenderSetting(hd::Token("shadingModel"), hd::Value(hd::Token("ue4")));
+    f.delegate.setRenderSetting(hd::Token("bumpShadowing"), hd::Value(shadowing));
+    const float albedo = 0.5f, E = 3.0f, s30 = 0.5f, c30 = std::sqrt(3.0f) / 2.0f;
+    f.scene.addQuad(hd::Path("/plane"), 4.0f);
+    // st = (x, y): the tangent (dP/du) is +X.
+    f.scene.prim(hd::Path("/plane")).values[hd::Token("st")] =
+        std::vector<glm::vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    f.scene.prim(hd::Path("/plane")).interpolation[hd::Token("st")] = hd::Interpolation::Vertex;
+    f.scene.addMaterial(hd::Path("/mat"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(albedo))},
+                                           {hd::Token("ior"), hd::Value(1.0f)},
+                                           {hd::Token("roughness"), hd::Value(1.0f)},
+                                           {hd::Token("normal"), hd::Value(glm::vec3(s30, 0.0f, c30))}});
+    f.scene.bind(hd::Path("/plane"), hd::Path("/mat"));
+    // The light's +Z (toward the light; it shines along -Z) rotated 60 degrees toward +X: rows of
+    // the row-vector matrix, so (0, 0, 1) M = (sin 60, 0, cos 60).
+    glm::dmat4 rot(1.0);
+    rot[0] = glm::dvec4(s30, 0.0, -c30, 0.0);
+    rot[2] = glm::dvec4(c30, 0.0, s30, 0.0);
+    f.scene.addLight(hd::Path("/sun"), hd::tokens::distantLight(), rot,
+                     {{hd::Token("intensity"), hd::Value(E)}, {hd::Token("angle"), hd::Value(0.0f)}});
+    f.scene.addCamera(hd::Path("/cam"), translate(0, 0, 5),
+                      {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
+                       {hd::Token("horizontalAperture"), hd::Value(1.0f)},
+                       {hd::Token("verticalAperture"), hd::Value(1.0f)}});
+    f.render();
+    auto px = f.pixels();
+    double mean = 0.0;
+    for (int i = 0; i < f.w * f.h; ++i) mean += px[4 * i];
+    mean /= f.w * f.h;
+    const double unshadowed = albedo * E / kPi * c30;
+    const double expected = shadowing ? unshadowed * 22.0 / 27.0 : unshadowed;
+    EXPECT_NEAR(mean, expected, 0.01 * expected)
+        << "bumpShadowing " << shadowing << ": expected " << expected << " (unshadowed "
+        << unshadowed << ")";
+}
+
+INSTANTIATE_TEST_SUITE_P(BumpShadowing, TiltedNormalPlane, ::testing::Values(1, 0));
+
+// A normal map is applied in the tangent frame of the surface's own interpolated normal, and the
+// result is bent once (Cycles 3.4: svm_node_normal_map uses the smooth normal; the closure then
+// applies ensure_valid_reflection). Mapping it around the already-bent interpolated normal made
+// the result depend on the view twice. Plane z = 0 with authored normals tilted 60 degrees toward
+// +Y, seen straight down (that normal is bent, to 44.7 degrees), a map tilting 20 degrees toward
+// +X, a delta light 30 degrees toward +X: radiance a E / pi (N.wi) bumpShadowing, N the mapped
+// normal bent once (the view's mirror direction then grazes the plane).
+TEST(Render, NormalMapUsesTheUnbentInterpolatedNormal) {
+    Fixture f(8, 8);
+    f.delegate.setRenderSetting(hd::Token("convergedSamplesPerPixel"), hd::Value(4));
+    f.delegate.setRenderSetting(hd::Token("maxDepth"), hd::Value(0));
+    f.delegate.setRenderSetting(hd::Token("shadingModel"), hd::Value(hd::Token("ue4")));
+    const float albedo = 0.5f, E = 3.0f, kDeg = kPi / 180.0f;
+    const glm::vec3 n0(0.0f, std::sin(60 * kDeg), std::cos(60 * kDeg));
+    const glm::vec3 tangentNormal(std::sin(20 * kDeg), 0.0f, std::cos(20 * kDeg));
+    f.scene.addQuad(hd::Path("/plane"), 4.0f);
+    auto& plane = f.scene.prim(hd::Path("/plane"));
+    plane.values[hd::Token("st")] = std::vector<glm::vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    plane.interpolation[hd::Token("st")] = hd::Interpolation::Vertex;
+    plane.values[hd::tokens::normals()] = std::vector<glm::vec3>(4, n0);
+    plane.interpolation[hd::tokens::normals()] = hd::Interpolation::Vertex;
+    f.scene.addMaterial(hd::Path("/mat"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(albedo))},
+                                           {hd::Token("ior"), hd::Value(1.0f)},
+                                           {hd::Token("roughness"), hd::Value(1.0f)},
+                                           {hd::Token("normal"), hd::Value(tangentNormal)}});
+    f.scene.bind(hd::Path("/plane"), hd::Path("/mat"));
+    const float s30 = 0.5f, c30 = std::sqrt(3.0f) / 2.0f;
+    glm::dmat4 rot(1.0);  // (0, 0, 1) M = (sin 30, 0, cos 30): the direction toward the light
+    rot[0] = glm::dvec4(c30, 0.0, -s30, 0.0);
+    rot[2] = glm::dvec4(s30, 0.0, c30, 0.0);
+    const glm::vec3 wi(s30, 0.0f, c30);
+    f.scene.addLight(hd::Path("/sun"), hd::tokens::distantLight(), rot,
+                     {{hd::Token("intensity"), hd::Value(E)}, {hd::Token("angle"), hd::Value(0.0f)}});
+    f.scene.addCamera(hd::Path("/cam"), translate(0, 0, 5),
+                      {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
+                       {hd::Token("horizontalAperture"), hd::Value(1.0f)},
+                       {hd::Token("verticalAperture"), hd::Value(1.0f)}});
+    f.render();
+    auto px = f.pixels();
+    double mean = 0.0;
+    for (int i = 0; i < f.w * f.h; ++i) mean += px[4 * i];
+    mean /= f.w * f.h;
+    // The expected shading normal: tangent frame (t = +X from st, b = n x t) around n, then bent.
+    const glm::vec3 ng(0, 0, 1), wo(0, 0, 1);
+    auto shade = [&](const glm::vec3& frameNormal) {
+        const glm::vec3 t(1, 0, 0), b = glm::cross(frameNormal, t);
+        glm::vec3 m = glm::normalize(tangentNormal.x * t + tangentNormal.y * b + tangentNormal.z * frameNormal);
+        glm::vec3 n = embree::validReflectionNormal(ng, wo, m);
+        // bumpShadowing in n's frame: the smooth normal n0 seen from n.
+        const float g = glm::dot(n0, wi) / (glm::dot(n, wi) * glm::dot(n0, n));
+        const float k = g >= 1.0f ? 1.0f : (-g * g * g + g * g + g);
+        return albedo * E / kPi * glm::dot(n, wi) * k;
+    };
+    const double expected = shade(n0);
+    const double viewTwice = shade(embree::validReflectionNormal(ng, wo, n0));
+    ASSERT_GT(std::abs(viewTwice / expected - 1.0), 0.02);  // the two orders are distinguishable
+    EXPECT_NEAR(mean, expected, 0.005 * expected)
+        << "mapping around the bent normal would give " << viewTwice;
 }

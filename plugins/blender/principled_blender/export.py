@@ -781,10 +781,13 @@ class SceneExport:
             b.set_attribute_string(tex, "token", "inputs:wrapS", wrap)
             b.set_attribute_string(tex, "token", "inputs:wrapT", wrap)
             if k == "normal":
-                s = 1.0 if strength is None else strength
-                # Tangent-space map stored as 0.5 + 0.5 n: scale/bias to [-1, 1], raw data.
-                b.set_attribute(tex, "float4", "inputs:scale", [2.0 * s, 2.0 * s, 2.0, 1.0])
-                b.set_attribute(tex, "float4", "inputs:bias", [-s, -s, -1.0, 0.0])
+                s = 1.0 if strength is None else max(0.0, strength)
+                # Tangent-space map stored as 0.5 + 0.5 n (raw data). Cycles' Strength s blends
+                # the normals, N = normalize(N0 + s (n - N0)) with N0 = (0, 0, 1) here, i.e.
+                # (s n.x, s n.y, 1 - s + s n.z) before normalising: n = 2 texel - 1 gives
+                # scale (2s, 2s, 2s) and bias (-s, -s, 1 - 2s) (exact for a unit texel normal).
+                b.set_attribute(tex, "float4", "inputs:scale", [2.0 * s, 2.0 * s, 2.0 * s, 1.0])
+                b.set_attribute(tex, "float4", "inputs:bias", [-s, -s, 1.0 - 2.0 * s, 0.0])
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
             elif k == "emissiveColor":
                 if strength is not None and strength != 1.0:

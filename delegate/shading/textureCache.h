@@ -4,6 +4,8 @@
 // reached through the image I/O backend (delegate/imageio/imageIO.h), loaded by the first open().
 #pragma once
 
+#include "delegate/shading/textureWrap.h"
+
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <map>
@@ -14,10 +16,6 @@
 #include <vector>
 
 namespace principled::shading {
-
-/// How lookups outside [0,1] behave (UsdUVTexture wrapS/wrapT, without useMetadata, which is
-/// resolved against the file when a program is compiled).
-enum class Wrap : uint8_t { Black, Clamp, Repeat, Mirror };
 
 /// What a file's metadata states about its encoding (see TextureCache::open for the rules).
 enum class ColorTag : uint8_t { Unknown, Srgb, Linear };

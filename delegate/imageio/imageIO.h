@@ -114,6 +114,12 @@ Backend* loadedBackend();
 /// The path the backend was loaded from (empty before).
 std::string backendPath();
 
+/// Opens a texture file as the backend's openTexture() does (straight alpha). PNG files are
+/// decoded natively with libpng when `nativePng` (pngReader.h), without loading the backend;
+/// anything else, and any PNG libpng cannot read, goes to the backend. Null with *error.
+std::unique_ptr<ImageReader> openTexture(const std::string& path, std::string* error,
+                                         bool nativePng = true);
+
 }  // namespace principled::imageio
 
 // The module's entry points (extern "C", looked up with dlsym).

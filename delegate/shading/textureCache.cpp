@@ -193,13 +193,13 @@ TextureOpenResult TextureCache::openFile(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return fail("file not found");
 
-    // The file is opened as the texture system would open it (same reader, straight alpha)
-    // and its finest level read into memory; the texture system itself is used only when a
-    // lookup needs it (handleFor).
+    // The file is opened as the texture system would open it (straight alpha; PNG decoded
+    // natively to the same pixels and metadata, without loading the backend) and its finest
+    // level read into memory; the texture system is used only when a lookup needs it
+    // (handleFor).
     std::string e;
-    imageio::Backend* io = imageio::backend(&e);
-    if (!io) return fail(e);
-    std::unique_ptr<imageio::ImageReader> reader = io->openTexture(path, &e);
+    std::unique_ptr<imageio::ImageReader> reader =
+        imageio::openTexture(path, &e, _options.nativePng);
     if (!reader) return fail(e.empty() ? std::string("cannot be read") : e);
     const imageio::ImageSpec& spec = reader->spec();
     if (spec.channels < 1 || spec.width < 1 || spec.height < 1)
@@ -321,8 +321,8 @@ void TextureCache::reread(Texture& texture) {
     if (!texture.rereadPending.load(std::memory_order_relaxed)) return;  // another thread did
     dropResident(texture);
     std::string e;
-    imageio::Backend* io = imageio::backend(&e);
-    std::unique_ptr<imageio::ImageReader> reader = io ? io->openTexture(texture.path, &e) : nullptr;
+    std::unique_ptr<imageio::ImageReader> reader =
+        imageio::openTexture(texture.path, &e, _options.nativePng);
     // A file that is gone or unreadable now stays non-resident: the texture system reports it
     // as it did before resident pixels (its lookups fail and the material uses its fallback).
     if (reader) {

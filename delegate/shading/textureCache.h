@@ -78,6 +78,9 @@ class TextureCache {
         /// Budget for the finest levels held in memory (all files of this cache together); a
         /// file that would exceed it is read through OpenImageIO's tile cache instead.
         double maxResidentMB = 4096.0;
+        /// Decode PNG files with libpng (no OpenImageIO backend needed for them); false reads
+        /// every file through the backend.
+        bool nativePng = true;
     };
 
     TextureCache();

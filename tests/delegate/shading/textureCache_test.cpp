@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/shading/textureCache.h"
 
+#include "delegate/imageio/imageIO.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <thread>
@@ -540,4 +543,95 @@ TEST(TextureCacheResident, ConcurrentLookupsAfterInvalidateRereadOnce) {
     for (auto& th : threads) th.join();
     EXPECT_EQ(wrong.load(), 0);
     EXPECT_EQ(cache.residentBytes(), size_t(kSize) * kSize * 3);
+}
+
+// ---------------------------------------------------------------------------------------------
+// PNG textures decoded natively (libpng) against the same files read through OpenImageIO.
+
+namespace {
+
+std::vector<std::string> usdWgPngs() {
+    std::vector<std::string> out;
+    std::error_code ec;
+    namespace fs = std::filesystem;
+    for (auto it = fs::recursive_directory_iterator(PRINCIPLED_SOURCE_DIR "/../shared/usd-wg", ec);
+         it != fs::recursive_directory_iterator(); it.increment(ec))
+        if (it->path().extension() == ".png") out.push_back(it->path().string());
+    return out;
+}
+
+}  // namespace
+
+// Same description (channels, bits, colour tag, wrap metadata) and the same point lookups at
+// every texel centre, for the usd-wg PNGs and generated 8/16-bit ones with colour metadata.
+TEST(TextureCacheNativePng, SameTextureAsThroughOpenImageIO) {
+    TempDir dir;
+    std::vector<std::string> files = usdWgPngs();
+    ASSERT_GE(files.size(), 10u);
+    const std::vector<std::pair<std::string, std::string>> tagged[] = {
+        {}, {{"oiio:ColorSpace", "linear"}}, {{"wrapmodes", "periodic,clamp"}}};
+    int k = 0;
+    for (const auto& attributes : tagged)
+        for (auto type : {OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT16})
+            for (int n = 1; n <= 4; ++n) {
+                std::string path = dir.file("gen" + std::to_string(k++) + ".png");
+                ASSERT_TRUE(writeImage(path, 6, 5, n, randomPixels(6, 5, n, 40 + k), type,
+                                       attributes));
+                files.push_back(path);
+            }
+    TextureCache native;
+    TextureCache::Options viaOiio;
+    viaOiio.nativePng = false;
+    TextureCache oiio(viaOiio);
+    for (const std::string& path : files) {
+        SCOPED_TRACE(path);
+        const Texture* a = native.open(path).texture;
+        const Texture* b = oiio.open(path).texture;
+        ASSERT_NE(a, nullptr);
+        ASSERT_NE(b, nullptr);
+        EXPECT_EQ(a->width, b->width);
+        EXPECT_EQ(a->height, b->height);
+        EXPECT_EQ(a->channels, b->channels);
+        EXPECT_EQ(a->bitsPerChannel, b->bitsPerChannel);
+        EXPECT_EQ(a->isFloat, b->isFloat);
+        EXPECT_EQ(a->colorTag, b->colorTag);
+        EXPECT_EQ(a->hasWrapMetadata, b->hasWrapMetadata);
+        EXPECT_EQ(a->metadataWrapS, b->metadataWrapS);
+        EXPECT_EQ(a->metadataWrapT, b->metadataWrapT);
+        ASSERT_NE(a->resident.load(), nullptr);
+        ASSERT_NE(b->resident.load(), nullptr);
+        int differ = 0;
+        for (int y = 0; y < a->height; ++y)
+            for (int x = 0; x < a->width; ++x) {
+                glm::vec2 st((x + 0.5f) / a->width, 1.0f - (y + 0.5f) / a->height);
+                differ += native.sample(*a, Wrap::Black, Wrap::Black, st) !=
+                          oiio.sample(*b, Wrap::Black, Wrap::Black, st);
+            }
+        EXPECT_EQ(differ, 0);
+    }
+}
+
+// PNG textures never load the OpenImageIO backend for open() and point lookups (what a render
+// asks). ctest runs every test in its own process; in a process where an earlier test loaded
+// the backend, this one is skipped.
+TEST(TextureCacheNativePng, PointLookupsDoNotLoadTheBackend) {
+    if (principled::imageio::loadedBackend())
+        GTEST_SKIP() << "the backend was loaded by an earlier test in this process";
+    TempDir dir;
+    std::string png = dir.file("only.png");
+    ASSERT_TRUE(writeImage(png, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT8));
+    TextureCache cache;
+    TextureOpenResult r = cache.open(png);
+    ASSERT_NE(r.texture, nullptr) << r.error;
+    for (int row = 0; row < kSize; ++row)
+        for (int x = 0; x < kSize; ++x) {
+            glm::vec4 want = code(x, row);
+            want.w = 1.0f;
+            expectNear(cache.sample(*r.texture, Wrap::Repeat, Wrap::Repeat, centre(x, row)), want);
+        }
+    EXPECT_EQ(principled::imageio::loadedBackend(), nullptr);
+    // A filtered lookup does need OpenImageIO's texture system, and loads it then.
+    (void)cache.sample(*r.texture, Wrap::Repeat, Wrap::Repeat, {0.5f, 0.5f},
+                       glm::vec4(0.25f, 0.0f, 0.0f, 0.25f));
+    EXPECT_NE(principled::imageio::loadedBackend(), nullptr);
 }

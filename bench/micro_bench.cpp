@@ -11,7 +11,9 @@
 //   Subdivision      refined Mtris/s (SubdivTopology::refine, re-pose) per level.
 //   USDA parse       MB/s of Stage::openString on a generated mesh scene; baseline: strtof over
 //                    the same numbers (the floor for any text parser).
-//   Texture lookup   M lookups/s through TextureCache (OIIO, bilinear, point footprint) against a
+//   Texture lookup   M lookups/s through TextureCache at a point footprint (bilinear on the
+//                    finest level): resident pixels (BM_TextureLookup) and OpenImageIO's texture
+//                    system (BM_TextureLookup_oiioTextureSystem, resident budget 0), against a
 //                    hand-written bilinear fetch from a float array in memory.
 // BSDF eval/sample: bench/bsdf_bench.cpp (target bsdf_bench), not duplicated here.
 #include <benchmark/benchmark.h>
@@ -370,8 +372,7 @@ std::vector<glm::vec2> randomSt(size_t n) {
 }
 
 constexpr size_t kLookups = 1 << 16;
-void BM_TextureLookup(benchmark::State& state) {
-    static shading::TextureCache cache;
+void textureLookups(benchmark::State& state, shading::TextureCache& cache) {
     auto r = cache.open(texturePath());
     if (!r.texture) {
         state.SkipWithError(r.error.c_str());
@@ -385,6 +386,18 @@ void BM_TextureLookup(benchmark::State& state) {
     benchmark::DoNotOptimize(acc);
     state.counters["Mlookups/s"] = benchmark::Counter(double(st.size()) * state.iterations() * 1e-6,
                                                       benchmark::Counter::kIsRate);
+}
+void BM_TextureLookup(benchmark::State& state) {
+    static shading::TextureCache cache;  // the file fits the resident budget
+    textureLookups(state, cache);
+}
+void BM_TextureLookup_oiioTextureSystem(benchmark::State& state) {
+    static shading::TextureCache cache([] {
+        shading::TextureCache::Options o;
+        o.maxResidentMB = 0.0;  // every lookup through OpenImageIO's texture system
+        return o;
+    }());
+    textureLookups(state, cache);
 }
 void BM_TextureLookup_baselineBilinear(benchmark::State& state) {
     const std::vector<float>& t = texels();
@@ -409,6 +422,7 @@ void BM_TextureLookup_baselineBilinear(benchmark::State& state) {
 }
 BENCHMARK(BM_TextureLookup_baselineBilinear)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TextureLookup)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TextureLookup_oiioTextureSystem)->Unit(benchmark::kMicrosecond);
 
 // Mesh light sampling (delegate/lightSampling.cpp): scenes/cornell.usda's light, a 0.5 x 0.5
 // quad of two triangles at y = 1.999, sampled from points spread through the box [-1, 1] x

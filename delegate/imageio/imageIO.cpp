@@ -2,6 +2,8 @@
 // Finds and loads libprincipled_oiio.so on first use (see imageIO.h for the search order).
 #include "delegate/imageio/imageIO.h"
 
+#include "delegate/imageio/pngReader.h"
+
 #include <dlfcn.h>
 
 #include <atomic>
@@ -135,6 +137,16 @@ std::string backendPath() {
     State& s = state();
     std::lock_guard lock(s.mutex);
     return s.path;
+}
+
+std::unique_ptr<ImageReader> openTexture(const std::string& path, std::string* error,
+                                         bool nativePng) {
+    if (nativePng) {
+        std::string ignored;  // not a PNG, or libpng refuses it: OpenImageIO decides
+        if (auto reader = openPng(path, &ignored)) return reader;
+    }
+    Backend* b = backend(error);
+    return b ? b->openTexture(path, error) : nullptr;
 }
 
 }  // namespace principled::imageio

@@ -25,7 +25,7 @@
 namespace principled::imageio {
 
 /// Bumped whenever the classes below change layout or meaning.
-constexpr int kAbiVersion = 1;
+constexpr int kAbiVersion = 2;
 
 enum class PixelType : int { UInt8, UInt16, UInt32, Half, Float, Other };
 
@@ -88,6 +88,10 @@ class Backend {
   public:
     /// Opens a file for reading; null with *error naming the reason.
     virtual std::unique_ptr<ImageReader> open(const std::string& path, std::string* error) = 0;
+    /// open() as the texture system reads a file: colours with alpha are left unassociated
+    /// (straight, as UsdPreviewSurface expects), where open() premultiplies PNG/TIFF colours.
+    virtual std::unique_ptr<ImageReader> openTexture(const std::string& path,
+                                                     std::string* error) = 0;
     /// Writes `pixels` (spec.channels values of spec.format per pixel, top row first) to path
     /// in the format that `formatFrom`'s extension names (the path itself when empty, so a
     /// temporary file can be written under another name). False with *error (no path).
@@ -109,6 +113,12 @@ Backend* loadedBackend();
 
 /// The path the backend was loaded from (empty before).
 std::string backendPath();
+
+/// Opens a texture file as the backend's openTexture() does (straight alpha). PNG files are
+/// decoded natively with libpng when `nativePng` (pngReader.h), without loading the backend;
+/// anything else, and any PNG libpng cannot read, goes to the backend. Null with *error.
+std::unique_ptr<ImageReader> openTexture(const std::string& path, std::string* error,
+                                         bool nativePng = true);
 
 }  // namespace principled::imageio
 

@@ -81,7 +81,9 @@ std::string trimmed(std::string e) {
 class OiioReader final : public ImageReader {
   public:
     explicit OiioReader(std::unique_ptr<OIIO::ImageInput> in)
-        : _in(std::move(in)), _spec(fromOiio(_in->spec())) {}
+        : _in(std::move(in)), _spec(fromOiio(_in->spec())) {
+        _spec.fileFormat = _in->format_name();
+    }
     const ImageSpec& spec() const override { return _spec; }
     bool read(PixelType as, int channels, void* pixels) override {
         return _in->read_image(0, 0, 0, std::clamp(channels, 1, _spec.channels), toOiio(as),
@@ -177,6 +179,19 @@ class OiioBackend final : public Backend {
 
     std::unique_ptr<ImageReader> open(const std::string& path, std::string* error) override {
         auto in = OIIO::ImageInput::open(path);
+        if (!in) {
+            *error = trimmed(OIIO::geterror());
+            return nullptr;
+        }
+        return std::make_unique<OiioReader>(std::move(in));
+    }
+
+    std::unique_ptr<ImageReader> openTexture(const std::string& path,
+                                             std::string* error) override {
+        // The texture system's "unassociatedalpha" (OiioTextureSystem) for a single file.
+        OIIO::ImageSpec config;
+        config.attribute("oiio:UnassociatedAlpha", 1);
+        auto in = OIIO::ImageInput::open(path, &config);
         if (!in) {
             *error = trimmed(OIIO::geterror());
             return nullptr;

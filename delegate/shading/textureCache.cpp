@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 namespace principled::shading {
@@ -92,7 +93,7 @@ TextureCache::TextureCache() : TextureCache(Options()) {}
 // The texture system is OpenImageIO's, one per process, created by the image I/O backend on
 // first use and never destroyed (see delegate/imageio/oiioBackend.cpp). The backend is loaded
 // by the first open(), so a scene without textures never loads it.
-TextureCache::TextureCache(const Options& options) {
+TextureCache::TextureCache(const Options& options) : _options(options) {
     std::lock_guard lock(gOptionsMutex);
     gOptions = options;
     if (imageio::Backend* io = imageio::loadedBackend())
@@ -102,7 +103,7 @@ TextureCache::TextureCache(const Options& options) {
 TextureCache::~TextureCache() = default;  // the process-wide system stays alive
 
 bool TextureCache::ensureSystem(std::string* error) {
-    if (_system) return true;
+    if (_system.load(std::memory_order_acquire)) return true;
     imageio::Backend* io = imageio::backend(error);
     if (!io) return false;
     imageio::TextureSystem& system = io->textureSystem();
@@ -110,7 +111,7 @@ bool TextureCache::ensureSystem(std::string* error) {
         std::lock_guard lock(gOptionsMutex);
         system.configure(gOptions.maxMemoryMB, gOptions.maxOpenFiles, gOptions.autoMip);
     }
-    _system = &system;
+    _system.store(&system, std::memory_order_release);
     return true;
 }
 
@@ -154,11 +155,17 @@ TextureOpenResult TextureCache::openUdim(const std::string& pattern) {
         result.firstReport = _reported.insert(pattern).second;
         return result;
     }
-    std::vector<const Texture*> tiles = std::move(set->udimTiles);
-    *set = *first;
+    // The set is described by its first tile; it has no pixels or handle of its own.
     set->path = pattern;
-    set->handle = nullptr;
-    set->udimTiles = std::move(tiles);
+    set->width = first->width;
+    set->height = first->height;
+    set->channels = first->channels;
+    set->bitsPerChannel = first->bitsPerChannel;
+    set->isFloat = first->isFloat;
+    set->colorTag = first->colorTag;
+    set->hasWrapMetadata = first->hasWrapMetadata;
+    set->metadataWrapS = first->metadataWrapS;
+    set->metadataWrapT = first->metadataWrapT;
     result.texture = set.get();
     result.firstReport = !result.error.empty();
     _textures.emplace(pattern, std::move(set));
@@ -168,6 +175,7 @@ TextureOpenResult TextureCache::openUdim(const std::string& pattern) {
 TextureOpenResult TextureCache::openFile(const std::string& path) {
     TextureOpenResult result;
     if (auto it = _textures.find(path); it != _textures.end()) {
+        if (it->second->rereadPending.load(std::memory_order_relaxed)) reread(*it->second);
         result.texture = it->second.get();
         return result;
     }
@@ -185,11 +193,15 @@ TextureOpenResult TextureCache::openFile(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return fail("file not found");
 
+    // The file is opened as the texture system would open it (straight alpha; PNG decoded
+    // natively to the same pixels and metadata, without loading the backend) and its finest
+    // level read into memory; the texture system is used only when a lookup needs it
+    // (handleFor).
     std::string e;
-    if (!ensureSystem(&e)) return fail(e);
-    imageio::ImageSpec spec;
-    void* handle = ts(_system)->open(path, &spec, &e);
-    if (!handle) return fail(e.empty() ? std::string("cannot be read") : e);
+    std::unique_ptr<imageio::ImageReader> reader =
+        imageio::openTexture(path, &e, _options.nativePng);
+    if (!reader) return fail(e.empty() ? std::string("cannot be read") : e);
+    const imageio::ImageSpec& spec = reader->spec();
     if (spec.channels < 1 || spec.width < 1 || spec.height < 1)
         return fail("image has no pixels or no channels");
 
@@ -199,7 +211,8 @@ TextureOpenResult TextureCache::openFile(const std::string& path) {
     tex->height = spec.height;
     tex->channels = spec.channels;
     tex->bitsPerChannel = spec.bitsPerChannel;
-    tex->isFloat = spec.format == imageio::PixelType::Float || spec.format == imageio::PixelType::Half;
+    tex->isFloat =
+        spec.format == imageio::PixelType::Float || spec.format == imageio::PixelType::Half;
     tex->colorTag = colorTag(spec, spec.fileFormat);
     std::string wrap = spec.string("wrapmodes");
     if (!wrap.empty()) {
@@ -210,7 +223,9 @@ TextureOpenResult TextureCache::openFile(const std::string& path) {
             fromOiioName(s, &tex->metadataWrapS) && fromOiioName(t, &tex->metadataWrapT);
         if (!tex->hasWrapMetadata) tex->metadataWrapS = tex->metadataWrapT = Wrap::Black;
     }
-    tex->handle = handle;
+    std::string note = makeResident(*tex, *reader);
+    if (!note.empty())
+        std::fprintf(stderr, "principled: texture '%s': %s\n", path.c_str(), note.c_str());
     const Texture* out = tex.get();
     _textures.emplace(path, std::move(tex));
     result.texture = out;
@@ -242,10 +257,19 @@ bool TextureCache::lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, fl
     t = 1.0f - t;
     int n = std::min(texture.channels, 4);
     float px[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    // False when the file went bad after open(): no data, never a crash.
-    if (!ts(_system)->lookup(texture.handle, toBackend(wrapS), toBackend(wrapT), s, t, d.x, -d.y,
-                             d.z, -d.w, n, px))
-        return false;
+    const bool point = d.x == 0.0f && d.y == 0.0f && d.z == 0.0f && d.w == 0.0f;
+    if (const ResidentImage* image = point ? residentFor(texture) : nullptr) {
+        // The same bilinear on the finest level that OpenImageIO gives a zero footprint.
+        image->lookup(wrapS, wrapT, s, t, px);
+        n = image->channels();
+    } else {
+        void* handle = handleFor(texture);
+        // False when the file went bad after open(): no data, never a crash.
+        if (!handle || !ts(_system.load(std::memory_order_acquire))
+                            ->lookup(handle, toBackend(wrapS), toBackend(wrapT), s, t, d.x, -d.y,
+                                     d.z, -d.w, n, px))
+            return false;
+    }
     switch (n) {
         case 1:
             *rgba = {px[0], px[0], px[0], 1.0f};
@@ -263,17 +287,99 @@ bool TextureCache::lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, fl
     return true;
 }
 
+std::string TextureCache::makeResident(Texture& texture, imageio::ImageReader& reader) {
+    const size_t bytes = ResidentImage::bytesFor(reader.spec());
+    const double budget = std::max(0.0, _options.maxResidentMB) * 1048576.0;
+    const size_t used = _residentBytes.load(std::memory_order_relaxed);
+    if (double(used) + double(bytes) > budget) {
+        if (budget == 0.0) return {};  // resident pixels switched off: nothing to note
+        char note[160];
+        std::snprintf(note, sizeof note,
+                      "%.1f MB would exceed the resident budget (%.1f of %.1f MB used); read "
+                      "through OpenImageIO's tile cache",
+                      double(bytes) / 1048576.0, double(used) / 1048576.0, budget / 1048576.0);
+        return note;
+    }
+    std::string e;
+    std::unique_ptr<ResidentImage> image = ResidentImage::read(reader, &e);
+    if (!image) return "pixels not held in memory (" + e + "); read through OpenImageIO";
+    _residentBytes.fetch_add(image->bytes(), std::memory_order_relaxed);
+    texture.residentPixels = std::move(image);
+    texture.resident.store(texture.residentPixels.get(), std::memory_order_release);
+    return {};
+}
+
+void TextureCache::dropResident(Texture& texture) {
+    texture.resident.store(nullptr, std::memory_order_release);
+    if (texture.residentPixels) {
+        _residentBytes.fetch_sub(texture.residentPixels->bytes(), std::memory_order_relaxed);
+        texture.residentPixels.reset();
+    }
+}
+
+void TextureCache::reread(Texture& texture) {
+    if (!texture.rereadPending.load(std::memory_order_relaxed)) return;  // another thread did
+    dropResident(texture);
+    std::string e;
+    std::unique_ptr<imageio::ImageReader> reader =
+        imageio::openTexture(texture.path, &e, _options.nativePng);
+    // A file that is gone or unreadable now stays non-resident: the texture system reports it
+    // as it did before resident pixels (its lookups fail and the material uses its fallback).
+    if (reader) {
+        std::string note = makeResident(texture, *reader);
+        if (!note.empty())
+            std::fprintf(stderr, "principled: texture '%s': %s\n", texture.path.c_str(),
+                         note.c_str());
+    }
+    texture.rereadPending.store(false, std::memory_order_release);
+}
+
+const ResidentImage* TextureCache::residentFor(const Texture& texture) const {
+    const ResidentImage* image = texture.resident.load(std::memory_order_acquire);
+    if (image || !texture.rereadPending.load(std::memory_order_acquire)) return image;
+    std::lock_guard lock(_mutex);
+    // The cache owns every Texture it hands out; only its lazily filled parts change here.
+    const_cast<TextureCache*>(this)->reread(const_cast<Texture&>(texture));
+    return texture.resident.load(std::memory_order_acquire);
+}
+
+void* TextureCache::handleFor(const Texture& texture) const {
+    if (void* h = texture.handle.load(std::memory_order_acquire)) return h;
+    if (texture.handleFailed.load(std::memory_order_acquire) || !texture.udimTiles.empty())
+        return nullptr;
+    std::lock_guard lock(_mutex);
+    if (void* h = texture.handle.load(std::memory_order_acquire)) return h;
+    if (texture.handleFailed.load(std::memory_order_relaxed)) return nullptr;
+    auto* self = const_cast<TextureCache*>(this);  // lazily filled state, under the lock
+    auto& tex = const_cast<Texture&>(texture);
+    std::string e;
+    imageio::ImageSpec spec;
+    void* h = self->ensureSystem(&e) ? ts(_system.load())->open(texture.path, &spec, &e) : nullptr;
+    if (!h) {
+        tex.handleFailed.store(true, std::memory_order_release);
+        return nullptr;
+    }
+    tex.handle.store(h, std::memory_order_release);
+    return h;
+}
+
 void TextureCache::invalidate() {
     std::lock_guard<std::mutex> lock(_mutex);
     _failures.clear();
     _reported.clear();
+    for (auto& [path, texture] : _textures) {
+        if (!texture->udimTiles.empty()) continue;
+        dropResident(*texture);
+        texture->rereadPending.store(true, std::memory_order_release);
+        texture->handleFailed.store(false, std::memory_order_release);
+    }
     // Process-wide, like the texture system; nothing to drop before the backend is loaded.
     if (imageio::Backend* io = imageio::loadedBackend()) io->textureSystem().invalidateAll();
 }
 
 size_t TextureCache::memoryUsed() const {
     imageio::Backend* io = imageio::loadedBackend();
-    return io ? io->textureSystem().memoryUsed() : 0;
+    return residentBytes() + (io ? io->textureSystem().memoryUsed() : 0);
 }
 
 }  // namespace principled::shading

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// TextureCache: texture files resolved once to OpenImageIO texture handles, looked up with
-// mip-mapped, filtered reads through one TextureSystem that has a memory limit. OpenImageIO is
-// reached through the image I/O backend (delegate/imageio/imageIO.h), loaded by the first open().
+// TextureCache: texture files resolved once. Point lookups (the renderer's: a hit has no
+// derivatives) read the finest level held in memory (ResidentImage) with OpenImageIO's bilinear
+// conventions; filtered lookups, and files beyond the resident budget, go through OpenImageIO's
+// mip-mapped TextureSystem, which has its own memory limit. OpenImageIO is reached through the
+// image I/O backend (delegate/imageio/imageIO.h), loaded by the first open().
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <map>
@@ -13,17 +16,16 @@
 #include <string>
 #include <vector>
 
-namespace principled::shading {
+#include "delegate/shading/residentImage.h"
+#include "delegate/shading/textureWrap.h"
 
-/// How lookups outside [0,1] behave (UsdUVTexture wrapS/wrapT, without useMetadata, which is
-/// resolved against the file when a program is compiled).
-enum class Wrap : uint8_t { Black, Clamp, Repeat, Mirror };
+namespace principled::shading {
 
 /// What a file's metadata states about its encoding (see TextureCache::open for the rules).
 enum class ColorTag : uint8_t { Unknown, Srgb, Linear };
 
 /// A texture file as the cache opened it. Owned by the cache; stays valid until the cache is
-/// destroyed (invalidation re-reads pixels but keeps the object).
+/// destroyed (invalidation re-reads pixels but keeps the object, and its description).
 struct Texture {
     std::string path;
     int width = 0;
@@ -35,10 +37,20 @@ struct Texture {
     bool hasWrapMetadata = false;           ///< the file carries "wrapmodes"
     Wrap metadataWrapS = Wrap::Black;
     Wrap metadataWrapT = Wrap::Black;
-    void* handle = nullptr;  ///< the backend's texture handle (null for a UDIM set)
     /// A `<UDIM>` set: tile 1001 + u + 10 v at index u + 10 v (null where the set has no
     /// file); the fields above describe the first tile found. Empty for a plain file.
     std::vector<const Texture*> udimTiles;
+
+    /// The finest level in memory, serving point lookups; null when the file is served by the
+    /// texture system (over the resident budget, unreadable pixels, a UDIM set) or after
+    /// invalidate() until re-read. The pixels are owned by `residentPixels` (changed only under
+    /// the cache's lock).
+    std::atomic<const ResidentImage*> resident{nullptr};
+    std::unique_ptr<ResidentImage> residentPixels;
+    std::atomic<bool> rereadPending{false};  ///< invalidated: re-read on next open or lookup
+    /// The backend's texture handle, opened by the first lookup that needs the texture system.
+    std::atomic<void*> handle{nullptr};
+    std::atomic<bool> handleFailed{false};  ///< the texture system could not open the file
 };
 
 /// The result of opening a file.
@@ -52,14 +64,23 @@ struct TextureOpenResult {
 
 /// Shared texture store for all materials of a render delegate.
 ///
-/// Thread safety: open() and invalidate() lock; sample() is lock-free in this class and may be
-/// called from any number of render threads (OpenImageIO keeps per-thread state itself).
+/// Thread safety: open() locks; sample() is lock-free in this class and may be called from any
+/// number of render threads (OpenImageIO keeps per-thread state itself), except the first lookup
+/// of a texture that needs the texture system (it opens the handle) or follows invalidate()
+/// (it re-reads the file), which take the lock once. invalidate() frees resident pixels: it
+/// must not run while lookups are in flight (call it between renders).
 class TextureCache {
   public:
     struct Options {
         float maxMemoryMB = 1024.0f;  ///< tile memory held by OpenImageIO's cache
         int maxOpenFiles = 100;
         bool autoMip = true;  ///< build mip levels for files that have none (PNG, JPEG)
+        /// Budget for the finest levels held in memory (all files of this cache together); a
+        /// file that would exceed it is read through OpenImageIO's tile cache instead.
+        double maxResidentMB = 4096.0;
+        /// Decode PNG files with libpng (no OpenImageIO backend needed for them); false reads
+        /// every file through the backend.
+        bool nativePng = true;
     };
 
     TextureCache();
@@ -68,7 +89,8 @@ class TextureCache {
     TextureCache(const TextureCache&) = delete;
     TextureCache& operator=(const TextureCache&) = delete;
 
-    /// Resolves a file to a handle (once per path; later calls return the same Texture). A
+    /// Resolves a file (once per path; later calls return the same Texture) and reads its finest
+    /// level into memory within Options::maxResidentMB (else it is left to the texture system). A
     /// missing or unreadable file gives texture == nullptr and an error naming the path and
     /// the reason; firstReport is true only on the first such result, so callers log it once.
     ///
@@ -99,23 +121,38 @@ class TextureCache {
         return rgba;
     }
 
-    /// Forgets failures and drops cached pixels so files edited on disk are read again.
+    /// Forgets failures and drops cached pixels (resident ones and OpenImageIO's tiles) so
+    /// files edited on disk are read again by the next open() or lookup.
     void invalidate();
 
-    /// Bytes of tile memory currently held (for diagnostics).
+    /// Bytes of texture memory currently held: resident pixels plus OpenImageIO's tiles.
     size_t memoryUsed() const;
+    /// Bytes of resident pixels alone (within Options::maxResidentMB).
+    size_t residentBytes() const { return _residentBytes.load(std::memory_order_relaxed); }
 
   private:
     TextureOpenResult openFile(const std::string& path);     ///< _mutex held
     TextureOpenResult openUdim(const std::string& pattern);  ///< _mutex held
     bool lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, float s, float t,
                     const glm::vec4& footprint, glm::vec4* rgba) const;
+    /// Reads the file's pixels into memory if the budget allows (_mutex held). Returns a note
+    /// for the log when it does not, else empty.
+    std::string makeResident(Texture& texture, imageio::ImageReader& reader);
+    /// The resident pixels for a point lookup, re-reading them after invalidate() (locks once).
+    const ResidentImage* residentFor(const Texture& texture) const;
+    void reread(Texture& texture);        ///< after invalidate() (_mutex held)
+    void dropResident(Texture& texture);  ///< _mutex held
+    /// The texture-system handle, opened on first use (locks once); null if it cannot be.
+    void* handleFor(const Texture& texture) const;
 
     /// Loads the image I/O backend and takes its texture system (_mutex held). False with
     /// *error when the backend cannot be loaded.
     bool ensureSystem(std::string* error);
 
-    void* _system = nullptr;  ///< imageio::TextureSystem*, set by the first open()
+    Options _options;
+    /// imageio::TextureSystem*, set by the first lookup that needs it (before any handle).
+    std::atomic<void*> _system{nullptr};
+    std::atomic<size_t> _residentBytes{0};
     mutable std::mutex _mutex;
     std::map<std::string, std::unique_ptr<Texture>> _textures;
     std::map<std::string, std::string> _failures;  ///< path -> error

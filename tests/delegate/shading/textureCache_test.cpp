@@ -1,10 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/shading/textureCache.h"
 
+#include "delegate/imageio/imageIO.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <random>
 #include <thread>
 
 #include "testImages.h"
@@ -287,6 +292,7 @@ TEST(TextureCacheMemory, TileMemoryStaysNearTheLimit) {
     }
     TextureCache::Options options;
     options.maxMemoryMB = 16.0f;
+    options.maxResidentMB = 0.0;  // OpenImageIO's tile cache is what this test measures
     TextureCache cache(options);
     const Texture* t = cache.open(exr).texture;
     ASSERT_NE(t, nullptr);
@@ -316,4 +322,316 @@ TEST_F(TextureCacheTest, ConcurrentOpensShareOneHandle) {
     for (auto& t : threads) t.join();
     for (const Texture* t : got) EXPECT_EQ(t, got[0]);
     EXPECT_EQ(reports.load(), 1);  // the missing file is reported by exactly one caller
+}
+
+// ---------------------------------------------------------------------------------------------
+// Resident pixels (point lookups served from memory) against OpenImageIO's texture system.
+
+namespace {
+
+struct FileKind {
+    const char* ext;
+    OIIO::TypeDesc type;
+    int bits;
+};
+
+// Random pixel values in [0,1] (row 0 = the top row); the writer quantises them to its type.
+std::vector<float> randomPixels(int w, int h, int channels, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<float> px(size_t(w) * h * channels);
+    for (float& v : px) v = u(rng);
+    return px;
+}
+
+// USD st to compare at: random ones inside and well outside [0,1], and every texel centre and
+// texel edge from two images before to two images after the texture on both axes.
+std::vector<glm::vec2> probeSt(int w, int h, int randomCount) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-2.5f, 3.5f);
+    std::vector<glm::vec2> st;
+    for (int i = 0; i < randomCount; ++i) st.push_back({u(rng), u(rng)});
+    for (int i = -2 * w; i <= 3 * w; ++i)
+        for (int j = -2 * h; j <= 3 * h; ++j) {
+            st.push_back({(i + 0.5f) / w, 1.0f - (j + 0.5f) / h});  // centre
+            st.push_back({float(i) / w, 1.0f - float(j) / h});      // corner between texels
+            st.push_back({float(i) / w, 1.0f - (j + 0.5f) / h});    // edge
+        }
+    return st;
+}
+
+const char* wrapName(Wrap w) {
+    switch (w) {
+        case Wrap::Black:
+            return "black";
+        case Wrap::Clamp:
+            return "clamp";
+        case Wrap::Repeat:
+            return "repeat";
+        case Wrap::Mirror:
+            return "mirror";
+    }
+    return "?";
+}
+
+constexpr Wrap kWraps[] = {Wrap::Black, Wrap::Clamp, Wrap::Repeat, Wrap::Mirror};
+
+}  // namespace
+
+// The resident bilinear equals OpenImageIO's texture-system lookup at a zero footprint (the
+// same cache API with a resident budget of 0) for every wrap pair, 1-4 channels, 8-bit and
+// 16-bit PNG, 8-bit TIFF, half and float EXR, and odd, one-texel and one-row sizes.
+TEST(TextureCacheResident, PointLookupsEqualTheTextureSystem) {
+    TempDir dir;
+    TextureCache resident;  // the default budget holds every file below in memory
+    TextureCache::Options viaOiio;
+    viaOiio.maxResidentMB = 0.0;
+    TextureCache oiio(viaOiio);
+    const FileKind kinds[] = {{"png", OIIO::TypeDesc::UINT8, 8},
+                              {"png", OIIO::TypeDesc::UINT16, 16},
+                              {"tif", OIIO::TypeDesc::UINT8, 8},
+                              {"exr", OIIO::TypeDesc::HALF, 16},
+                              {"exr", OIIO::TypeDesc::FLOAT, 32}};
+    const glm::ivec2 sizes[] = {{7, 5}, {1, 1}, {4, 1}, {16, 16}};
+    int files = 0;
+    size_t lookups = 0;
+    for (const FileKind& kind : kinds)
+        for (int n = 1; n <= 4; ++n)
+            for (glm::ivec2 size : sizes) {
+                std::string name = std::to_string(kind.bits) + "_" + std::to_string(n) + "_" +
+                                   std::to_string(size.x) + "x" + std::to_string(size.y) + "." +
+                                   kind.ext;
+                std::string path = dir.file(name);
+                ASSERT_TRUE(writeImage(path, size.x, size.y, n,
+                                       randomPixels(size.x, size.y, n, 100 + files++), kind.type))
+                    << name;
+                TextureOpenResult a = resident.open(path), b = oiio.open(path);
+                ASSERT_NE(a.texture, nullptr) << name << ": " << a.error;
+                ASSERT_NE(b.texture, nullptr) << name << ": " << b.error;
+                ASSERT_NE(a.texture->resident.load(), nullptr) << name;
+                ASSERT_EQ(b.texture->resident.load(), nullptr) << name;
+                EXPECT_EQ(a.texture->channels, n) << name;
+                EXPECT_EQ(a.texture->bitsPerChannel, kind.bits) << name;
+                const std::vector<glm::vec2> st = probeSt(size.x, size.y, 600);
+                for (Wrap ws : kWraps)
+                    for (Wrap wt : kWraps) {
+                        float worst = 0.0f;
+                        glm::vec2 worstSt(0.0f);
+                        glm::vec4 worstA(0.0f), worstB(0.0f);
+                        for (glm::vec2 p : st) {
+                            glm::vec4 va(-1.0f), vb(-2.0f);
+                            ASSERT_TRUE(resident.lookup(*a.texture, ws, wt, p, glm::vec4(0), &va));
+                            ASSERT_TRUE(oiio.lookup(*b.texture, ws, wt, p, glm::vec4(0), &vb));
+                            ++lookups;
+                            for (int c = 0; c < 4; ++c)
+                                if (std::abs(va[c] - vb[c]) > worst) {
+                                    worst = std::abs(va[c] - vb[c]);
+                                    worstSt = p;
+                                    worstA = va;
+                                    worstB = vb;
+                                }
+                        }
+                        EXPECT_LE(worst, 1e-5f)
+                            << name << " wrap " << wrapName(ws) << "," << wrapName(wt) << " at st ("
+                            << worstSt.x << ", " << worstSt.y << "): resident (" << worstA.x
+                            << ", " << worstA.y << ", " << worstA.z << ", " << worstA.w
+                            << ") vs OpenImageIO (" << worstB.x << ", " << worstB.y << ", "
+                            << worstB.z << ", " << worstB.w << ")";
+                    }
+                // A non-zero footprint still goes to the texture system, in both caches.
+                glm::vec4 d(0.3f / size.x, 0.0f, 0.0f, 0.3f / size.y);
+                expectNear(resident.sample(*a.texture, Wrap::Repeat, Wrap::Clamp, {0.3f, 0.6f}, d),
+                           oiio.sample(*b.texture, Wrap::Repeat, Wrap::Clamp, {0.3f, 0.6f}, d),
+                           0.0f);
+            }
+    EXPECT_GT(lookups, 100000u);
+    EXPECT_GT(resident.residentBytes(), 0u);
+    EXPECT_EQ(oiio.residentBytes(), 0u);
+}
+
+TEST(TextureCacheResident, FilesBeyondTheBudgetUseTheTextureSystem) {
+    TempDir dir;
+    // Two 16x16 RGBA float files of 4096 bytes each; the budget holds one.
+    constexpr int n = 16;
+    std::string first = dir.file("first.exr"), second = dir.file("second.exr");
+    std::vector<float> px1 = randomPixels(n, n, 4, 1), px2 = randomPixels(n, n, 4, 2);
+    ASSERT_TRUE(writeImage(first, n, n, 4, px1, OIIO::TypeDesc::FLOAT));
+    ASSERT_TRUE(writeImage(second, n, n, 4, px2, OIIO::TypeDesc::FLOAT));
+    TextureCache::Options options;
+    options.maxResidentMB = 6000.0 / 1048576.0;
+    TextureCache cache(options);
+    const Texture* a = cache.open(first).texture;
+    const Texture* b = cache.open(second).texture;
+    ASSERT_NE(a, nullptr);
+    ASSERT_NE(b, nullptr);
+    EXPECT_NE(a->resident.load(), nullptr);
+    EXPECT_EQ(b->resident.load(), nullptr);
+    EXPECT_EQ(cache.residentBytes(), size_t(n) * n * 4 * sizeof(float));
+    EXPECT_GE(cache.memoryUsed(), cache.residentBytes());
+    // Both answer with the file's texels.
+    for (int y = 0; y < n; y += 5)
+        for (int x = 0; x < n; x += 3) {
+            glm::vec2 st((x + 0.5f) / n, 1.0f - (y + 0.5f) / n);
+            const float* p1 = &px1[(size_t(y) * n + x) * 4];
+            const float* p2 = &px2[(size_t(y) * n + x) * 4];
+            expectNear(cache.sample(*a, Wrap::Black, Wrap::Black, st),
+                       glm::vec4(p1[0], p1[1], p1[2], p1[3]));
+            expectNear(cache.sample(*b, Wrap::Black, Wrap::Black, st),
+                       glm::vec4(p2[0], p2[1], p2[2], p2[3]));
+        }
+}
+
+TEST(TextureCacheResident, InvalidateRereadsEditedFiles) {
+    TempDir dir;
+    TextureCache cache;
+    std::string path = dir.file("edited.exr");
+    auto fill = [&](int size, float v) {
+        return writeImage(path, size, size, 3, std::vector<float>(size_t(size) * size * 3, v),
+                          OIIO::TypeDesc::FLOAT);
+    };
+    ASSERT_TRUE(fill(8, 0.25f));
+    const Texture* t = cache.open(path).texture;
+    ASSERT_NE(t, nullptr);
+    ASSERT_NE(t->resident.load(), nullptr);
+    EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.25f, 1e-6f);
+    EXPECT_EQ(cache.residentBytes(), size_t(8) * 8 * 3 * 4);
+
+    // Edited on disk (another size too): invalidate() drops the pixels, the next lookup reads
+    // the new file.
+    ASSERT_TRUE(fill(4, 0.75f));
+    cache.invalidate();
+    EXPECT_EQ(t->resident.load(), nullptr);
+    EXPECT_EQ(cache.residentBytes(), 0u);
+    EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.75f, 1e-6f);
+    EXPECT_NE(t->resident.load(), nullptr);
+    EXPECT_EQ(cache.residentBytes(), size_t(4) * 4 * 3 * 4);
+
+    // ... or the next open(), which keeps the same Texture.
+    ASSERT_TRUE(fill(4, 0.5f));
+    cache.invalidate();
+    EXPECT_EQ(cache.open(path).texture, t);
+    EXPECT_NE(t->resident.load(), nullptr);
+    EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.5f, 1e-6f);
+
+    // Filtered lookups (texture system) see the edit as well.
+    ASSERT_TRUE(fill(4, 0.125f));
+    cache.invalidate();
+    EXPECT_NEAR(
+        cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}, glm::vec4(0.1f, 0, 0, 0.1f)).x,
+        0.125f, 1e-6f);
+    EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.125f, 1e-6f);
+}
+
+TEST(TextureCacheResident, ConcurrentLookupsAfterInvalidateRereadOnce) {
+    TempDir dir;
+    TextureCache cache;
+    std::string path = dir.file("threads.png");
+    ASSERT_TRUE(writeImage(path, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT8));
+    const Texture* t = cache.open(path).texture;
+    ASSERT_NE(t, nullptr);
+    cache.invalidate();
+    std::vector<std::thread> threads;
+    std::atomic<int> wrong{0};
+    for (int i = 0; i < 8; ++i)
+        threads.emplace_back([&, i] {
+            for (int k = 0; k < 1000; ++k) {
+                int x = (i + k) % kSize, row = k % kSize;
+                glm::vec4 got = cache.sample(*t, Wrap::Repeat, Wrap::Repeat, centre(x, row));
+                if (std::abs(got.x - code(x, row).x) > 1e-5f) ++wrong;
+            }
+        });
+    for (auto& th : threads) th.join();
+    EXPECT_EQ(wrong.load(), 0);
+    EXPECT_EQ(cache.residentBytes(), size_t(kSize) * kSize * 3);
+}
+
+// ---------------------------------------------------------------------------------------------
+// PNG textures decoded natively (libpng) against the same files read through OpenImageIO.
+
+namespace {
+
+std::vector<std::string> usdWgPngs() {
+    std::vector<std::string> out;
+    std::error_code ec;
+    namespace fs = std::filesystem;
+    for (auto it = fs::recursive_directory_iterator(PRINCIPLED_SOURCE_DIR "/../shared/usd-wg", ec);
+         it != fs::recursive_directory_iterator(); it.increment(ec))
+        if (it->path().extension() == ".png") out.push_back(it->path().string());
+    return out;
+}
+
+}  // namespace
+
+// Same description (channels, bits, colour tag, wrap metadata) and the same point lookups at
+// every texel centre, for the usd-wg PNGs and generated 8/16-bit ones with colour metadata.
+TEST(TextureCacheNativePng, SameTextureAsThroughOpenImageIO) {
+    TempDir dir;
+    std::vector<std::string> files = usdWgPngs();
+    ASSERT_GE(files.size(), 10u);
+    const std::vector<std::pair<std::string, std::string>> tagged[] = {
+        {}, {{"oiio:ColorSpace", "linear"}}, {{"wrapmodes", "periodic,clamp"}}};
+    int k = 0;
+    for (const auto& attributes : tagged)
+        for (auto type : {OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT16})
+            for (int n = 1; n <= 4; ++n) {
+                std::string path = dir.file("gen" + std::to_string(k++) + ".png");
+                ASSERT_TRUE(writeImage(path, 6, 5, n, randomPixels(6, 5, n, 40 + k), type,
+                                       attributes));
+                files.push_back(path);
+            }
+    TextureCache native;
+    TextureCache::Options viaOiio;
+    viaOiio.nativePng = false;
+    TextureCache oiio(viaOiio);
+    for (const std::string& path : files) {
+        SCOPED_TRACE(path);
+        const Texture* a = native.open(path).texture;
+        const Texture* b = oiio.open(path).texture;
+        ASSERT_NE(a, nullptr);
+        ASSERT_NE(b, nullptr);
+        EXPECT_EQ(a->width, b->width);
+        EXPECT_EQ(a->height, b->height);
+        EXPECT_EQ(a->channels, b->channels);
+        EXPECT_EQ(a->bitsPerChannel, b->bitsPerChannel);
+        EXPECT_EQ(a->isFloat, b->isFloat);
+        EXPECT_EQ(a->colorTag, b->colorTag);
+        EXPECT_EQ(a->hasWrapMetadata, b->hasWrapMetadata);
+        EXPECT_EQ(a->metadataWrapS, b->metadataWrapS);
+        EXPECT_EQ(a->metadataWrapT, b->metadataWrapT);
+        ASSERT_NE(a->resident.load(), nullptr);
+        ASSERT_NE(b->resident.load(), nullptr);
+        int differ = 0;
+        for (int y = 0; y < a->height; ++y)
+            for (int x = 0; x < a->width; ++x) {
+                glm::vec2 st((x + 0.5f) / a->width, 1.0f - (y + 0.5f) / a->height);
+                differ += native.sample(*a, Wrap::Black, Wrap::Black, st) !=
+                          oiio.sample(*b, Wrap::Black, Wrap::Black, st);
+            }
+        EXPECT_EQ(differ, 0);
+    }
+}
+
+// PNG textures never load the OpenImageIO backend for open() and point lookups (what a render
+// asks). ctest runs every test in its own process; in a process where an earlier test loaded
+// the backend, this one is skipped.
+TEST(TextureCacheNativePng, PointLookupsDoNotLoadTheBackend) {
+    if (principled::imageio::loadedBackend())
+        GTEST_SKIP() << "the backend was loaded by an earlier test in this process";
+    TempDir dir;
+    std::string png = dir.file("only.png");
+    ASSERT_TRUE(writeImage(png, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT8));
+    TextureCache cache;
+    TextureOpenResult r = cache.open(png);
+    ASSERT_NE(r.texture, nullptr) << r.error;
+    for (int row = 0; row < kSize; ++row)
+        for (int x = 0; x < kSize; ++x) {
+            glm::vec4 want = code(x, row);
+            want.w = 1.0f;
+            expectNear(cache.sample(*r.texture, Wrap::Repeat, Wrap::Repeat, centre(x, row)), want);
+        }
+    EXPECT_EQ(principled::imageio::loadedBackend(), nullptr);
+    // A filtered lookup does need OpenImageIO's texture system, and loads it then.
+    (void)cache.sample(*r.texture, Wrap::Repeat, Wrap::Repeat, {0.5f, 0.5f},
+                       glm::vec4(0.25f, 0.0f, 0.0f, 0.25f));
+    EXPECT_NE(principled::imageio::loadedBackend(), nullptr);
 }

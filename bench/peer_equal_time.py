@@ -278,6 +278,8 @@ def main():
             def marginal(points):
                 xs = np.array([q["spp"] for q in points], float)
                 slope = np.polyfit(xs, np.array([q.get("totalCpuSeconds", q["cpuSeconds"]) for q in points]), 1)[0]
+                if not slope > 0:
+                    raise SystemExit(f"{scene}: CPU time does not grow with spp (slope {slope}); re-run the ladder")
                 return [dict(q, cpuSeconds=float(slope * q["spp"])) for q in points], float(slope)
             cmarg, cslope = marginal(pts)
             sres["cyclesMarginalCpuSecondsPerSpp"] = cslope
@@ -293,6 +295,8 @@ def main():
                             if key not in m or any(key not in q for q in cyc_pts):
                                 continue
                             c = at_time(cyc_pts, key, m["cpuSeconds"], extrapolate=model == "equalMarginalCpuTime")
+                            ct = [q["cpuSeconds"] for q in cyc_pts]
+                            row["cyclesExtrapolated"] = not (min(ct) <= m["cpuSeconds"] <= max(ct))
                             row[key] = m[key]
                             row["cycles_" + key] = c
                             row["cyclesOverOurs_" + key] = (c / m[key]) if c and m[key] > 0 else None

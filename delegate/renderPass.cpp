@@ -34,13 +34,12 @@ constexpr int kMaxSamplesPerPass = 16;
 // z = 0 plane and passes through the pinhole ray's point on the focus plane z = -focusDistance.
 // Thin lens: Pharr, Jakob & Humphreys 2023, "Physically Based Rendering" 4th ed., §5.2.3.
 Ray cameraRay(const Camera& cam, const glm::vec4& window, int width, int height, float px,
-              float py, glm::vec2 lens = glm::vec2(0.0f)) {
+              float py, float lensRadius = 0.0f, glm::vec2 lens = glm::vec2(0.0f)) {
     float sx = window.x + (px / width) * (window.y - window.x);
     float sy = window.w - (py / height) * (window.w - window.z);
     const glm::dmat4& m = cam.transform();
     glm::dvec3 o, d;
     glm::dvec4 oCam(0.0, 0.0, 0.0, 1.0), dCam(sx, sy, -1.0, 0.0);
-    const float lensRadius = cam.lensRadius();
     if (cam.projection() == Camera::Projection::Orthographic) {
         oCam = glm::dvec4(sx, sy, 0.0, 1.0);
         dCam = glm::dvec4(0.0, 0.0, -1.0, 0.0);
@@ -248,7 +247,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     Integrator integrator(scene, settings);
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
     glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));
-    const bool thinLens = cam->lensRadius() > 0.0f;
+    const float lensRadius = cam->lensRadius();  // once per pass, not per ray
+    const bool thinLens = lensRadius > 0.0f;
     CameraFrame cf = cameraFrame(*cam);
     // The first pass is a single sample so a viewport shows an image at once; later passes
     // double up to kMaxSamplesPerPass.
@@ -270,7 +270,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         // The lens point takes a Sobol group of its own, only when there is a lens
                         // (pinhole images keep their sample dimensions).
                         glm::vec2 lens = thinLens ? bsdf::squareToConcentricDisk(sampler.next2D()) : glm::vec2(0.0f);
-                        Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y, lens);
+                        Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y, lensRadius, lens);
                         PathSample ps = integrator.trace(r, sampler);
                         tileRays += ps.rays;
                         ++tileSamples;

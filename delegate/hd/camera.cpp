@@ -48,7 +48,9 @@ float Camera::lensRadius() const {
     // _focalLength is the authored value / 10 (scene units on a centimetre stage, i.e. mm / 10);
     // in millimetres that is 10 _focalLength, in scene units 10 _focalLength * 1e-3 / metersPerUnit.
     float r = (_focalLength * 0.01f / _metersPerUnit) / (2.0f * _fStop);
-    return std::isfinite(r) && r > 0.0f ? r : 0.0f;
+    if (!(r > 0.0f)) return 0.0f;
+    // A near-zero fStop: keep the lens within 1000 focus distances (finite ray origins).
+    return std::min(r, 1000.0f * _focusDistance);
 }
 
 glm::vec4 Camera::screenWindow(double imageAspect) const {

@@ -163,12 +163,28 @@ class PngReader final : public ImageReader {
             return false;
         }
         _done = true;
+        if (as != PixelType::UInt8 && as != PixelType::UInt16 && as != PixelType::UInt32 &&
+            as != PixelType::Float) {
+            _error = "the PNG reader converts to 8/16/32-bit integers or float only";
+            return false;
+        }
         const size_t w = size_t(_spec.width), h = size_t(_spec.height);
         const int n = _spec.channels;
         const int bytes = _spec.bitsPerChannel / 8;
-        std::vector<unsigned char> buffer(w * h * size_t(n) * size_t(bytes));
+        const size_t rowBytes = w * size_t(n) * size_t(bytes);
         std::vector<unsigned char*> rows(h);
-        for (size_t y = 0; y < h; ++y) rows[y] = buffer.data() + y * w * size_t(n) * size_t(bytes);
+        // The caller's layout is the file's (all channels at the file's precision, the resident
+        // texture case): libpng decodes straight into it, with no second copy of the image.
+        if (channels == n && as == (bytes == 1 ? PixelType::UInt8 : PixelType::UInt16)) {
+            for (size_t y = 0; y < h; ++y) rows[y] = static_cast<unsigned char*>(pixels) + y * rowBytes;
+            if (!decode(rows.data())) {
+                _error = _errors.message;
+                return false;
+            }
+            return true;
+        }
+        std::vector<unsigned char> buffer(h * rowBytes);
+        for (size_t y = 0; y < h; ++y) rows[y] = buffer.data() + y * rowBytes;
         if (!decode(rows.data())) {
             _error = _errors.message;
             return false;
@@ -182,9 +198,12 @@ class PngReader final : public ImageReader {
             for (int c = 0; c < channels; ++c) {
                 const size_t src = i * size_t(n) + size_t(c),
                              dst = i * size_t(channels) + size_t(c);
-                const unsigned v = bytes == 1
-                                       ? buffer[src]
-                                       : reinterpret_cast<const uint16_t*>(buffer.data())[src];
+                unsigned v = buffer[src];
+                if (bytes == 2) {
+                    uint16_t v16;  // native byte order (png_set_swap); memcpy: no aliasing cast
+                    std::memcpy(&v16, buffer.data() + 2 * src, 2);
+                    v = v16;
+                }
                 switch (as) {
                     case PixelType::UInt8:
                         static_cast<uint8_t*>(pixels)[dst] =
@@ -198,7 +217,7 @@ class PngReader final : public ImageReader {
                         static_cast<uint32_t*>(pixels)[dst] =
                             uint32_t(std::llround(v * (4294967295.0 / scale)));
                         break;
-                    default:
+                    default:  // Float (checked above)
                         static_cast<float*>(pixels)[dst] = float(v / scale);
                         break;
                 }
@@ -222,6 +241,8 @@ class PngReader final : public ImageReader {
             const uint16_t one = 1;
             if (*reinterpret_cast<const unsigned char*>(&one) == 1) png_set_swap(_png);
         }
+        // Interlaced (Adam7) files: libpng assembles the passes into whole rows.
+        png_set_interlace_handling(_png);
         png_read_update_info(_png, _info);
         describe();
         return true;

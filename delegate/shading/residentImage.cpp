@@ -108,7 +108,7 @@ std::unique_ptr<ResidentImage> ResidentImage::read(imageio::ImageReader& reader,
 ResidentImage::ResidentImage(int width, int height, int channels, Storage storage)
     : _width(width), _height(height), _channels(std::clamp(channels, 1, 4)), _storage(storage) {
     _bytes = size_t(width) * size_t(height) * size_t(_channels) * bytesPerValue(storage);
-    _pixels.reset(new unsigned char[_bytes]());
+    _pixels.reset(new unsigned char[_bytes]);  // not zeroed: read() overwrites every byte
     auto pick = [&](auto zero) -> LookupFn {
         using T = decltype(zero);
         switch (_channels) {

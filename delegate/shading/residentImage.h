@@ -30,7 +30,8 @@ class ResidentImage {
     /// *error when the file has no pixels or the read fails.
     static std::unique_ptr<ResidentImage> read(imageio::ImageReader& reader, std::string* error);
 
-    /// Zero-filled pixels (row 0 = the top row of the file, channels interleaved).
+    /// Uninitialised pixels, for the caller to fill (row 0 = the top row of the file, channels
+    /// interleaved): a multi-gigabyte texture is not written twice.
     ResidentImage(int width, int height, int channels, Storage storage);
 
     int width() const { return _width; }

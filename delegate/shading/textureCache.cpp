@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <new>
 
 namespace principled::shading {
 
@@ -301,7 +302,13 @@ std::string TextureCache::makeResident(Texture& texture, imageio::ImageReader& r
         return note;
     }
     std::string e;
-    std::unique_ptr<ResidentImage> image = ResidentImage::read(reader, &e);
+    std::unique_ptr<ResidentImage> image;
+    try {
+        image = ResidentImage::read(reader, &e);
+    } catch (const std::bad_alloc&) {
+        // Out of memory for the whole image: the tile cache still serves it, in bounded memory.
+        e = "out of memory for " + std::to_string(bytes / 1048576) + " MB";
+    }
     if (!image) return "pixels not held in memory (" + e + "); read through OpenImageIO";
     _residentBytes.fetch_add(image->bytes(), std::memory_order_relaxed);
     texture.residentPixels = std::move(image);
@@ -357,6 +364,10 @@ void* TextureCache::handleFor(const Texture& texture) const {
     void* h = self->ensureSystem(&e) ? ts(_system.load())->open(texture.path, &spec, &e) : nullptr;
     if (!h) {
         tex.handleFailed.store(true, std::memory_order_release);
+        // Once per file (this path runs once: handleFailed is set above).
+        std::fprintf(stderr, "principled: texture '%s': OpenImageIO's texture system cannot open it%s%s; "
+                             "its filtered lookups give the fallback\n",
+                     texture.path.c_str(), e.empty() ? "" : ": ", e.c_str());
         return nullptr;
     }
     tex.handle.store(h, std::memory_order_release);

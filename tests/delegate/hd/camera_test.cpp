@@ -25,6 +25,8 @@ TEST(Camera, LensRadiusIsFocalLengthOverTwiceTheFNumberInSceneUnits) {
     EXPECT_FLOAT_EQ(fiftyMillimetre(2.0f, 3.0f, 0.01f).lensRadius(), 1.25f);
     EXPECT_FLOAT_EQ(fiftyMillimetre(2.0f, 3.0f, 1.0f).lensRadius(), 0.0125f);
     EXPECT_FLOAT_EQ(fiftyMillimetre(2.0f, 3.0f, 0.001f).lensRadius(), 12.5f);
+    // A near-zero fStop is held to 1000 focus distances (finite ray origins).
+    EXPECT_FLOAT_EQ(fiftyMillimetre(1e-30f, 3.0f, 0.01f).lensRadius(), 3000.0f);
 }
 
 TEST(Camera, NoLensWithoutAnFStopAFocusDistanceOrAPerspective) {

@@ -20,7 +20,6 @@ import bpy  # noqa: E402
 import numpy as np  # noqa: E402
 
 import test_render as tr  # noqa: E402  (argument parsing, module path, check())
-from principled_blender import session  # noqa: E402
 
 check = tr.check
 W, H = 128, 16
@@ -59,35 +58,14 @@ def scene_with_edge():
 
 
 def render(scene, engine):
-    scene.render.engine = engine
+    """Column means of the red channel (the edge profile)."""
     if engine == "CYCLES":
-        c = scene.cycles
-        c.samples = SPP
-        c.use_denoising = False
-        c.use_adaptive_sampling = False
-        c.pixel_filter_type = "BOX"
-        c.filter_width = 1.0
-        c.device = "CPU"
-        scene.render.threads_mode = "FIXED"
-        scene.render.threads = 2
-        path = os.path.join(tr.A["out"] or "/tmp", "principled-camera-cycles.exr")
-        scene.render.image_settings.file_format = "OPEN_EXR"
-        scene.view_settings.view_transform = "Standard"
-        scene.render.filepath = path
-        bpy.ops.render.render(write_still=True)
-        img = bpy.data.images.load(path)
-        px = np.empty(img.size[0] * img.size[1] * 4, np.float32)
-        img.pixels.foreach_get(px)
-        bpy.data.images.remove(img)
-        return px.reshape(H, W, 4)[::-1][..., 0].mean(axis=0)
-    scene.principled.samples = SPP
-    captured = {}
-    session.CAPTURE = captured
-    try:
-        bpy.ops.render.render()
-    finally:
-        session.CAPTURE = None
-    return captured["Combined"].reshape(H, W, 4)[::-1][..., 0].mean(axis=0)
+        img = tr.render_cycles(scene, "camera-cycles", SPP)
+    else:
+        scene.render.engine = engine
+        scene.principled.samples = SPP
+        img = tr.render_combined(scene)
+    return img[..., 0].mean(axis=0)
 
 
 def rms(a, b):

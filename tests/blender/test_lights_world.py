@@ -29,15 +29,7 @@ from principled_blender import export, session  # noqa: E402
 check = tr.check
 
 
-def render_combined(scene):
-    captured = {}
-    session.CAPTURE = captured
-    try:
-        bpy.ops.render.render()
-    finally:
-        session.CAPTURE = None
-    w, h = scene.render.resolution_x, scene.render.resolution_y
-    return captured["Combined"].reshape(h, w, 4)[::-1]  # top row first
+render_combined = tr.render_combined
 
 
 def empty_scene(w, h, spp):

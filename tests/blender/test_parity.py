@@ -67,14 +67,7 @@ TEXEL = 200
 ALBEDO = ((TEXEL / 255 + 0.055) / 1.055) ** 2.4
 
 
-def render_combined(scene):
-    captured = {}
-    session.CAPTURE = captured
-    try:
-        bpy.ops.render.render()
-    finally:
-        session.CAPTURE = None
-    return captured["Combined"].reshape(H, W, 4)[::-1]  # top row first
+render_combined = tr.render_combined
 
 
 def solid_image(name, rgb8, non_color=False):
@@ -506,20 +499,8 @@ def test_specular_fresnel():
     default = render_combined(scene)[box][..., :3].mean()
     scene.principled.fresnel = "SCHLICK"
     schlick = render_combined(scene)[box][..., :3].mean()
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.samples, c.use_denoising, c.use_adaptive_sampling = 256, False, False
-    c.pixel_filter_type, c.filter_width, c.max_bounces, c.blur_glossy = "BOX", 1.0, 1, 0.0
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.view_settings.view_transform = "Standard"
-    path = os.path.join(tr.A["out"] or "/tmp", "principled-parity-fresnel-cycles.exr")
-    scene.render.filepath = path
-    bpy.ops.render.render(write_still=True)
-    img = bpy.data.images.load(path)
-    px = np.empty(img.size[0] * img.size[1] * 4, np.float32)
-    img.pixels.foreach_get(px)
-    bpy.data.images.remove(img)
-    cycles = px.reshape(H, W, 4)[::-1][box][..., :3].mean()
+    cycles_img = tr.render_cycles(scene, "parity-fresnel-cycles", 256, max_bounces=1)
+    cycles = cycles_img[box][..., :3].mean()
     check(abs(default / cycles - 1) < 0.02 and schlick / cycles < 0.95,
           f"specular-only plane at 60 degrees: default (dielectric) {default:.4f}, Schlick {schlick:.4f}, "
           f"Cycles {cycles:.4f} (default within 2 %, Schlick < 95 %)")

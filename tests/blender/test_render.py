@@ -71,6 +71,41 @@ def check(cond, msg):
         failures.append(msg)
 
 
+def render_combined(scene):
+    """The add-on's Combined pass of a final render of `scene` (top row first, RGBA)."""
+    captured = {}
+    session.CAPTURE = captured
+    try:
+        bpy.ops.render.render()
+    finally:
+        session.CAPTURE = None
+    w, h = scene.render.resolution_x, scene.render.resolution_y
+    return captured["Combined"].reshape(h, w, 4)[::-1]
+
+
+def render_cycles(scene, name, samples, max_bounces=None):
+    """Cycles 3.4 on the CPU (2 threads, box filter, no denoising or adaptive sampling, Filter
+    Glossy 0, Standard view) to OUT/principled-NAME.exr; returns its RGBA, top row first."""
+    scene.render.engine = "CYCLES"
+    c = scene.cycles
+    c.samples, c.use_denoising, c.use_adaptive_sampling = samples, False, False
+    c.pixel_filter_type, c.filter_width, c.blur_glossy, c.device = "BOX", 1.0, 0.0, "CPU"
+    if max_bounces is not None:
+        c.max_bounces = max_bounces
+    scene.render.threads_mode, scene.render.threads = "FIXED", 2
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.view_settings.view_transform = "Standard"
+    path = os.path.join(A["out"] or "/tmp", f"principled-{name}.exr")
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    img = bpy.data.images.load(path)
+    w, h = img.size
+    px = np.empty(w * h * 4, np.float32)
+    img.pixels.foreach_get(px)
+    bpy.data.images.remove(img)
+    return px.reshape(h, w, 4)[::-1]
+
+
 def build_scene(reset=True):
     if reset:
         bpy.ops.wm.read_factory_settings(use_empty=True)

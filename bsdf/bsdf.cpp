@@ -148,18 +148,23 @@ glm::vec3 Bsdf::evalLive(const View& v, const glm::vec3& wi, LobeMask live, floa
     if (live & (kDiffuseBit | kSheenBit)) {
         const float cos2d = DisneyDiffuse::cos2ThetaD(wo, wi);
         const float pCos = wo.z > 0.0f ? cosineHemispherePdf(wi) : 0.0f;
-        const float shadow = (v.bumped && upper) ? bumpShadowing(v.smoothNormal, wi) : 1.0f;
+        // Only a bumped view pays for the shadowing term (unbumped: no extra multiply).
+        const bool shadowed = v.bumped && upper;
+        const float shadow = shadowed ? bumpShadowing(v.smoothNormal, wi) : 1.0f;
         if (live & kDiffuseBit) {
             glm::vec3 fk(0.0f);
-            if (upper)
-                fk = shadow * (_set.lambertDiffuse ? _set.lambert.eval(wo, wi)
-                                                   : _set.diffuse.eval(wo, wi, v.fv, cos2d));
+            if (upper) {
+                fk = _set.lambertDiffuse ? _set.lambert.eval(wo, wi)
+                                         : _set.diffuse.eval(wo, wi, v.fv, cos2d);
+                if (shadowed) fk *= shadow;
+            }
             f += fk;
             if (perLobe) (*perLobe)[0] = fk;
             pdf += v.prob[0] * pCos;
         }
         if (live & kSheenBit) {
-            glm::vec3 fk = upper ? shadow * _set.sheen.eval(cos2d, wi) : glm::vec3(0.0f);
+            glm::vec3 fk = upper ? _set.sheen.eval(cos2d, wi) : glm::vec3(0.0f);
+            if (shadowed) fk *= shadow;
             f += fk;
             if (perLobe) (*perLobe)[1] = fk;
             pdf += v.prob[1] * pCos;

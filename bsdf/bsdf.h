@@ -52,7 +52,7 @@ public:
         float g1SpecK = 0.0f;   ///< g1Spec / (4 wo.z)
         /// The surface's own normal in the lobes' frame when the shading normal leans away from
         /// it: the diffuse and sheen lobes are then shadowed by bumpShadowing(smoothNormal, wi).
-        glm::vec3 smoothNormal{0.0f, 0.0f, 1.0f};
+        glm::vec3 smoothNormal;  ///< set (and read) only when bumped
         bool bumped = false;
     };
     View prepare(const glm::vec3& wo) const;

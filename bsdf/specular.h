@@ -40,6 +40,8 @@ struct Specular {
     bool delta = false;   ///< perfect mirror (roughness below Options::deltaRoughness)
 
     glm::vec3 fresnel(float cosD) const {
+        if (fModel == SpecularFresnel::Schlick) [[likely]]  // the default: one test, no table
+            return schlickFresnel(f0, cosD);
         switch (fModel) {
             case SpecularFresnel::Schlick:
                 return schlickFresnel(f0, cosD);

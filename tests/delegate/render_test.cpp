@@ -225,33 +225,40 @@ TEST(Render, DepthOfFieldBlursByTheThinLensCircleOfConfusion) {
 // shadowed by the plane (Chiang et al. 2019, bsdf/bumpShadowing.h): G = cos 60 / cos^2 30 = 2/3,
 // factor -G^3 + G^2 + G = 22/27, as Cycles 3.4 renders it (bench/blender_parity.py normal_map).
 // bumpShadowing = 0 leaves the unshadowed a E / pi (n.wi).
-class TiltedNormalPlane : public ::testing::TestWithParam<int> {};
+namespace {
 
-TEST_P(TiltedNormalPlane, DiffuseIsShadowedByTheSurface) {
-    const int shadowing = GetParam();
+// Mean radiance of a normal-mapped Lambert-like plane z = 0 (UE4 model, albedo 0.5, ior 1, rough
+// 1, 8x8 orthographic view straight down, direct light only) under a delta distant light of
+// irradiance 3 tilted `lightDeg` toward +X. st = (x, y), so the tangent is +X; `normals`, when
+// given, are authored per vertex.
+double normalMappedPlane(const glm::vec3& tangentNormal, float lightDeg, int bumpShadowing,
+                         const glm::vec3* normals = nullptr) {
     Fixture f(8, 8);
     f.delegate.setRenderSetting(hd::Token("convergedSamplesPerPixel"), hd::Value(4));
     f.delegate.setRenderSetting(hd::Token("maxDepth"), hd::Value(0));
     f.delegate.setRenderSetting(hd::Token("shadingModel"), hd::Value(hd::Token("ue4")));
-    f.delegate.setRenderSetting(hd::Token("bumpShadowing"), hd::Value(shadowing));
-    const float albedo = 0.5f, E = 3.0f, s30 = 0.5f, c30 = std::sqrt(3.0f) / 2.0f;
+    f.delegate.setRenderSetting(hd::Token("bumpShadowing"), hd::Value(bumpShadowing));
     f.scene.addQuad(hd::Path("/plane"), 4.0f);
-    // st = (x, y): the tangent (dP/du) is +X.
-    f.scene.prim(hd::Path("/plane")).values[hd::Token("st")] =
-        std::vector<glm::vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    f.scene.prim(hd::Path("/plane")).interpolation[hd::Token("st")] = hd::Interpolation::Vertex;
-    f.scene.addMaterial(hd::Path("/mat"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(albedo))},
+    auto& plane = f.scene.prim(hd::Path("/plane"));
+    plane.values[hd::Token("st")] = std::vector<glm::vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    plane.interpolation[hd::Token("st")] = hd::Interpolation::Vertex;
+    if (normals) {
+        plane.values[hd::tokens::normals()] = std::vector<glm::vec3>(4, *normals);
+        plane.interpolation[hd::tokens::normals()] = hd::Interpolation::Vertex;
+    }
+    f.scene.addMaterial(hd::Path("/mat"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(0.5f))},
                                            {hd::Token("ior"), hd::Value(1.0f)},
                                            {hd::Token("roughness"), hd::Value(1.0f)},
-                                           {hd::Token("normal"), hd::Value(glm::vec3(s30, 0.0f, c30))}});
+                                           {hd::Token("normal"), hd::Value(tangentNormal)}});
     f.scene.bind(hd::Path("/plane"), hd::Path("/mat"));
-    // The light's +Z (toward the light; it shines along -Z) rotated 60 degrees toward +X: rows of
-    // the row-vector matrix, so (0, 0, 1) M = (sin 60, 0, cos 60).
+    // The light's +Z (toward the light; it shines along -Z) rotated toward +X: rows of the
+    // row-vector matrix, so (0, 0, 1) M = (sin a, 0, cos a).
+    const double a = double(lightDeg) * kPi / 180.0;
     glm::dmat4 rot(1.0);
-    rot[0] = glm::dvec4(s30, 0.0, -c30, 0.0);
-    rot[2] = glm::dvec4(c30, 0.0, s30, 0.0);
+    rot[0] = glm::dvec4(std::cos(a), 0.0, -std::sin(a), 0.0);
+    rot[2] = glm::dvec4(std::sin(a), 0.0, std::cos(a), 0.0);
     f.scene.addLight(hd::Path("/sun"), hd::tokens::distantLight(), rot,
-                     {{hd::Token("intensity"), hd::Value(E)}, {hd::Token("angle"), hd::Value(0.0f)}});
+                     {{hd::Token("intensity"), hd::Value(3.0f)}, {hd::Token("angle"), hd::Value(0.0f)}});
     f.scene.addCamera(hd::Path("/cam"), translate(0, 0, 5),
                       {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
                        {hd::Token("horizontalAperture"), hd::Value(1.0f)},
@@ -260,7 +267,17 @@ TEST_P(TiltedNormalPlane, DiffuseIsShadowedByTheSurface) {
     auto px = f.pixels();
     double mean = 0.0;
     for (int i = 0; i < f.w * f.h; ++i) mean += px[4 * i];
-    mean /= f.w * f.h;
+    return mean / (f.w * f.h);
+}
+
+}  // namespace
+
+class TiltedNormalPlane : public ::testing::TestWithParam<int> {};
+
+TEST_P(TiltedNormalPlane, DiffuseIsShadowedByTheSurface) {
+    const int shadowing = GetParam();
+    const float albedo = 0.5f, E = 3.0f, s30 = 0.5f, c30 = std::sqrt(3.0f) / 2.0f;
+    const double mean = normalMappedPlane(glm::vec3(s30, 0.0f, c30), 60.0f, shadowing);
     const double unshadowed = albedo * E / kPi * c30;
     const double expected = shadowing ? unshadowed * 22.0 / 27.0 : unshadowed;
     EXPECT_NEAR(mean, expected, 0.01 * expected)
@@ -278,40 +295,11 @@ INSTANTIATE_TEST_SUITE_P(BumpShadowing, TiltedNormalPlane, ::testing::Values(1, 
 // +X, a delta light 30 degrees toward +X: radiance a E / pi (N.wi) bumpShadowing, N the mapped
 // normal bent once (the view's mirror direction then grazes the plane).
 TEST(Render, NormalMapUsesTheUnbentInterpolatedNormal) {
-    Fixture f(8, 8);
-    f.delegate.setRenderSetting(hd::Token("convergedSamplesPerPixel"), hd::Value(4));
-    f.delegate.setRenderSetting(hd::Token("maxDepth"), hd::Value(0));
-    f.delegate.setRenderSetting(hd::Token("shadingModel"), hd::Value(hd::Token("ue4")));
     const float albedo = 0.5f, E = 3.0f, kDeg = kPi / 180.0f;
     const glm::vec3 n0(0.0f, std::sin(60 * kDeg), std::cos(60 * kDeg));
     const glm::vec3 tangentNormal(std::sin(20 * kDeg), 0.0f, std::cos(20 * kDeg));
-    f.scene.addQuad(hd::Path("/plane"), 4.0f);
-    auto& plane = f.scene.prim(hd::Path("/plane"));
-    plane.values[hd::Token("st")] = std::vector<glm::vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    plane.interpolation[hd::Token("st")] = hd::Interpolation::Vertex;
-    plane.values[hd::tokens::normals()] = std::vector<glm::vec3>(4, n0);
-    plane.interpolation[hd::tokens::normals()] = hd::Interpolation::Vertex;
-    f.scene.addMaterial(hd::Path("/mat"), {{hd::Token("diffuseColor"), hd::Value(glm::vec3(albedo))},
-                                           {hd::Token("ior"), hd::Value(1.0f)},
-                                           {hd::Token("roughness"), hd::Value(1.0f)},
-                                           {hd::Token("normal"), hd::Value(tangentNormal)}});
-    f.scene.bind(hd::Path("/plane"), hd::Path("/mat"));
-    const float s30 = 0.5f, c30 = std::sqrt(3.0f) / 2.0f;
-    glm::dmat4 rot(1.0);  // (0, 0, 1) M = (sin 30, 0, cos 30): the direction toward the light
-    rot[0] = glm::dvec4(c30, 0.0, -s30, 0.0);
-    rot[2] = glm::dvec4(s30, 0.0, c30, 0.0);
-    const glm::vec3 wi(s30, 0.0f, c30);
-    f.scene.addLight(hd::Path("/sun"), hd::tokens::distantLight(), rot,
-                     {{hd::Token("intensity"), hd::Value(E)}, {hd::Token("angle"), hd::Value(0.0f)}});
-    f.scene.addCamera(hd::Path("/cam"), translate(0, 0, 5),
-                      {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
-                       {hd::Token("horizontalAperture"), hd::Value(1.0f)},
-                       {hd::Token("verticalAperture"), hd::Value(1.0f)}});
-    f.render();
-    auto px = f.pixels();
-    double mean = 0.0;
-    for (int i = 0; i < f.w * f.h; ++i) mean += px[4 * i];
-    mean /= f.w * f.h;
+    const double mean = normalMappedPlane(tangentNormal, 30.0f, 1, &n0);
+    const glm::vec3 wi(0.5f, 0.0f, std::sqrt(3.0f) / 2.0f);
     // The expected shading normal: tangent frame (t = +X from st, b = n x t) around n, then bent.
     const glm::vec3 ng(0, 0, 1), wo(0, 0, 1);
     auto shade = [&](const glm::vec3& frameNormal) {

@@ -47,6 +47,21 @@ struct Fixture {
         const float* p = static_cast<const float*>(color->map());
         return std::vector<float>(p, p + size_t(w) * h * 4);
     }
+    /// A delta distant light of irradiance E placed by `light` (default: shining along -Z) and an
+    /// orthographic 1 x 1 camera 5 above the origin looking down; renders and returns the mean red.
+    double renderSunlitFromAbove(float E, const glm::dmat4& light = glm::dmat4(1.0)) {
+        scene.addLight(hd::Path("/sun"), hd::tokens::distantLight(), light,
+                       {{hd::Token("intensity"), hd::Value(E)}, {hd::Token("angle"), hd::Value(0.0f)}});
+        scene.addCamera(hd::Path("/cam"), test::translate(0, 0, 5),
+                        {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
+                         {hd::Token("horizontalAperture"), hd::Value(1.0f)},
+                         {hd::Token("verticalAperture"), hd::Value(1.0f)}});
+        render();
+        auto px = pixels();
+        double mean = 0.0;
+        for (int i = 0; i < w * h; ++i) mean += px[4 * i];
+        return mean / (w * h);
+    }
 };
 
 }  // namespace
@@ -66,17 +81,8 @@ TEST_P(LambertPlane, RadianceIsAlbedoTimesIrradianceOverPi) {
                                            {hd::Token("roughness"), hd::Value(1.0f)}});
     f.scene.bind(hd::Path("/plane"), hd::Path("/mat"));
     // Distant light along -Z (its default direction), angle 0: a delta light of irradiance E.
-    f.scene.addLight(hd::Path("/sun"), hd::tokens::distantLight(), glm::dmat4(1.0),
-                     {{hd::Token("intensity"), hd::Value(E)}, {hd::Token("angle"), hd::Value(0.0f)}});
-    f.scene.addCamera(hd::Path("/cam"), translate(0, 0, 5),
-                      {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
-                       {hd::Token("horizontalAperture"), hd::Value(1.0f)},
-                       {hd::Token("verticalAperture"), hd::Value(1.0f)}});
-    f.render();
+    const double mean = f.renderSunlitFromAbove(E);
     auto px = f.pixels();
-    double mean = 0.0;
-    for (int i = 0; i < f.w * f.h; ++i) mean += px[4 * i];
-    mean /= f.w * f.h;
     double expected = albedo * E / kPi;
     EXPECT_NEAR(mean, expected, 0.01 * expected) << "model " << GetParam();
     EXPECT_FLOAT_EQ(px[3], 1.0f);  // alpha: geometry was hit
@@ -257,17 +263,7 @@ double normalMappedPlane(const glm::vec3& tangentNormal, float lightDeg, int bum
     glm::dmat4 rot(1.0);
     rot[0] = glm::dvec4(std::cos(a), 0.0, -std::sin(a), 0.0);
     rot[2] = glm::dvec4(std::sin(a), 0.0, std::cos(a), 0.0);
-    f.scene.addLight(hd::Path("/sun"), hd::tokens::distantLight(), rot,
-                     {{hd::Token("intensity"), hd::Value(3.0f)}, {hd::Token("angle"), hd::Value(0.0f)}});
-    f.scene.addCamera(hd::Path("/cam"), translate(0, 0, 5),
-                      {{hd::Token("projection"), hd::Value(hd::Token("orthographic"))},
-                       {hd::Token("horizontalAperture"), hd::Value(1.0f)},
-                       {hd::Token("verticalAperture"), hd::Value(1.0f)}});
-    f.render();
-    auto px = f.pixels();
-    double mean = 0.0;
-    for (int i = 0; i < f.w * f.h; ++i) mean += px[4 * i];
-    return mean / (f.w * f.h);
+    return f.renderSunlitFromAbove(3.0f, rot);
 }
 
 }  // namespace

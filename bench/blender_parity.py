@@ -502,13 +502,18 @@ def s_alpha_texture(sc):
     m = material("Leaf", rough=0.6)
     tex = image_texture_node(m, bpy.data.images.load(path))
     m.node_tree.links.new(tex.outputs["Alpha"], m.node_tree.nodes["Principled BSDF"].inputs["Alpha"])
+    return leaf_over_floor(sc, m)
+
+
+def leaf_over_floor(sc, leaf):
+    """The cut-out scenes' set: a 2.5 m plane with material `leaf` tilted 60 degrees above a grey
+    floor, a 2-degree sun and a dim world; returns the check box."""
     plane(6.0, mat=material("Floor", (0.6, 0.6, 0.6), 0.7))
-    plane(2.5, (0, 0, 1.2), m, rot=(math.radians(60), 0, 0))
+    plane(2.5, (0, 0, 1.2), leaf, rot=(math.radians(60), 0, 0))
     light(sc, "SUN", rot=(math.radians(30), 0, math.radians(20)), energy=3.0,
           angle=math.radians(2))
     world_color(sc, (0.1, 0.1, 0.1))
     return {"box": (40, 20, 88, 75)}
-
 
 def s_mix_transparent(sc):
     """The cut-out leaf through the older setup: Mix Shader (Transparent BSDF, Principled BSDF)
@@ -527,12 +532,7 @@ def s_mix_transparent(sc):
     nt.links.new(tr_node.outputs["BSDF"], mix.inputs[1])
     nt.links.new(nt.nodes["Principled BSDF"].outputs["BSDF"], mix.inputs[2])
     nt.links.new(mix.outputs["Shader"], nt.nodes["Material Output"].inputs["Surface"])
-    plane(6.0, mat=material("Floor", (0.6, 0.6, 0.6), 0.7))
-    plane(2.5, (0, 0, 1.2), m, rot=(math.radians(60), 0, 0))
-    light(sc, "SUN", rot=(math.radians(30), 0, math.radians(20)), energy=3.0,
-          angle=math.radians(2))
-    world_color(sc, (0.1, 0.1, 0.1))
-    return {"box": (40, 20, 88, 75)}
+    return leaf_over_floor(sc, m)
 
 
 def s_subsurf_custom(sc):

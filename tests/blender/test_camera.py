@@ -72,38 +72,29 @@ def rms(a, b):
     return float(np.sqrt(np.mean((a - b) ** 2)))
 
 
-def main():
-    tr.principled_blender.register()
-    try:
-        scene, cam = scene_with_edge()
-        sharp = render(scene, "PRINCIPLED")
-        check(sharp[: W // 2 - 1].max() < 0.02 and sharp[W // 2 + 1:].min() > 0.98,
-              f"no depth of field: a sharp edge (left max {sharp[:W // 2 - 1].max():.3f}, "
-              f"right min {sharp[W // 2 + 1:].min():.3f})")
-        cam.data.dof.use_dof = True
-        cam.data.dof.aperture_fstop = 0.5
-        cam.data.dof.focus_distance = 1.0
-        ours, cycles = render(scene, "PRINCIPLED"), render(scene, "CYCLES")
-        # Blur radius R |1/z - 1/f| on the unit-distance window: 0.05 m * |1/4 - 1/1| = 0.0375,
-        # i.e. 0.0375 / (36 / 50) * 128 = 6.7 px.
-        d, blur = rms(ours, cycles), rms(ours, sharp)
-        check(d < 0.01 and blur > 0.05,
-              f"f/0.5 focused at 1 m: principled vs Cycles edge profile RMS {d:.4f} (< 0.01); "
-              f"vs no depth of field {blur:.4f} (> 0.05)")
-        focus = bpy.data.objects.new("Focus", None)
-        scene.collection.objects.link(focus)
-        focus.location = (3.0, 1.0, -4.0)
-        cam.data.dof.focus_object = focus
-        refocused = render(scene, "PRINCIPLED")
-        check(rms(refocused, sharp) < 0.01,
-              f"focus object on the plane: sharp again (RMS vs no depth of field {rms(refocused, sharp):.4f})")
-    except Exception:
-        import traceback
-
-        traceback.print_exc()
-        tr.failures.append("exception")
-    print(f"{len(tr.failures)} failures" if tr.failures else "all passed")
-    sys.exit(1 if tr.failures else 0)
+def all_tests():
+    scene, cam = scene_with_edge()
+    sharp = render(scene, "PRINCIPLED")
+    check(sharp[: W // 2 - 1].max() < 0.02 and sharp[W // 2 + 1:].min() > 0.98,
+          f"no depth of field: a sharp edge (left max {sharp[:W // 2 - 1].max():.3f}, "
+          f"right min {sharp[W // 2 + 1:].min():.3f})")
+    cam.data.dof.use_dof = True
+    cam.data.dof.aperture_fstop = 0.5
+    cam.data.dof.focus_distance = 1.0
+    ours, cycles = render(scene, "PRINCIPLED"), render(scene, "CYCLES")
+    # Blur radius R |1/z - 1/f| on the unit-distance window: 0.05 m * |1/4 - 1/1| = 0.0375,
+    # i.e. 0.0375 / (36 / 50) * 128 = 6.7 px.
+    d, blur = rms(ours, cycles), rms(ours, sharp)
+    check(d < 0.01 and blur > 0.05,
+          f"f/0.5 focused at 1 m: principled vs Cycles edge profile RMS {d:.4f} (< 0.01); "
+          f"vs no depth of field {blur:.4f} (> 0.05)")
+    focus = bpy.data.objects.new("Focus", None)
+    scene.collection.objects.link(focus)
+    focus.location = (3.0, 1.0, -4.0)
+    cam.data.dof.focus_object = focus
+    refocused = render(scene, "PRINCIPLED")
+    check(rms(refocused, sharp) < 0.01,
+          f"focus object on the plane: sharp again (RMS vs no depth of field {rms(refocused, sharp):.4f})")
 
 
-main()
+tr.run_main(all_tests)

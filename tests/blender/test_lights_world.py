@@ -252,21 +252,4 @@ def test_light_edits():
         s.close()
 
 
-def main():
-    tr.principled_blender.register()
-    try:
-        test_spot_conversion()
-        test_spot_render()
-        test_world_texture()
-        test_light_edits()
-    except Exception:
-        import traceback
-
-        traceback.print_exc()
-        tr.failures.append("exception")
-    print(f"{len(tr.failures)} failure(s)")
-    sys.stdout.flush()
-    os._exit(1 if tr.failures else 0)
-
-
-main()
+tr.run_main(test_spot_conversion, test_spot_render, test_world_texture, test_light_edits)

@@ -70,6 +70,16 @@ ALBEDO = ((TEXEL / 255 + 0.055) / 1.055) ** 2.4
 render_combined = tr.render_combined
 
 
+def left_plane_material(name):
+    """A 2 m plane at x = -1.2 with a new node material of its own (Principled BSDF and Material
+    Output, as Blender creates it), assigned to the plane."""
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    bpy.context.active_object.data.materials.append(m)
+    return m
+
+
 def solid_image(name, rgb8, non_color=False):
     img = bpy.data.images.new(name, 4, 4, alpha=False)
     if non_color:  # before the pixels: a colour-space change regenerates a generated image
@@ -161,9 +171,7 @@ def test_render_edges(scene):
 
 def test_emission_shader():
     scene = empty_scene(samples=8, max_depth=1)
-    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
-    m = bpy.data.materials.new("Lamp")
-    m.use_nodes = True
+    m = left_plane_material("Lamp")
     nt = m.node_tree
     nt.nodes.remove(nt.nodes["Principled BSDF"])
     em = nt.nodes.new("ShaderNodeEmission")
@@ -171,7 +179,6 @@ def test_emission_shader():
     em.inputs["Color"].default_value = (*color, 1.0)
     em.inputs["Strength"].default_value = strength
     nt.links.new(em.outputs["Emission"], nt.nodes["Material Output"].inputs["Surface"])
-    bpy.context.active_object.data.materials.append(m)
     inputs, _links, warns = export.material_params(m, None)
     check(inputs.get("emissiveColor") == [c * strength for c in color] and not warns,
           f"Emission shader -> emissiveColor {inputs.get('emissiveColor')} ({warns})")
@@ -247,13 +254,10 @@ def test_film_alpha():
     world.use_nodes = False
     world.color = (0.5, 0.5, 0.5)
     scene.world = world
-    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
-    m = bpy.data.materials.new("Lamp")
-    m.use_nodes = True
+    m = left_plane_material("Lamp")
     b = m.node_tree.nodes["Principled BSDF"]
     b.inputs["Base Color"].default_value = (0, 0, 0, 1)
     b.inputs["Emission"].default_value = (1, 1, 1, 1)
-    bpy.context.active_object.data.materials.append(m)
     bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
     cam = bpy.context.active_object
     cam.data.type = "ORTHO"
@@ -451,9 +455,7 @@ def test_mix_transparent():
 
 def test_emission_map():
     scene = empty_scene(samples=4, max_depth=1)
-    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(-1.2, 0, 0))
-    m = bpy.data.materials.new("Screen")
-    m.use_nodes = True
+    m = left_plane_material("Screen")
     nt = m.node_tree
     b = nt.nodes["Principled BSDF"]
     b.inputs["Base Color"].default_value = (0, 0, 0, 1)
@@ -461,7 +463,6 @@ def test_emission_map():
     tex = nt.nodes.new("ShaderNodeTexImage")
     tex.image = solid_image("Screen", (TEXEL, TEXEL, TEXEL))
     nt.links.new(tex.outputs["Color"], b.inputs["Emission"])
-    bpy.context.active_object.data.materials.append(m)
     bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
     cam = bpy.context.active_object
     cam.data.type = "ORTHO"
@@ -506,29 +507,20 @@ def test_specular_fresnel():
           f"Cycles {cycles:.4f} (default within 2 %, Schlick < 95 %)")
 
 
-def main():
-    tr.principled_blender.register()
-    try:
-        scene, mats = build()
-        test_render_edges(scene)
-        test_wrap_tokens(mats)
-        test_emission_shader()
-        test_alpha_texture()
-        test_film_alpha()
-        test_uv_mapping()
-        test_area_one_sided()
-        test_bsdf_nodes()
-        test_mix_transparent()
-        test_emission_map()
-        test_normal_map_strength()
-        test_specular_fresnel()
-    except Exception:
-        import traceback
-
-        traceback.print_exc()
-        tr.failures.append("exception")
-    print(f"{len(tr.failures)} failures" if tr.failures else "all passed")
-    sys.exit(1 if tr.failures else 0)
+def all_tests():
+    scene, mats = build()
+    test_render_edges(scene)
+    test_wrap_tokens(mats)
+    test_emission_shader()
+    test_alpha_texture()
+    test_film_alpha()
+    test_uv_mapping()
+    test_area_one_sided()
+    test_bsdf_nodes()
+    test_mix_transparent()
+    test_emission_map()
+    test_normal_map_strength()
+    test_specular_fresnel()
 
 
-main()
+tr.run_main(all_tests)

@@ -71,6 +71,24 @@ def check(cond, msg):
         failures.append(msg)
 
 
+def run_main(*steps):
+    """A test script's main: registers the add-on, runs `steps` in order (an exception is one
+    failure, with its traceback), prints the count and exits 1 on any failure. os._exit: no
+    Blender shutdown after the verdict."""
+    principled_blender.register()
+    try:
+        for step in steps:
+            step()
+    except Exception:
+        import traceback
+
+        traceback.print_exc()
+        failures.append("exception")
+    print(f"{len(failures)} failure(s)" if failures else "all passed")
+    sys.stdout.flush()
+    os._exit(1 if failures else 0)
+
+
 def render_combined(scene):
     """The add-on's Combined pass of a final render of `scene` (top row first, RGBA)."""
     captured = {}

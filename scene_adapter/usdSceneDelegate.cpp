@@ -443,7 +443,13 @@ Path UsdSceneDelegate::addDefaultCamera(RenderIndex* index, double aspect) {
             hi = glm::max(hi, w);
         }
     };
+    // Only what renders frames the view (as UsdGeomBBoxCache counts only imageable prims):
+    // invisible prims are left out unless nothing is visible.
+    bool anyVisible = false;
+    for (const auto& [id, e] : _entries) anyVisible |= e.visible && (e.type == tokens::mesh() ||
+        e.type == tokens::pointsPrim() || e.type == tokens::basisCurves() || e.type == tokens::sphere());
     for (const auto& [id, e] : _entries) {
+        if (anyVisible && !e.visible) continue;
         if (!e.instancer.empty()) {
             growInstancedBounds(id, e, grow);
         } else if (e.type == tokens::mesh() || e.type == tokens::pointsPrim() || e.type == tokens::basisCurves()) {

@@ -134,6 +134,34 @@ TEST(RenderSession, SceneWithoutCameraOrLightsStillRendersSomething) {
     EXPECT_FLOAT_EQ(c[3], 0.0f);  // a corner sees the background
 }
 
+TEST(RenderSession, InvisiblePrimsDoNotWidenTheDefaultFraming) {
+    host::SessionOptions o;
+    o.width = o.height = 32;
+    o.samplesPerPixel = 2;
+    // A mesh 100 times the ball's size, hidden: framed with it, the ball would be a few pixels.
+    auto s = host::RenderSession::openString(R"(#usda 1.0
+def Sphere "Ball" { double radius = 2 }
+def Mesh "Hidden" {
+    token visibility = "invisible"
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [3]
+    int[] faceVertexIndices = [0, 1, 2]
+    point3f[] points = [(-400, -400, 0), (400, -400, 0), (0, 400, 0)]
+}
+)",
+                                             "hidden.usda", o);
+    while (!s->step()) {
+    }
+    const float* c = s->color();
+    int alphaCount = 0;
+    for (int i = 0; i < 32 * 32; ++i) alphaCount += c[4 * i + 3] > 0.5f;
+    // Framed on the ball alone, its bounding sphere fills the narrower field of view: the disk
+    // covers about pi/4 / 1.1^2 / 3 of the square image (~ 20 %); framed with the hidden mesh it
+    // would cover well under 1 %.
+    EXPECT_GT(alphaCount, 32 * 32 / 10);
+    EXPECT_FLOAT_EQ(c[3], 0.0f);
+}
+
 TEST(RenderSession, LobeAovsSumToColorAndIdsAreNeverAveraged) {
     host::SessionOptions o;
     o.width = 48;

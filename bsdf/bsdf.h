@@ -71,6 +71,12 @@ public:
     LobeMask lobes() const { return _lobes; }
     /// True when every lobe is a delta lobe (next-event estimation is pointless).
     bool isDeltaOnly() const { return _deltaOnly; }
+    /// True when the transmission lobe is active and not a delta: light from the far side of
+    /// the surface can then be sampled directly (next-event estimation through the surface).
+    bool hasRoughTransmission() const {
+        const LobeMask t = lobeBit(Lobe::Transmission);
+        return (_lobes & t) && !(_set.deltaMask & t);
+    }
 
     /// Probability that sample() picks each lobe for this wo (never depends on wi).
     std::array<float, kLobeCount> lobeProbabilities(const glm::vec3& wo) const;

@@ -172,6 +172,17 @@ glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3&
     return p + (glm::dot(dir, ng) >= 0.0f ? scale : -scale) * ng;
 }
 
+// Whether next-event estimation may use a light direction wi: above the geometric surface, or
+// also below it when `through` (rough transmission), in which case wi must be on the same side
+// of the shading surface as of the geometric one, relative to wo (the rule BSDF samples obey).
+bool lightSideOk(const glm::vec3& wi, const glm::vec3& ng, const Frame& frame, const glm::vec3& woLocal,
+                 bool through) {
+    const float side = glm::dot(wi, ng);
+    if (!through) return side > 0.0f;
+    const bool transmitted = frame.toLocal(wi).z * woLocal.z < 0.0f;
+    return side != 0.0f && (side > 0.0f) != transmitted;
+}
+
 // The shading point as materials see it: primvars interpolated with the hit's barycentrics.
 class HitContext final : public shading::ShadingContext {
 public:
@@ -461,6 +472,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // Next-event estimation: one light picked by power, or every light in turn when the scene
         // has few (SceneSnapshot::neeAllLights; their pick probabilities are then 1).
         const size_t neeCount = _scene.neeAllLights ? lights.size() : 1;
+        // A rough transmission lobe sees lights on the far side too (a lamp inside frosted
+        // glass): those samples go through the surface, on the side their shading-frame
+        // direction says, as BSDF samples must (no leaks between the two normals).
+        const bool neeThrough = bsdf.hasRoughTransmission();
         for (size_t nee = 0; nee < neeCount && _settings.nee && !lights.empty() && !bsdf.isDeltaOnly(); ++nee) {
             glm::vec2 u = sampler.next2D();  // dimensions (0, 1) of a fresh Sobol group
             float ul = sampler.next1D();      // dimension 2: the pick, stratified with u
@@ -470,7 +485,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             const float lightPick = lights[li].pickProbability;
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls) && ls.pdf > 0.0f &&
-                glm::dot(ls.wi, hit.ng) > 0.0f) {
+                lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough)) {
                 float bsdfPdf = 0.0f;
                 bsdf::LobeValues perLobe;
                 const bool split = depth == 0 && _settings.splitLobes;
@@ -517,9 +532,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             return out;
         }
         if (depth == 0) pathLobe = _settings.splitLobes ? static_cast<int>(s->lobe) : 0;
-        // NEE only samples the hemisphere facing the viewer: a transmitted direction could not
-        // have come from it, so lights it reaches count fully (treated like a delta bounce).
-        prevDelta = s->delta || transmit;
+        // NEE samples the far side only for rough transmission (neeThrough): a direction
+        // transmitted by anything else could not have come from it, so lights it reaches count
+        // fully (treated like a delta bounce); otherwise they are MIS-weighted as reflections.
+        prevDelta = s->delta || (transmit && !neeThrough);
         prevBsdfPdf = s->pdf;
         prevNg = hit.ng;
         ray.origin = offsetOrigin(hit.p, hit.ng, wi);

@@ -10,6 +10,7 @@
 #include "delegate/hd/token.h"
 #include "delegate/lightSampling.h"
 #include "delegate/shadingNormal.h"
+#include "delegate/surfacePoint.h"
 
 namespace principled::embree {
 namespace {
@@ -172,6 +173,15 @@ glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3&
     return p + (glm::dot(dir, ng) >= 0.0f ? scale : -scale) * ng;
 }
 
+// The mesh light that holds the emitting triangles of material `material` of prim `rec` (the
+// prim's lights are consecutive, one per emitting material), or null.
+const LightRecord* meshLightOf(const std::vector<LightRecord>& lights, const GeometryRecord& rec, int material) {
+    for (int i = rec.emissiveLight; i >= 0 && i < rec.emissiveLight + rec.emissiveLightCount &&
+                                    i < int(lights.size()); ++i)
+        if (lights[size_t(i)].meshMaterial == material) return &lights[size_t(i)];
+    return nullptr;
+}
+
 // Whether next-event estimation may use a light direction wi: above the geometric surface, or
 // also below it when `through` (rough transmission), in which case wi must be on the same side
 // of the shading surface as of the geometric one, relative to wo (the rule BSDF samples obey).
@@ -183,32 +193,6 @@ bool lightSideOk(const glm::vec3& wi, const glm::vec3& ng, const Frame& frame, c
     return side != 0.0f && (side > 0.0f) != transmitted;
 }
 
-// The shading point as materials see it: primvars interpolated with the hit's barycentrics.
-class HitContext final : public shading::ShadingContext {
-public:
-    explicit HitContext(const Hit& hit) : _hit(hit) {}
-    bool primvar(const hd::Token& name, int components, float* out) const override {
-        const PrimvarChannel* ch = _hit.record->primvar(name);
-        if (!ch) return false;
-        int n = std::min(components, ch->components);
-        for (int c = 0; c < components; ++c) out[c] = 0.0f;
-        if (ch->constant || ch->perPrimitive) {
-            const float* d = &ch->data[ch->constant ? 0 : size_t(_hit.triangle) * ch->components];
-            for (int c = 0; c < n; ++c) out[c] = d[c];
-            return true;
-        }
-        const GeometryRecord& rec = *_hit.record;
-        const float* d0 = rec.cornerValue(*ch, _hit.triangle, 0);
-        const float* d1 = rec.cornerValue(*ch, _hit.triangle, 1);
-        const float* d2 = rec.cornerValue(*ch, _hit.triangle, 2);
-        float w0 = 1.0f - _hit.u - _hit.v;
-        for (int c = 0; c < n; ++c) out[c] = w0 * d0[c] + _hit.u * d1[c] + _hit.v * d2[c];
-        return true;
-    }
-
-private:
-    const Hit& _hit;
-};
 
 // A tangent frame around n whose tangent follows the st parameterisation of the triangle
 // (the usual dP/du from the triangle's edges and uv deltas); any frame if st is missing or
@@ -250,7 +234,7 @@ float presenceAt(const SceneSnapshot& scene, const Hit& hit) {
     const MaterialRecord& m = scene.materials[mi];
     if (!m.mayBePartlyPresent) return 1.0f;
     if (!m.program) return m.constant.presence();
-    HitContext context(hit);
+    SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v);
     return m.program->presence(context);
 }
 
@@ -295,6 +279,20 @@ Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& set
         else
             _constantBsdfs.emplace_back(std::in_place, m.constant.params, _settings.bsdf);
     }
+}
+
+bool Integrator::texturedEmission(const LightRecord& light, LightSample* ls) const {
+    // The light's material at the sampled point of its triangle (textured emission).
+    if (!light.mesh || ls->meshTriangle < 0 || light.meshMaterial < 0 ||
+        light.meshMaterial >= int(_scene.materials.size()))
+        return false;
+    const MaterialRecord& m = _scene.materials[size_t(light.meshMaterial)];
+    if (!m.program) return false;
+    SurfacePoint point(*light.mesh, unsigned(ls->meshTriangle), ls->bary.x, ls->bary.y);
+    const glm::vec3 e = m.program->evaluate(point).emission;
+    if (!finite(e) || maxComponent(e) <= 0.0f) return false;
+    ls->Li = e;
+    return true;
 }
 
 PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
@@ -366,7 +364,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         }
         // Material: the bound one (evaluated here if textured), or UsdPreviewSurface
         // defaults with displayColor.
-        HitContext context(hit);
+        SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v);
         // Built only for textured or unbound materials (an untextured material's record and
         // prebuilt BSDF are used as they are, with nothing written per hit).
         std::optional<shading::ShadedMaterial> shadedStore;
@@ -405,10 +403,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (mat->emission != glm::vec3(0.0f)) {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
             float lightPdf = 0.0f;
-            if (rec.emissiveLight >= 0 && rec.emissiveLight < int(lights.size())) {
-                const LightRecord& ml = lights[rec.emissiveLight];
-                lightPdf = ml.pickProbability * meshLightPdf(ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
-            }
+            if (const LightRecord* ml = meshLightOf(lights, rec, materialIndex))
+                lightPdf = ml->pickProbability * meshLightPdf(*ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f
                           : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
@@ -485,7 +481,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             const float lightPick = lights[li].pickProbability;
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls) && ls.pdf > 0.0f &&
-                lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough)) {
+                lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough) &&
+                (!lights[li].texturedEmission || texturedEmission(lights[li], &ls))) {
                 float bsdfPdf = 0.0f;
                 bsdf::LobeValues perLobe;
                 const bool split = depth == 0 && _settings.splitLobes;

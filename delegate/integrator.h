@@ -19,6 +19,8 @@
 
 namespace principled::embree {
 
+struct LightSample;  // delegate/lightSampling.h
+
 struct IntegratorSettings {
     SamplerKind sampler = SamplerKind::Sobol;
     bool mis = true;          ///< false: lights are found by next-event estimation only
@@ -77,6 +79,10 @@ public:
     PathSample trace(const Ray& cameraRay, Sampler& sampler) const;
 
 private:
+    /// Next-event estimation on a mesh light whose emission is textured: the radiance of the
+    /// light's material at the sampled point, into ls->Li. False when it is zero or invalid.
+    bool texturedEmission(const LightRecord& light, LightSample* ls) const;
+
     const SceneSnapshot& _scene;
     IntegratorSettings _settings;
     /// Per material: the BSDF of a material without a program (no textures), built once per

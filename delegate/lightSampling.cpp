@@ -142,6 +142,23 @@ glm::vec3 latLongToDirection(const glm::vec2& uv) {
 }
 
 namespace {
+// Barycentrics (of corners b and c) of a point q on triangle t's plane, clamped into the
+// triangle: Ericson 2005, "Real-Time Collision Detection", section 3.4 (Cramer's rule).
+glm::vec2 barycentrics(const glm::vec3& q, const MeshLightTriangle& t) {
+    const glm::vec3 e1 = t.b - t.a, e2 = t.c - t.a, d = q - t.a;
+    const float d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+    const float d1 = glm::dot(d, e1), d2 = glm::dot(d, e2);
+    const float det = d11 * d22 - d12 * d12;
+    if (!(det > 0.0f)) return glm::vec2(1.0f / 3.0f);
+    float v = std::clamp((d22 * d1 - d12 * d2) / det, 0.0f, 1.0f);
+    float w = std::clamp((d11 * d2 - d12 * d1) / det, 0.0f, 1.0f);
+    if (v + w > 1.0f) {
+        const float s = v + w;
+        v /= s, w /= s;
+    }
+    return {v, w};
+}
+
 bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
                     LightSample* out) {
     *out = LightSample();
@@ -252,6 +269,8 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
                 out->pdf = 1.0f / total;
                 out->distance = dist;
                 out->Li = l.radiance;
+                out->meshTriangle = int((*l.meshTriangles)[i]);
+                out->bary = barycentrics(p + dist * wi, t);
                 return true;
             }
             // Pick a triangle by area (u.x reused inside the chosen cell), then a uniform point
@@ -274,6 +293,8 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             out->pdf = toSolidAngle(1.0f / l.area, dist, cosL);
             out->distance = dist;
             out->Li = l.radiance;
+            out->meshTriangle = int((*l.meshTriangles)[i]);
+            out->bary = glm::vec2(u.y * su, (1.0f - u.y) * su);
             return out->pdf > 0.0f;
         }
         case LightRecord::Kind::Cylinder: {

@@ -15,6 +15,10 @@ struct LightSample {
     float pdf = 0.0f;        ///< solid-angle pdf (1 for delta lights)
     float distance = 1e30f;  ///< to the sampled point (1e30 for distant and dome lights)
     bool delta = false;
+    /// Mesh lights: the sampled triangle (GeometryRecord::triangles index) and the barycentrics
+    /// of its corners 1 and 2 at the sampled point (textured emission is evaluated there).
+    int meshTriangle = -1;
+    glm::vec2 bary{0.0f};
 };
 
 /// Samples light `l` as seen from point p with geometric normal ng (used by the dome's cosine

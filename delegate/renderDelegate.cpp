@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/renderDelegate.h"
+#include "delegate/surfacePoint.h"
 
 #include "delegate/sceneFeatures.h"
 
@@ -157,8 +158,10 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
     }
     if (lightTable || meshLights) {
         _snapshot.lights = _sceneLights;
+        const int firstMeshLight = int(_snapshot.lights.size());
         for (size_t i = 0; i < _meshLights.size(); ++i) {
-            _meshLightRecords[i]->emissiveLight = int(_snapshot.lights.size());
+            GeometryRecord* r = _meshLightRecords[i];
+            if (i == 0 || _meshLightRecords[i - 1] != r) r->emissiveLight = firstMeshLight + int(i);
             _snapshot.lights.push_back(_meshLights[i]);
         }
         _snapshot.usingDefaultLight = false;
@@ -203,13 +206,13 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
 }
 
 bool EmbreeRenderDelegate::mayEmit(const GeometryRecord* r) const {
-    // Whether this prim has a mesh light or any material it uses has constant emission.
+    // Whether this prim has a mesh light or any material it uses may emit.
     if (r->emissiveLight >= 0) return true;
     if (r->kind != GeometryRecord::Kind::Triangles) return false;
     auto emits = [&](int mi) {
         if (mi < 0 || mi >= int(_snapshot.materials.size())) return false;
         const MaterialRecord& m = _snapshot.materials[size_t(mi)];
-        return !m.program && m.constant.emission != glm::vec3(0.0f);
+        return m.mayEmit || m.constant.emission != glm::vec3(0.0f);
     };
     if (emits(r->materialIndex)) return true;
     for (int mi : r->triangleMaterial)
@@ -220,68 +223,102 @@ bool EmbreeRenderDelegate::mayEmit(const GeometryRecord* r) const {
 void EmbreeRenderDelegate::buildMeshLights() {
     _meshLights.clear();
     _meshLightRecords.clear();
-    // Triangle meshes whose material has a constant, non-zero emission become lights NEE can
-    // sample (PointInstancer copies and textured emission are still found by BSDF sampling
-    // only). Ordered by prim id, so the light list does not depend on pointer order.
+    // Triangle meshes whose material emits become lights NEE can sample, one light per emitting
+    // material of the prim (so a BSDF ray that hits an emitting triangle always finds the light
+    // that could have sampled it, and weights it against that light's pdf). A textured emission
+    // is evaluated at each sampled point; its radiance here is an estimate for picking lights.
+    // PointInstancer copies are still found by BSDF sampling only. Ordered by prim id, then
+    // material, so the light list does not depend on pointer order.
     std::vector<GeometrySource*> sources(_param->geometry().begin(), _param->geometry().end());
     std::sort(sources.begin(), sources.end(),
               [](GeometrySource* a, GeometrySource* b) { return a->record()->primId < b->record()->primId; });
+    auto emits = [&](int mi) {
+        if (mi < 0 || mi >= int(_snapshot.materials.size())) return false;
+        const MaterialRecord& m = _snapshot.materials[size_t(mi)];
+        return m.mayEmit || m.constant.emission != glm::vec3(0.0f);
+    };
     for (GeometrySource* g : sources) {
         GeometryRecord* r = g->record();
         r->emissiveLight = -1;
+        r->emissiveLightCount = 0;
         if (r->kind != GeometryRecord::Kind::Triangles || g->instanceId() == RTC_INVALID_GEOMETRY_ID) continue;
         if (g->instanceGeomIds()) continue;  // an instancer prototype: its record is not placed
-        auto tris = std::make_shared<std::vector<uint32_t>>();
-        auto cdf = std::make_shared<std::vector<float>>(1, 0.0f);
-        glm::vec3 emission(0.0f);
-        double area = 0.0;
-        for (uint32_t t = 0; t < r->triangles.size(); ++t) {
-            int mi = r->materialFor(t);
-            if (mi < 0 || mi >= int(_snapshot.materials.size())) continue;
-            const MaterialRecord& m = _snapshot.materials[mi];
-            if (m.program || m.constant.emission == glm::vec3(0.0f)) continue;
-            if (!tris->empty() && m.constant.emission != emission) continue;  // one radiance per light
-            emission = m.constant.emission;
-            const glm::uvec3& tri = r->triangles[t];
-            glm::vec3 a = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.x], 1.0f));
-            glm::vec3 b = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.y], 1.0f));
-            glm::vec3 c = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.z], 1.0f));
-            double ta = 0.5 * glm::length(glm::cross(b - a, c - a));
-            if (!(ta > 0.0) || !std::isfinite(ta)) continue;
-            area += ta;
-            tris->push_back(t);
-            cdf->push_back(float(area));
+        std::vector<int> materials;          // the emitting materials this prim uses, sorted
+        if (emits(r->materialIndex)) materials.push_back(r->materialIndex);
+        for (int mi : r->triangleMaterial)
+            if (emits(mi)) materials.push_back(mi);
+        std::sort(materials.begin(), materials.end());
+        materials.erase(std::unique(materials.begin(), materials.end()), materials.end());
+        for (int mi : materials) {
+            const MaterialRecord& m = _snapshot.materials[size_t(mi)];
+            auto tris = std::make_shared<std::vector<uint32_t>>();
+            auto cdf = std::make_shared<std::vector<float>>(1, 0.0f);
+            double area = 0.0;
+            for (uint32_t t = 0; t < r->triangles.size(); ++t) {
+                if (r->materialFor(t) != mi) continue;
+                const glm::uvec3& tri = r->triangles[t];
+                glm::vec3 a = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.x], 1.0f));
+                glm::vec3 b = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.y], 1.0f));
+                glm::vec3 c = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.z], 1.0f));
+                double ta = 0.5 * glm::length(glm::cross(b - a, c - a));
+                if (!(ta > 0.0) || !std::isfinite(ta)) continue;
+                area += ta;
+                tris->push_back(t);
+                cdf->push_back(float(area));
+            }
+            if (tris->empty() || !(area > 0.0)) continue;
+            for (auto& v : *cdf) v = float(v / area);
+            cdf->back() = 1.0f;
+            LightRecord l;
+            l.kind = LightRecord::Kind::Mesh;
+            l.solidAngleSampling = intSetting("lightSolidAngle", 1) != 0;
+            l.meshMaterial = mi;
+            l.texturedEmission = m.program != nullptr && m.mayEmit;
+            l.radiance = l.texturedEmission ? meanEmission(*r, m, *tris) : m.constant.emission;
+            if (!l.texturedEmission && l.radiance == glm::vec3(0.0f)) continue;
+            l.area = float(area);
+            l.mesh = r;
+            // Bounding sphere of the emitting triangles (vertex mean, farthest vertex): solid-angle
+            // sampling is used only near the light (lightSampling.cpp).
+            {
+                glm::dvec3 sum(0.0);
+                for (uint32_t t : *tris)
+                    for (int k = 0; k < 3; ++k)
+                        sum += glm::dvec3(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)));
+                l.center = glm::vec3(sum / double(3 * tris->size()));
+                float rad = 0.0f;
+                for (uint32_t t : *tris)
+                    for (int k = 0; k < 3; ++k)
+                        rad = std::max(rad, glm::length(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)) - l.center));
+                l.radius = rad;
+            }
+            l.meshTriangles = std::move(tris);
+            l.meshAreaCdf = std::move(cdf);
+            prepareMeshLight(&l);
+            l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
+            if (r->emissiveLightCount++ == 0) r->emissiveLight = int(_meshLights.size());  // made absolute at commit
+            _meshLights.push_back(std::move(l));
+            _meshLightRecords.push_back(r);
         }
-        if (tris->empty() || !(area > 0.0)) continue;
-        for (auto& v : *cdf) v = float(v / area);
-        cdf->back() = 1.0f;
-        LightRecord l;
-        l.kind = LightRecord::Kind::Mesh;
-        l.solidAngleSampling = intSetting("lightSolidAngle", 1) != 0;
-        l.radiance = emission;
-        l.area = float(area);
-        l.mesh = r;
-        // Bounding sphere of the emitting triangles (vertex mean, farthest vertex): solid-angle
-        // sampling is used only near the light (lightSampling.cpp).
-        {
-            glm::dvec3 sum(0.0);
-            for (uint32_t t : *tris)
-                for (int k = 0; k < 3; ++k)
-                    sum += glm::dvec3(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)));
-            l.center = glm::vec3(sum / double(3 * tris->size()));
-            float rad = 0.0f;
-            for (uint32_t t : *tris)
-                for (int k = 0; k < 3; ++k)
-                    rad = std::max(rad, glm::length(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)) - l.center));
-            l.radius = rad;
-        }
-        l.meshTriangles = std::move(tris);
-        l.meshAreaCdf = std::move(cdf);
-        prepareMeshLight(&l);
-        l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
-        _meshLights.push_back(std::move(l));
-        _meshLightRecords.push_back(r);
     }
+}
+
+glm::vec3 EmbreeRenderDelegate::meanEmission(const GeometryRecord& r, const MaterialRecord& m,
+                                             const std::vector<uint32_t>& triangles) const {
+    // The textured emission at the centroids of up to 256 triangles spread over the light,
+    // averaged: only the light-picking probabilities depend on it, never the estimate's mean.
+    constexpr size_t kProbes = 256;
+    const size_t n = triangles.size(), step = std::max<size_t>(1, n / kProbes);
+    glm::dvec3 sum(0.0);
+    size_t count = 0;
+    for (size_t i = 0; i < n; i += step, ++count) {
+        SurfacePoint centroid(r, triangles[i], 1.0f / 3.0f, 1.0f / 3.0f);
+        glm::vec3 e = m.program->evaluate(centroid).emission;
+        if (std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z)) sum += glm::dvec3(e);
+    }
+    glm::vec3 mean = count ? glm::vec3(sum / double(count)) : glm::vec3(0.0f);
+    // Never zero: a texture black at every probe may still emit elsewhere.
+    return glm::max(mean, glm::vec3(1e-3f));
 }
 
 float EmbreeRenderDelegate::sceneRadius() const {

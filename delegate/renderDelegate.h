@@ -85,6 +85,9 @@ private:
     void updateDicing();
     void buildLightDistribution();
     void buildMeshLights();
+    /// Estimated mean of a textured emission over a mesh light's triangles (for light picking).
+    glm::vec3 meanEmission(const GeometryRecord& r, const MaterialRecord& m,
+                           const std::vector<uint32_t>& triangles) const;
     void computeLightPower();
     float sceneRadius() const;
     bool mayEmit(const GeometryRecord* r) const;

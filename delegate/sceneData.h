@@ -23,6 +23,7 @@ struct MaterialRecord {
     shading::ShadedMaterial constant;                        ///< used when program is null
     std::shared_ptr<const shading::MaterialProgram> program;  ///< non-null when textured
     bool mayBePartlyPresent = false;  ///< opacity < 1 somewhere: shadow rays must evaluate it
+    bool mayEmit = false;  ///< constant emission != 0, or emissiveColor textured (program)
 };
 
 /// One primvar of a mesh: by default three values per triangle (one per corner); or one value
@@ -52,7 +53,10 @@ struct GeometryRecord {
     Kind kind = Kind::Triangles;
     int primId = -1;
     int materialIndex = -1;  ///< into SceneSnapshot::materials; -1 = use displayColor
-    int emissiveLight = -1;  ///< index of the mesh light made from this prim's emission, or -1
+    /// The mesh lights made from this prim's emission: emissiveLightCount consecutive lights from
+    /// index emissiveLight (-1: none), one per emitting material (LightRecord::meshMaterial).
+    int emissiveLight = -1;
+    int emissiveLightCount = 0;
     glm::vec3 displayColor{0.18f};
     bool doubleSided = false;
     glm::mat4 objectToWorld{1.0f};
@@ -158,6 +162,10 @@ struct LightRecord {
     std::shared_ptr<const std::vector<uint32_t>> meshTriangles;
     std::shared_ptr<const std::vector<float>> meshAreaCdf;  ///< meshTriangles.size() + 1
     bool solidAngleSampling = true;  ///< small mesh lights: sample by solid angle (lightSampling.cpp)
+    int meshMaterial = -1;           ///< the material (SceneSnapshot::materials) of its triangles
+    /// The material's emission is textured: `radiance` is only its estimated mean (for picking
+    /// lights); each sample's radiance comes from the material at the sampled point.
+    bool texturedEmission = false;
     /// meshTriangles in world space, same order (prepareMeshLight, light.cpp).
     std::shared_ptr<const std::vector<MeshLightTriangle>> meshWorld;
 };

@@ -523,6 +523,13 @@ float MaterialProgram::presence(const ShadingContext& context) const {
     return mapPreviewSurface(p).presence();
 }
 
+bool MaterialProgram::mayEmit() const {
+    if (_constant.emission != glm::vec3(0.0f)) return true;
+    for (const Binding& b : _bindings)
+        if (b.slot == Slot::EmissiveColor) return true;
+    return false;
+}
+
 bool MaterialProgram::mayBePartlyPresent() const {
     if (_constant.presence() < 1.0f) return true;
     for (const Binding& b : _bindings)

@@ -54,6 +54,9 @@ class MaterialProgram {
     /// False when every shading point is fully present (opacity 1, or a cutout that always
     /// passes): shadow rays may then treat the surface as opaque without evaluating it.
     bool mayBePartlyPresent() const;
+    /// Whether the material can emit anywhere: a non-zero constant emission, or a texture or
+    /// primvar bound to emissiveColor (its value then varies over the surface).
+    bool mayEmit() const;
     /// evaluate(context).presence(), running only the operations the opacity input depends on
     /// (shadow rays through cutouts need nothing else: no normal map, no roughness texture).
     float presence(const ShadingContext& context) const;

@@ -294,6 +294,162 @@ def Camera "Cam"
     EXPECT_LT(noise["11"], 0.05 * noise["01"]) << noise["11"] << " vs " << noise["01"];
 }
 
+namespace {
+
+// A white floor (z = 0) lit only by an emissive panel 1 above it facing down, seen from above
+// at an angle. `panel` is the panel's Mesh body and `looks` its materials.
+std::string panelOverFloor(const std::string& panel, const std::string& looks) {
+    return R"(#usda 1.0
+def Mesh "Floor" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-4, -4, 0), (4, -4, 0), (4, 4, 0), (-4, 4, 0)]
+    rel material:binding = </Looks/White>
+}
+def Mesh "Panel" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+)" + panel + R"(
+}
+def Scope "Looks"
+{
+    def Material "White"
+    {
+        token outputs:surface.connect = </Looks/White/S.outputs:surface>
+        def Shader "S"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor = (0.8, 0.8, 0.8)
+            float inputs:roughness = 1
+            float inputs:specular = 0
+            token outputs:surface
+        }
+    }
+)" + looks + R"(
+}
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, -3, 5)
+    float3 xformOp:rotateXYZ = (30, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ"]
+}
+)";
+}
+
+std::string emitter(const std::string& name, const std::string& emissive) {
+    return "    def Material \"" + name + "\"\n    {\n        token outputs:surface.connect = </Looks/" + name +
+           "/S.outputs:surface>\n        def Shader \"S\"\n        {\n            uniform token info:id = "
+           "\"UsdPreviewSurface\"\n            color3f inputs:diffuseColor = (0, 0, 0)\n            "
+           "float inputs:specular = 0\n" + emissive + "            token outputs:surface\n        }\n    }\n";
+}
+
+struct StrategyRun {
+    Stats stats;
+    double noise = 0.0;  // per-pixel variance of the red channel, from two seeds
+};
+
+// The same scene under NEE + MIS ("11"), NEE alone ("10") and BSDF sampling alone ("01").
+std::map<std::string, StrategyRun> renderStrategies(const std::string& scene, int spp) {
+    std::map<std::string, StrategyRun> out;
+    for (auto [nee, mis] : {std::pair{"1", "1"}, {"1", "0"}, {"0", "1"}}) {
+        host::SessionOptions o;
+        o.width = o.height = 32;
+        o.samplesPerPixel = spp;
+        o.maxDepth = 3;
+        o.settings = {{"nee", nee}, {"mis", mis}};
+        auto a = run(scene, o);
+        o.seed = 1;
+        auto b = run(scene, o);
+        StrategyRun& r = out[std::string(nee) + mis];
+        r.stats = hitStats(*a);
+        double sq = 0.0;
+        for (int i = 0; i < o.width * o.height; ++i) {
+            double d = double(a->color()[4 * i]) - b->color()[4 * i];
+            sq += d * d;
+        }
+        r.noise = sq / (2.0 * o.width * o.height);
+    }
+    return out;
+}
+
+::testing::AssertionResult sameMean(const StrategyRun& a, const StrategyRun& b) {
+    double tol = 4.0 * std::hypot(a.stats.stderr_, b.stats.stderr_) + 2e-3 * std::abs(b.stats.mean);
+    if (std::abs(a.stats.mean - b.stats.mean) < tol) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << a.stats.mean << " +- " << a.stats.stderr_ << " vs "
+                                         << b.stats.mean << " +- " << b.stats.stderr_;
+}
+
+}  // namespace
+
+TEST(Integrator, EveryEmittingMaterialOfAMeshIsALight) {
+    // One panel, two faces bound by GeomSubsets to different emissions. Each emitting material
+    // is a light of its own: light sampling, MIS and BSDF sampling agree. (With one light per
+    // prim, the second face was sampled by nothing while its BSDF hits were weighted as if
+    // it were: NEE alone lost its light entirely.)
+    const std::string scene = panelOverFloor(R"(
+    int[] faceVertexCounts = [4, 4]
+    int[] faceVertexIndices = [0, 3, 4, 1, 1, 4, 5, 2]
+    point3f[] points = [(-0.6, -0.3, 1), (0, -0.3, 1), (0.6, -0.3, 1), (-0.6, 0.3, 1), (0, 0.3, 1), (0.6, 0.3, 1)]
+    def GeomSubset "Left"
+    {
+        uniform token elementType = "face"
+        uniform token familyName = "materialBind"
+        int[] indices = [0]
+        rel material:binding = </Looks/Warm>
+    }
+    def GeomSubset "Right"
+    {
+        uniform token elementType = "face"
+        uniform token familyName = "materialBind"
+        int[] indices = [1]
+        rel material:binding = </Looks/Cool>
+    })",
+        emitter("Warm", "            color3f inputs:emissiveColor = (8, 4, 1)\n") +
+            emitter("Cool", "            color3f inputs:emissiveColor = (3, 5, 9)\n"));
+    auto r = renderStrategies(scene, 64);
+    ASSERT_GT(r["01"].stats.mean, 0.01);
+    EXPECT_TRUE(sameMean(r["11"], r["01"]));
+    EXPECT_TRUE(sameMean(r["10"], r["01"]));
+}
+
+TEST(Integrator, TexturedEmissionIsSampledAsALight) {
+    // The panel's emission comes from a primvar (a material program, not a constant): light
+    // sampling evaluates it at each sampled point. Strategies agree, and light sampling is far
+    // less noisy than BSDF sampling (before, a textured emitter was found by BSDF sampling only).
+    const std::string scene = panelOverFloor(R"(
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 2, 3, 1]
+    point3f[] points = [(-0.3, -0.3, 1), (0.3, -0.3, 1), (-0.3, 0.3, 1), (0.3, 0.3, 1)]
+    color3f[] primvars:glow = [(20, 2, 0), (0, 2, 20), (20, 20, 20), (0, 0, 0)] (interpolation = "vertex")
+    rel material:binding = </Looks/Screen>)",
+        R"(    def Material "Screen"
+    {
+        token outputs:surface.connect = </Looks/Screen/S.outputs:surface>
+        def Shader "Glow"
+        {
+            uniform token info:id = "UsdPrimvarReader_float3"
+            string inputs:varname = "glow"
+            float3 outputs:result
+        }
+        def Shader "S"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor = (0, 0, 0)
+            float inputs:specular = 0
+            color3f inputs:emissiveColor.connect = </Looks/Screen/Glow.outputs:result>
+            token outputs:surface
+        }
+    }
+)");
+    auto r = renderStrategies(scene, 64);
+    ASSERT_GT(r["01"].stats.mean, 0.01);
+    EXPECT_TRUE(sameMean(r["11"], r["01"]));
+    EXPECT_TRUE(sameMean(r["10"], r["01"]));
+    EXPECT_LT(r["11"].noise, 0.25 * r["01"].noise) << r["11"].noise << " vs " << r["01"].noise;
+}
+
 TEST(Integrator, FarFromTheOriginRendersLikeAtTheOrigin) {
     // The same sphere-on-a-plane scene translated by 1e5: hit points and ray offsets are
     // relative to the geometry's magnitude, so shading and contact shadows survive.

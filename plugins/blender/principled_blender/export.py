@@ -12,6 +12,7 @@ Conventions (docs/hosts.md has the long form):
 import math
 import os
 import re
+import time
 
 import numpy as np
 
@@ -113,11 +114,7 @@ class TextureWriter:
         os.makedirs(self.directory, exist_ok=True)
         base = os.path.join(self.directory, usd_name(image.name, "Image"))
         if image.is_float:
-            # PFM: linear floats, rows bottom to top (Blender's order too).
-            path = base + ".pfm"
-            with open(path, "wb") as f:
-                f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
-                f.write(np.ascontiguousarray(px[:, :, :3], dtype="<f4").tobytes())
+            path = _write_pfm(base + ".pfm", px)
         else:
             # 8-bit images: Blender's pixels are the stored (sRGB-encoded) values; an 8-bit
             # PPM is read as sRGB by the delegate, as the original PNG would be.
@@ -127,6 +124,25 @@ class TextureWriter:
                 f.write(b"P6\n%d %d\n255\n" % (w, h))
                 f.write(rgb.tobytes())
         return path
+
+    def file_for_pixels(self, key, px):
+        """A PFM of linear float pixels ((h, w, 3+) float32, rows bottom to top: a bake's), once
+        per key; read as raw (linear) data by the delegate (float files are never sRGB)."""
+        key = "\0pixels:" + key
+        if key not in self.files:
+            os.makedirs(self.directory, exist_ok=True)
+            name = "Bake_%d" % len(self.files)
+            self.files[key] = _write_pfm(os.path.join(self.directory, name + ".pfm"), px)
+        return self.files[key]
+
+
+def _write_pfm(path, px):
+    """PFM: linear floats, rows bottom to top (Blender's order too)."""
+    h, w = px.shape[:2]
+    with open(path, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
+        f.write(np.ascontiguousarray(px[:, :, :3], dtype="<f4").tobytes())
+    return path
 
 
 # Image Texture node extension -> UsdUVTexture wrapS/wrapT. UsdUVTexture's own fallback
@@ -269,21 +285,27 @@ def principled_bsdf(material):
     return node if node is not None and node.type == "BSDF_PRINCIPLED" else None
 
 
-def emission_params(node, material_name, warnings):
+def emission_params(node, material_name, warnings, bake=None, links=None):
     """An Emission shader alone on the output: Cycles renders a pure emitter (radiance colour x
     strength, both sides) that reflects nothing. principled: emissiveColor, black diffuse,
-    specular 0, roughness 1 (Disney keeps a faint grazing Schlick lobe at specular 0)."""
+    specular 0, roughness 1 (Disney keeps a faint grazing Schlick lobe at specular 0). A linked
+    Color is baked (`bake`, see _base_material_params) into links['emissiveColor']."""
+    strength = float(node.inputs["Strength"].default_value)
     for name in ("Color", "Strength"):
         if node.inputs[name].is_linked:
+            if name == "Color" and bake is not None and links is not None:
+                t = bake(node.inputs[name])
+                if t is not None:
+                    links["emissiveColor"] = (t[0], "rgb", strength, "clamp")
+                    continue
             warnings.append(f"material '{material_name}': Emission {name} is linked; using the "
                             "socket value")
-    strength = float(node.inputs["Strength"].default_value)
     color = [float(c) * strength for c in node.inputs["Color"].default_value[:3]]
     return {"diffuseColor": [0.0, 0.0, 0.0], "specular": 0.0, "roughness": 1.0,
             "metallic": 0.0, "emissiveColor": color}
 
 
-def bsdf_node_params(node, material_name, warnings):
+def bsdf_node_params(node, material_name, warnings, bake=None, links=None):
     """A single Diffuse, Glossy or Glass BSDF node on the output -> Disney inputs (socket values;
     links are warned about and ignored), or None for other nodes.
 
@@ -293,12 +315,22 @@ def bsdf_node_params(node, material_name, warnings):
     - Glossy BSDF (coloured mirror-like microfacet, no Fresnel): metallic 1 with F0 = Color,
       roughness (Disney's Schlick edge brightening remains).
     - Glass BSDF: specTrans 1, diffuseColor = Color (the transmission tint), roughness, ior,
-      specular = ((ior - 1)/(ior + 1))^2 / 0.08 (the same index for the reflection)."""
+      specular = ((ior - 1)/(ior + 1))^2 / 0.08 (the same index for the reflection).
+    With `bake` (final renders, see _base_material_params) a linked Color becomes
+    links['diffuseColor'] and a linked Glossy/Glass Roughness links['roughness']."""
     t = node.type
     if t not in ("BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS"):
         return None
     for sock in node.inputs:
         if sock.is_linked and sock.name != "Weight":
+            usd = {"Color": "diffuseColor", "Roughness": "roughness"}.get(sock.name)
+            if t == "BSDF_DIFFUSE" and usd == "roughness":
+                usd = None
+            if usd is not None and bake is not None and links is not None:
+                r = bake(sock, scalar=usd != "diffuseColor")
+                if r is not None:
+                    links[usd] = (r[0], r[1], None, "clamp")
+                    continue
             warnings.append(f"material '{material_name}': {node.name} input '{sock.name}' is "
                             "linked; using the socket value")
     color = [float(c) for c in node.inputs["Color"].default_value[:3]]
@@ -316,12 +348,12 @@ def bsdf_node_params(node, material_name, warnings):
             "ior": ior, "specular": min(spec, 1.0)}
 
 
-def material_params(material, textures):
+def material_params(material, textures, bake=None, bake_images=False):
     """_base_material_params, then a Mix Shader with a Transparent BSDF on the output
     (transparent_mix) multiplies the opacity by its Fac (or 1 - Fac): a constant, or an Image
     Texture's Alpha/Color output linked as the opacity texture (inverted with scale -1, bias 1
-    when the Transparent BSDF is the second input)."""
-    inputs, links, warnings = _base_material_params(material, textures)
+    when the Transparent BSDF is the second input), or with `bake` any other link baked."""
+    inputs, links, warnings = _base_material_params(material, textures, bake, bake_images)
     mix = transparent_mix(surface_node(material))
     if mix is None:
         return inputs, links, warnings
@@ -347,6 +379,12 @@ def material_params(material, textures):
                             texture_wrap(src))
         inputs["opacity"] = 1.0
         return inputs, links, warnings
+    if bake is not None:
+        t = bake(fac, scalar=True)
+        if t is not None:
+            links["opacity"] = (t[0], t[1], None if transparent_first else "invert", "clamp")
+            inputs["opacity"] = 1.0
+            return inputs, links, warnings
     warnings.append(f"material '{material.name}': Mix Shader Fac linked to '{src.type}'; "
                     "using its socket value")
     f = float(fac.default_value)
@@ -354,7 +392,7 @@ def material_params(material, textures):
     return inputs, links, warnings
 
 
-def _base_material_params(material, textures):
+def _base_material_params(material, textures, bake=None, bake_images=False):
     """Principled BSDF (v1, Blender 3.4) -> UsdPreviewSurface + Disney inputs.
 
     Returns (inputs: {name: float | [3 floats]}, links: {input: (file, channel, extra, wrap)},
@@ -367,6 +405,14 @@ def _base_material_params(material, textures):
     Every texture keeps its node's extension as wrapS/wrapT (texture_wrap). A scalar input fed
     by an Image Texture's Alpha output reads the image's alpha (TextureWriter.alpha_file_for),
     any other output its red channel.
+
+    `bake` (final renders; None in the viewport): a callable bake(socket, scalar=False,
+    transform=None) -> (file, channel) | None giving a texture of a linked input's upstream
+    value (SceneExport.bake_socket: a Cycles bake over the mesh's UVs, bake.py). Inputs linked
+    to anything but an Image Texture (to anything at all when bake_images: the material's Image
+    Textures use a UV Mapping, which the baked textures must not get) are baked; the textures
+    use the clamp wrap (UV islands with a margin). Without it, or when a bake fails (warned by
+    the callable), such inputs keep their socket values with a warning.
     """
     warnings = []
     inputs = {}
@@ -377,8 +423,9 @@ def _base_material_params(material, textures):
     if bsdf is None:
         node = shading_node(material)
         if node is not None and node.type == "EMISSION":
-            return emission_params(node, material.name, warnings), links, warnings
-        simple = bsdf_node_params(node, material.name, warnings) if node is not None else None
+            return emission_params(node, material.name, warnings, bake, links), links, warnings
+        simple = (bsdf_node_params(node, material.name, warnings, bake, links)
+                  if node is not None else None)
         if simple is not None:
             return simple, links, warnings
         c = list(material.diffuse_color)[:3]
@@ -398,21 +445,30 @@ def _base_material_params(material, textures):
             warnings.append(f"material '{material.name}': image '{image.name}': {e}")
             return None
 
-    def image_link(name):
-        node = _linked_node(I[name])
+    def texture(sock, scalar, transform=None):
+        """(file, channel, wrap) of an input fed by an Image Texture, or baked, or None."""
+        node = _linked_node(sock)
         if node is None:
             return None
-        if node.type == "TEX_IMAGE" and node.image is not None:
-            return node if image_file(node.image) else None
-        warnings.append(f"material '{material.name}': input '{name}' is linked to a "
+        if node.type == "TEX_IMAGE" and node.image is not None and not \
+                (bake is not None and bake_images):
+            if not image_file(node.image):
+                return None
+            if scalar and _linked_socket(sock).name == "Alpha":  # the image's alpha
+                return textures.alpha_file_for(node.image) + (texture_wrap(node),)
+            return textures.file_for(node.image), "r" if scalar else "rgb", texture_wrap(node)
+        if bake is not None:
+            t = bake(sock, scalar=scalar, transform=transform)
+            return None if t is None else (t[0], t[1], "clamp")
+        warnings.append(f"material '{material.name}': input '{sock.name}' is linked to a "
                         f"'{node.type}' node; only Image Texture links are translated, "
                         "using the socket value")
         return None
 
     inputs["diffuseColor"] = value("Base Color")[:3]
-    tex = image_link("Base Color")
-    if tex is not None:
-        links["diffuseColor"] = (textures.file_for(tex.image), "rgb", None, texture_wrap(tex))
+    t = texture(I["Base Color"], False)
+    if t is not None:
+        links["diffuseColor"] = (t[0], t[1], None, t[2])
     for blender, usd in (("Metallic", "metallic"), ("Roughness", "roughness"),
                          ("Specular", "specular"), ("Specular Tint", "specularTint"),
                          ("Anisotropic", "anisotropic"), ("Sheen", "sheen"),
@@ -420,26 +476,33 @@ def _base_material_params(material, textures):
                          ("Transmission", "specTrans"), ("IOR", "ior"), ("Alpha", "opacity"),
                          ("Subsurface", "subsurface")):
         inputs[usd] = float(value(blender))
-        tex = image_link(blender)
-        if tex is not None:
-            if _linked_socket(I[blender]).name == "Alpha":  # the Image Texture's Alpha output
-                file, channel = textures.alpha_file_for(tex.image)
-            else:
-                file, channel = textures.file_for(tex.image), "r"
-            links[usd] = (file, channel, None, texture_wrap(tex))
+        t = texture(I[blender], True)
+        if t is not None:
+            links[usd] = (t[0], t[1], None, t[2])
     r = float(value("Clearcoat Roughness"))
     inputs["clearcoatGloss"] = min(1.0, max(0.0, (0.1 - r * r) / 0.099))
+    if I["Clearcoat Roughness"].is_linked and bake is not None:
+        # Baked roughness r -> gloss texel by texel (an Image Texture link is baked too: the
+        # conversion is not affine).
+        t = bake(I["Clearcoat Roughness"], scalar=True, transform="clearcoatGloss")
+        if t is not None:
+            links["clearcoatGloss"] = (t[0], t[1], None, "clamp")
     strength = float(value("Emission Strength"))
     inputs["emissiveColor"] = [c * strength for c in value("Emission")[:3]]
-    tex = image_link("Emission")
-    if tex is not None:  # an emission map (screens, signs): colour data, times the strength
-        links["emissiveColor"] = (textures.file_for(tex.image), "rgb", strength,
-                                  texture_wrap(tex))
+    t = texture(I["Emission"], False)
+    if t is not None:  # an emission map (screens, signs): colour data, times the strength
+        links["emissiveColor"] = (t[0], t[1], strength, t[2])
     nnode = _linked_node(I["Normal"])
     if nnode is not None:
         if nnode.type == "NORMAL_MAP" and nnode.space == "TANGENT":
             tex = _linked_node(nnode.inputs["Color"])
-            if tex is not None and tex.type == "TEX_IMAGE" and tex.image is not None and \
+            baked = None
+            if tex is not None and bake is not None and (bake_images or tex.type != "TEX_IMAGE"):
+                baked = bake(nnode.inputs["Color"])  # raw tangent-space colour, as an image's
+            if baked is not None:
+                links["normal"] = (baked[0], "rgb",
+                                   float(nnode.inputs["Strength"].default_value), "clamp")
+            elif tex is not None and tex.type == "TEX_IMAGE" and tex.image is not None and \
                     image_file(tex.image):
                 links["normal"] = (textures.file_for(tex.image), "rgb",
                                    float(nnode.inputs["Strength"].default_value),
@@ -728,8 +791,12 @@ class SceneExport:
     wrote (objects, materials, lights, camera) so a viewport can edit them later."""
 
     def __init__(self, principled, depsgraph, texture_dir, width, height,
-                 camera_matrix=None, camera_data=None, view_camera=None):
+                 camera_matrix=None, camera_data=None, view_camera=None, baker=None):
         self.p = principled
+        self.baker = baker        # a bake.Baker (final renders with baking on) or None
+        self.bakes = {}           # (material name, object name) -> ({(node, socket identifier,
+        #                           transform): (file, channel) | reason}, bake_images)
+        self.info = []            # bake statistics (reported as information, not warnings)
         self.depsgraph = depsgraph
         self.textures = TextureWriter(texture_dir)
         self.width, self.height = width, height
@@ -763,14 +830,132 @@ class SceneExport:
         self._names.add(n)
         return n
 
-    def material_path(self, b, material):
-        key = material.name if material is not None else "__default__"
+    def material_key(self, material, obj_name=None):
+        """The key of a material's prim in self.materials: its name, or name + object for a
+        material with baked inputs (a bake belongs to one mesh's UVs)."""
+        if material is None:
+            return "__default__"
+        if (material.name, obj_name) in self.bakes:
+            return material.name + "\0" + obj_name
+        return material.name
+
+    def _mesh_data(self, inst, obj):
+        md = self.meshes.get(obj.name)
+        if md is None:
+            # Never to_mesh() the temporary object of an instance (it shares runtime data with
+            # the evaluated object): convert that evaluated object instead.
+            geom = obj.original.evaluated_get(self.depsgraph) if inst.is_instance else obj
+            md = self.meshes[obj.name] = MeshData(geom)
+        return md
+
+    def prepare_bakes(self):
+        """Final renders with a Baker: bakes every linked input material_params would otherwise
+        use the socket value of (it asks through its `bake` callable, recorded here), per
+        (material, object), before build() writes anything. Fills self.bakes; timing in
+        self.info. The bakes change no user data (bake.py)."""
+        from . import bake as _bake
+
+        baker = self.baker
+        if not baker.available():
+            self.warnings.append("procedural inputs not baked: the render runs off Blender's "
+                                 "main thread (interactive F12); render from the command line "
+                                 "or a script to bake them")
+            return
+        jobs = {}
+        for inst in self.depsgraph.object_instances:
+            obj = inst.object
+            if obj is None or obj.type not in ("MESH", "CURVE", "SURFACE", "META", "FONT") or \
+                    not inst.show_self:
+                continue
+            try:
+                md = self._mesh_data(inst, obj)
+            except RuntimeError:
+                continue  # build() reports it
+            for slot, _idx, _nrm, _st in md.parts:
+                if not 0 <= slot < len(obj.material_slots):
+                    continue
+                mat = obj.material_slots[slot].material
+                if mat is not None and (mat.name, obj.name) not in jobs:
+                    jobs[(mat.name, obj.name)] = (obj.original, mat.original, md,
+                                                  obj.matrix_world.copy())
+        t0, sockets, failed = time.perf_counter(), 0, 0
+        try:
+            for (mname, oname), (orig, mat, md, mw) in jobs.items():
+                requests = []
+
+                def record(sock, scalar=False, transform=None):
+                    requests.append((sock, scalar, transform))
+
+                material_params(mat, self.textures, record)
+                if not requests:
+                    continue
+                images = uv_mapping(mat, []) is not None
+                if images:
+                    requests.clear()
+                    material_params(mat, self.textures, record, True)
+                uv = orig.data.uv_layers.active if orig.type == "MESH" else None
+                mesh_key = (orig.name_full, _bake.mesh_fingerprint(md, mw))
+                results = {}
+                for sock, scalar, transform in requests:
+                    rk = (sock.node.name, sock.identifier, transform)
+                    if rk in results:
+                        continue
+                    if uv is None:
+                        results[rk] = ("the object has no UV map" if orig.type == "MESH" else
+                                       f"object type {orig.type} (meshes only)")
+                        continue
+                    try:
+                        px = baker.bake(orig, mat, sock.node.name, sock.identifier, mesh_key,
+                                        uv.name)
+                    except _bake.BakeError as e:
+                        results[rk] = str(e)
+                        failed += 1
+                        continue
+                    if transform == "clearcoatGloss":
+                        px = np.clip((0.1 - px * px) / 0.099, 0.0, 1.0).astype(np.float32)
+                    file = self.textures.file_for_pixels(
+                        "\0".join((mname, oname) + tuple(str(x) for x in rk)), px)
+                    results[rk] = (file, "r" if scalar else "rgb")
+                    sockets += 1
+                self.bakes[(mname, oname)] = (results, images)
+        finally:
+            baker.close()
+        if sockets or failed:
+            self.info.append(
+                f"baked {sockets} procedural input(s) of {len(self.bakes)} material/object "
+                f"pair(s) at {baker.resolution}px: {baker.baked} Cycles bake(s) in "
+                f"{baker.seconds:.2f} s, {baker.reused} from the session cache "
+                f"({time.perf_counter() - t0:.2f} s in all)")
+
+    def material_path(self, b, material, obj_name=None):
+        key = self.material_key(material, obj_name)
         if key in self.materials:
             return self.materials[key][0]
         path = "/World/Looks/" + self._unique(usd_name(key, "Mat"))
-        inputs, links, warns = material_params(material, self.textures)
+        entry = self.bakes.get((material.name, obj_name)) if material is not None else None
+        bake, images = None, False
+        if entry is not None:
+            results, images = entry
+            failures = []
+
+            def bake(sock, scalar=False, transform=None):
+                r = results.get((sock.node.name, sock.identifier, transform))
+                if isinstance(r, tuple):
+                    return r
+                src = _linked_node(sock)
+                failures.append(f"material '{material.name}' on '{obj_name}': {sock.node.name} "
+                                f"input '{sock.name}' (linked to "
+                                f"'{src.type if src is not None else '?'}') not baked: {r}; "
+                                "using the socket value")
+                return None
+
+        inputs, links, warns = material_params(material, self.textures, bake, images)
         self.warnings += warns
-        mapping = uv_mapping(material, self.warnings) if material is not None else None
+        if entry is not None:
+            self.warnings += failures
+        mapping = None
+        if material is not None and not images:
+            mapping = uv_mapping(material, self.warnings)
         self.st_mappings[key] = mapping
         b.add_material(path)
         for k, v in inputs.items():
@@ -780,6 +965,10 @@ class SceneExport:
             tex = f"{path}/{k}Texture"
             b.set_attribute_string(tex, "token", "inputs:wrapS", wrap)
             b.set_attribute_string(tex, "token", "inputs:wrapT", wrap)
+            if k == "diffuseColor" and file.endswith(".pfm"):
+                # Float data (a float image's, a bake's) is linear: say so rather than rely on
+                # the delegate's "auto" (which reads float files as raw too).
+                b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
             if k == "normal":
                 s = 1.0 if strength is None else max(0.0, strength)
                 # Tangent-space map stored as 0.5 + 0.5 n (raw data). Cycles' Strength s blends
@@ -810,6 +999,8 @@ class SceneExport:
         b.add_prim("/World", "Xform")
         counters = {}
         scene_cam = self.depsgraph.scene.camera
+        if self.baker is not None:
+            self.prepare_bakes()
         for inst in self.depsgraph.object_instances:
             obj = inst.object
             if obj is None:
@@ -838,12 +1029,7 @@ class SceneExport:
             if not inst.show_self:
                 continue
             try:
-                md = self.meshes.get(obj.name)
-                if md is None:
-                    # Never to_mesh() the temporary object of an instance (it shares runtime
-                    # data with the evaluated object): convert that evaluated object instead.
-                    geom = obj.original.evaluated_get(self.depsgraph) if inst.is_instance else obj
-                    md = self.meshes[obj.name] = MeshData(geom)
+                md = self._mesh_data(inst, obj)
             except RuntimeError as e:
                 self.warnings.append(f"object '{name}': {e}")
                 continue
@@ -865,9 +1051,8 @@ class SceneExport:
                     mat = obj.material_slots[slot].material
                 gp = f"{xf}/Geom_{slot}"
                 counts = np.full(len(idx) // 3, 3, np.int32)
-                mpath = self.material_path(b, mat)
-                st = transform_st(st, self.st_mappings.get(
-                    mat.name if mat is not None else "__default__"))
+                mpath = self.material_path(b, mat, obj.name)
+                st = transform_st(st, self.st_mappings.get(self.material_key(mat, obj.name)))
                 b.add_mesh(gp, md.points, counts, idx, normals=nrm, st=st,
                            normals_interpolation="faceVarying", st_interpolation="faceVarying",
                            double_sided=True)

@@ -1,0 +1,211 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Headless Blender test of the add-on's Cycles bakes of procedural inputs (bake.py).
+
+blender -b -noaudio --factory-startup --python tests/blender/test_bake.py -- \
+    [--module-dir build/lib/python]
+
+Two planes under an overhead delta sun (strength pi: a Lambert plane's radiance is its
+albedo) seen by an overhead orthographic camera, world black:
+- left: Principled Base Color <- Color Ramp (dark blue | orange) <- Wave texture bands;
+- right: Principled Alpha <- Checker Fac through a Math node (a scalar input, red channel).
+Final renders with "Bake Procedural Textures" on and off are compared with Cycles: the mean
+absolute difference with baking must be a small fraction of the one without (socket values).
+Also checked: the materials' node trees, the objects' material slots and bpy.data's
+materials/images/objects/scenes are unchanged by the render; a second render of the unchanged
+scene bakes nothing (session cache); editing the ramp bakes again; a plane without UVs keeps
+the socket value with a warning.
+Exit code 0 = pass.
+"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
+
+import test_render as tr  # noqa: E402  (argument parsing, module path, check())
+from principled_blender import bake, export  # noqa: E402
+
+check = tr.check
+W, H = 100, 50
+SAMPLES = 64
+
+
+def scene_setup():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = SAMPLES
+    scene.principled.max_depth = 1
+    scene.principled.bake_resolution = 256
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 5.0  # 20 px per unit: each plane is 40 x 40 px
+    scene.camera = cam
+    return scene
+
+
+def plane(x, name):
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(x, 0, 0))
+    obj = bpy.context.active_object
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    b = m.node_tree.nodes["Principled BSDF"]
+    b.inputs["Specular"].default_value = 0.0
+    b.inputs["Roughness"].default_value = 1.0
+    obj.data.materials.append(m)
+    return obj, m, m.node_tree, b
+
+
+def build():
+    scene = scene_setup()
+    _o, ramp_mat, nt, b = plane(-1.2, "RampWave")
+    wave = nt.nodes.new("ShaderNodeTexWave")
+    wave.inputs["Scale"].default_value = 1.5
+    wave.inputs["Distortion"].default_value = 0.0
+    ramp = nt.nodes.new("ShaderNodeValToRGB")
+    ramp.color_ramp.elements[0].color = (0.02, 0.05, 0.3, 1)
+    ramp.color_ramp.elements[1].color = (0.9, 0.45, 0.05, 1)
+    nt.links.new(wave.outputs["Fac"], ramp.inputs["Fac"])
+    nt.links.new(ramp.outputs["Color"], b.inputs["Base Color"])
+    b.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1)  # what the old export used
+    _o, alpha_mat, nt, b = plane(1.2, "CheckerAlpha")
+    b.inputs["Base Color"].default_value = (0.6, 0.6, 0.6, 1)
+    ck = nt.nodes.new("ShaderNodeTexChecker")
+    ck.inputs["Scale"].default_value = 2.0
+    mth = nt.nodes.new("ShaderNodeMath")
+    mth.operation = "MULTIPLY_ADD"
+    mth.inputs[1].default_value = 0.6
+    mth.inputs[2].default_value = 0.2  # alpha 0.2 | 0.8
+    nt.links.new(ck.outputs["Fac"], mth.inputs[0])
+    nt.links.new(mth.outputs["Value"], b.inputs["Alpha"])
+    return scene, (ramp_mat, alpha_mat)
+
+
+def tree_state(m):
+    nt = m.node_tree
+    return (len(nt.nodes), sorted(n.name for n in nt.nodes),
+            sorted((ln.from_node.name, ln.from_socket.identifier, ln.to_node.name,
+                    ln.to_socket.identifier) for ln in nt.links),
+            nt.nodes.active.name if nt.nodes.active else None,
+            [e.color[:] for n in nt.nodes if n.type == "VALTORGB"
+             for e in n.color_ramp.elements])
+
+
+def data_state():
+    return {k: sorted(x.name for x in getattr(bpy.data, k))
+            for k in ("materials", "images", "objects", "scenes", "meshes")}
+
+
+def slots_state():
+    return {o.name: [(s.link, s.material.name if s.material else None)
+                     for s in o.material_slots] for o in bpy.data.objects}
+
+
+class CountBakes:
+    """Counts Baker._bake calls (actual Cycles bakes) during a with block."""
+
+    def __enter__(self):
+        self.n = 0
+        self.orig = bake.Baker._bake
+        me = self
+
+        def counted(this, *a, **k):
+            me.n += 1
+            return me.orig(this, *a, **k)
+
+        bake.Baker._bake = counted
+        return self
+
+    def __exit__(self, *exc):
+        bake.Baker._bake = self.orig
+
+
+def mean_abs(a, b):
+    return float(np.abs(a[:, :, :3] - b[:, :, :3]).mean())
+
+
+def test_bake_vs_cycles():
+    scene, mats = build()
+    trees = [tree_state(m) for m in mats]
+    data, slots = data_state(), slots_state()
+    bake.CACHE.clear()
+    with CountBakes() as c1:
+        baked = tr.render_combined(scene)
+    check(c1.n == 2, f"first render: {c1.n} Cycles bakes (2: Base Color, Alpha)")
+    check([tree_state(m) for m in mats] == trees,
+          "node trees unchanged by the bake (nodes, links, active node, ramp colours)")
+    check(data_state() == data, "bpy.data materials/images/objects/scenes/meshes unchanged")
+    check(slots_state() == slots, "objects' material slots unchanged")
+    with CountBakes() as c2:
+        again = tr.render_combined(scene)
+    check(c2.n == 0, f"second render of the unchanged scene: {c2.n} bakes (session cache)")
+    check(mean_abs(again, baked) < 1e-6, "the cached bake renders the same image")
+    scene.principled.bake_procedural = False
+    old = tr.render_combined(scene)
+    scene.principled.bake_procedural = True
+    cyc = tr.render_cycles(scene, "bake", SAMPLES)
+    scene.render.engine = "PRINCIPLED"
+    for name, sl in (("Base Color <- Color Ramp <- Wave", np.s_[5:45, 6:46]),
+                     ("Alpha <- Math <- Checker", np.s_[5:45, 54:94])):
+        d_new = mean_abs(baked[sl], cyc[sl])
+        d_old = mean_abs(old[sl], cyc[sl])
+        ref = float(cyc[sl][:, :, :3].mean())
+        print(f"     {name}: mean |add-on - Cycles| baked {d_new:.4f}, socket value {d_old:.4f} "
+              f"(Cycles mean {ref:.4f})")
+        check(d_new < 0.08 * ref and d_old > 4 * d_new,
+              f"{name}: baked {d_new / ref:.1%} of the mean off Cycles (< 8 %), the socket "
+              f"value {d_old / ref:.1%} (> 4x)")
+    # An edit of the ramp: the node-tree fingerprint changes, so it bakes again.
+    ramp = next(n for n in mats[0].node_tree.nodes if n.type == "VALTORGB")
+    ramp.color_ramp.elements[1].color = (0.1, 0.9, 0.1, 1)
+    with CountBakes() as c3:
+        edited = tr.render_combined(scene)
+    left = edited[5:45, 6:46, :3].mean(axis=(0, 1))
+    check(c3.n == 1 and left[1] > left[0] * 2,
+          f"ramp edit: {c3.n} bake (the edited material only), plane now green {left.round(3)}")
+
+
+def test_no_uvs():
+    scene, mats = build()
+    obj = next(o for o in bpy.data.objects if o.active_material == mats[0])
+    obj.data.uv_layers.remove(obj.data.uv_layers[0])
+    ex = export.SceneExport(None, bpy.context.evaluated_depsgraph_get(),
+                            os.path.join(tr.A["out"] or "/tmp", "principled-bake-tex"), W, H,
+                            baker=bake.Baker(64))
+
+    class B:  # a SceneBuilder stand-in recording the material inputs
+        def __init__(self):
+            self.inputs, self.textures = {}, {}
+
+        def __getattr__(self, name):
+            return lambda *a, **k: None
+
+        def set_material_input(self, path, k, v):
+            self.inputs[(path, k)] = v
+
+        def set_material_texture(self, path, k, file, channel):
+            self.textures[(path, k)] = file
+
+    b = B()
+    ex.p = type("P", (), {"SceneBuilder": staticmethod(lambda: b)})
+    ex.build()
+    uv_warn = [w for w in ex.warnings if "no UV map" in w]
+    check(len(uv_warn) == 1, f"plane without UVs: one warning ({uv_warn[:1]})")
+    tex_inputs = sorted(k for (_p, k) in b.textures)
+    check(tex_inputs == ["opacity"],
+          f"only the plane with UVs gets a baked texture ({tex_inputs})")
+
+
+tr.run_main(test_bake_vs_cycles, test_no_uvs)

@@ -14,6 +14,8 @@ Also checked: the materials' node trees, the objects' material slots and bpy.dat
 materials/images/objects/scenes are unchanged by the render; a second render of the unchanged
 scene bakes nothing (session cache); editing the ramp bakes again; a plane without UVs keeps
 the socket value with a warning.
+Mix Shader of two BSDFs with a constant Fac (export.mix_shader_params): blended inputs, checked
+against Cycles for Diffuse/Diffuse and Principled (baked base colour)/Diffuse.
 Exit code 0 = pass.
 """
 import math
@@ -208,4 +210,51 @@ def test_no_uvs():
           f"only the plane with UVs gets a baked texture ({tex_inputs})")
 
 
-tr.run_main(test_bake_vs_cycles, test_no_uvs)
+def test_mix_shader():
+    """Mix Shader cheap case (export.mix_shader_params): inputs blended linearly by a constant
+    Fac. Left: Diffuse red / Diffuse blue at Fac 0.3 (exact for two Lambert lobes). Right:
+    Principled with a baked Color Ramp base colour / Diffuse grey at Fac 0.4 (the baked texture
+    scaled by 0.6 plus 0.4 grey). Overhead sun and camera: Burley diffuse is Lambert there."""
+    scene = scene_setup()
+    _o, m1, nt, b = plane(-1.2, "MixDiffuse")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.3
+    d1, d2 = nt.nodes.new("ShaderNodeBsdfDiffuse"), nt.nodes.new("ShaderNodeBsdfDiffuse")
+    d1.inputs["Color"].default_value = (0.8, 0.1, 0.1, 1)
+    d2.inputs["Color"].default_value = (0.1, 0.2, 0.8, 1)
+    nt.links.new(d1.outputs[0], mix.inputs[1])
+    nt.links.new(d2.outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    inputs, links, warns = export.material_params(m1, None)
+    want = [0.7 * 0.8 + 0.3 * 0.1, 0.7 * 0.1 + 0.3 * 0.2, 0.7 * 0.1 + 0.3 * 0.8]
+    check(np.allclose(inputs["diffuseColor"], want) and
+          any("approximation" in w for w in warns),
+          f"Mix Shader of two Diffuse BSDFs: diffuseColor {np.round(inputs['diffuseColor'], 4)}"
+          f" = {np.round(want, 4)}, warned as an approximation")
+    _o, m2, nt, b = plane(1.2, "MixBaked")
+    ramp = nt.nodes.new("ShaderNodeValToRGB")
+    ramp.color_ramp.elements[0].color = (0.02, 0.05, 0.3, 1)
+    ramp.color_ramp.elements[1].color = (0.9, 0.45, 0.05, 1)
+    wave = nt.nodes.new("ShaderNodeTexWave")
+    wave.inputs["Distortion"].default_value = 0.0
+    nt.links.new(wave.outputs["Fac"], ramp.inputs["Fac"])
+    nt.links.new(ramp.outputs["Color"], b.inputs["Base Color"])
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.4
+    d = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    d.inputs["Color"].default_value = (0.5, 0.5, 0.5, 1)
+    nt.links.new(b.outputs[0], mix.inputs[1])
+    nt.links.new(d.outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    ours = tr.render_combined(scene)
+    cyc = tr.render_cycles(scene, "bake-mix", SAMPLES)
+    scene.render.engine = "PRINCIPLED"
+    for name, sl in (("Diffuse/Diffuse Fac 0.3", np.s_[5:45, 6:46]),
+                     ("Principled (baked ramp)/Diffuse Fac 0.4", np.s_[5:45, 54:94])):
+        d_ = mean_abs(ours[sl], cyc[sl])
+        ref = float(cyc[sl][:, :, :3].mean())
+        check(d_ < 0.05 * ref, f"Mix Shader {name}: mean |add-on - Cycles| {d_:.4f} "
+              f"({d_ / ref:.1%} of Cycles' mean {ref:.4f}, < 5 %)")
+
+
+tr.run_main(test_bake_vs_cycles, test_no_uvs, test_mix_shader)

@@ -146,8 +146,9 @@ class Baker:
 
     def bake(self, obj, material, node_name, socket_identifier, mesh_key, uv_name):
         """Linear float32 (h, w, 3) pixels (rows bottom to top) of the socket `socket_identifier`
-        of node `node_name` in `material` evaluated on the original object `obj` over its UV
-        map `uv_name`. Raises BakeError with the reason when it cannot."""
+        of node `node_name` in `material` (the value reaching that input; 'out:' + identifier:
+        an Emission node's own output) evaluated on the original object `obj` over its UV map
+        `uv_name`. Raises BakeError with the reason when it cannot."""
         key = (self.material_key(material), mesh_key, node_name, socket_identifier,
                self.resolution)
         px = CACHE.get(key)
@@ -223,24 +224,35 @@ class Baker:
         try:
             nt = mcopy.node_tree
             node = nt.nodes.get(node_name)
+            output = socket_identifier.startswith("out:")
+            ident = socket_identifier[4:] if output else socket_identifier
             sock = None if node is None else next(
-                (s for s in node.inputs if s.identifier == socket_identifier), None)
-            if sock is None or not sock.is_linked:
+                (s for s in (node.outputs if output else node.inputs)
+                 if s.identifier == ident), None)
+            if sock is None or not (output or sock.is_linked):
                 raise BakeError(f"socket {node_name}.{socket_identifier} not found")
-            link = sock.links[0]
-            while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
-                link = link.from_node.inputs[0].links[0]
-            src = link.from_socket
-            if src.type == "SHADER":
-                raise BakeError("fed by a shader output")
+            if output:  # an Emission shader's own output (its Color x Strength)
+                if node.type != "EMISSION":
+                    raise BakeError(f"output of a {node.type} node")
+                src = sock
+            else:
+                link = sock.links[0]
+                while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
+                    link = link.from_node.inputs[0].links[0]
+                src = link.from_socket
+                if src.type == "SHADER":
+                    raise BakeError("fed by a shader output")
             for n in [n for n in nt.nodes if n.type == "OUTPUT_MATERIAL"]:
                 nt.nodes.remove(n)
             out = nt.nodes.new("ShaderNodeOutputMaterial")
             out.target = "ALL"
-            em = nt.nodes.new("ShaderNodeEmission")
-            em.inputs["Strength"].default_value = 1.0
-            nt.links.new(src, em.inputs["Color"])
-            nt.links.new(em.outputs["Emission"], out.inputs["Surface"])
+            if output:
+                nt.links.new(src, out.inputs["Surface"])
+            else:
+                em = nt.nodes.new("ShaderNodeEmission")
+                em.inputs["Strength"].default_value = 1.0
+                nt.links.new(src, em.inputs["Color"])
+                nt.links.new(em.outputs["Emission"], out.inputs["Surface"])
             res = self.resolution
             img = bpy.data.images.new("principled_bake", res, res, alpha=False,
                                       float_buffer=True, is_data=True)

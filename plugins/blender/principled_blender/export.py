@@ -60,6 +60,35 @@ def _linked_node(sock):
     return node
 
 
+#: Nodes whose output depends on the view or the light path: a bake evaluates them for a view
+#: along the normal (warned).
+VIEW_DEPENDENT = {"FRESNEL", "LAYER_WEIGHT", "LIGHT_PATH", "CAMERA", "AMBIENT_OCCLUSION"}
+
+
+def socket_key(sock):
+    """A socket's key in a node: its identifier ('out:' + it for an output)."""
+    return ("out:" if sock.is_output else "") + sock.identifier
+
+
+def upstream_types(sock, limit=500):
+    """The node types feeding a socket, through groups' outer nodes (not inside them)."""
+    seen, todo, out = set(), [sock], set()
+    if sock.is_output:
+        todo = list(sock.node.inputs)
+    while todo and len(seen) < limit:
+        s = todo.pop()
+        for link in s.links if s.is_linked else ():
+            n = link.from_node
+            if n.name in seen:
+                continue
+            seen.add(n.name)
+            out.add(n.type)
+            if n.type == "GROUP" and n.node_tree is not None:
+                out.update(x.type for x in n.node_tree.nodes)
+            todo.extend(n.inputs)
+    return out
+
+
 class TextureWriter:
     """Gives every Blender image a file the delegate can read (PPM/PFM written from the
     pixels for generated, packed or edited images; the image's own file otherwise)."""
@@ -291,15 +320,16 @@ def emission_params(node, material_name, warnings, bake=None, links=None):
     specular 0, roughness 1 (Disney keeps a faint grazing Schlick lobe at specular 0). A linked
     Color is baked (`bake`, see _base_material_params) into links['emissiveColor']."""
     strength = float(node.inputs["Strength"].default_value)
-    for name in ("Color", "Strength"):
-        if node.inputs[name].is_linked:
-            if name == "Color" and bake is not None and links is not None:
-                t = bake(node.inputs[name])
-                if t is not None:
-                    links["emissiveColor"] = (t[0], "rgb", strength, "clamp")
-                    continue
-            warnings.append(f"material '{material_name}': Emission {name} is linked; using the "
-                            "socket value")
+    linked = [n for n in ("Color", "Strength") if node.inputs[n].is_linked]
+    if linked and bake is not None and links is not None:
+        # The node's own output: Color x Strength evaluated together.
+        t = bake(node.outputs[0])
+        if t is not None:
+            links["emissiveColor"] = (t[0], "rgb", None, "clamp")
+            linked = []
+    for name in linked:
+        warnings.append(f"material '{material_name}': Emission {name} is linked; using the "
+                        "socket value")
     color = [float(c) * strength for c in node.inputs["Color"].default_value[:3]]
     return {"diffuseColor": [0.0, 0.0, 0.0], "specular": 0.0, "roughness": 1.0,
             "metallic": 0.0, "emissiveColor": color}
@@ -408,31 +438,179 @@ def _base_material_params(material, textures, bake=None, bake_images=False):
 
     `bake` (final renders; None in the viewport): a callable bake(socket, scalar=False,
     transform=None) -> (file, channel) | None giving a texture of a linked input's upstream
-    value (SceneExport.bake_socket: a Cycles bake over the mesh's UVs, bake.py). Inputs linked
+    value (SceneExport.prepare_bakes: a Cycles bake over the mesh's UVs, bake.py). Inputs linked
     to anything but an Image Texture (to anything at all when bake_images: the material's Image
     Textures use a UV Mapping, which the baked textures must not get) are baked; the textures
     use the clamp wrap (UV islands with a margin). Without it, or when a bake fails (warned by
     the callable), such inputs keep their socket values with a warning.
     """
     warnings = []
-    inputs = {}
     links = {}
     if material is None:
         return {"diffuseColor": [0.8, 0.8, 0.8], "roughness": 0.5}, links, warnings
-    bsdf = principled_bsdf(material)
-    if bsdf is None:
-        node = shading_node(material)
-        if node is not None and node.type == "EMISSION":
-            return emission_params(node, material.name, warnings, bake, links), links, warnings
-        simple = (bsdf_node_params(node, material.name, warnings, bake, links)
-                  if node is not None else None)
-        if simple is not None:
-            return simple, links, warnings
-        c = list(material.diffuse_color)[:3]
-        warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
-                        "output (nor a Diffuse, Glossy or Glass BSDF); using its viewport display color")
-        return {"diffuseColor": c, "roughness": float(material.roughness),
-                "metallic": float(material.metallic)}, links, warnings
+    node = shading_node(material)
+    if node is not None and node.type == "EMISSION":
+        return emission_params(node, material.name, warnings, bake, links), links, warnings
+    inputs = None
+    if supported_shader(node):
+        inputs = _bsdf_params(node, material, textures, warnings, links, bake, bake_images)
+    if inputs is not None:
+        return inputs, links, warnings
+    c = list(material.diffuse_color)[:3]
+    warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
+                    "output (nor a Diffuse, Glossy or Glass BSDF, nor a Mix Shader of two of "
+                    "them with a constant Fac); using its viewport display color")
+    return {"diffuseColor": c, "roughness": float(material.roughness),
+            "metallic": float(material.metallic)}, links, warnings
+
+
+#: Disney/UsdPreviewSurface values of inputs a BSDF's translation leaves out (blending a
+#: Diffuse BSDF with a clear-coated Principled halves the coat: the Diffuse has none).
+MIX_DEFAULTS = {"diffuseColor": [0.0, 0.0, 0.0], "metallic": 0.0, "roughness": 0.5,
+                "specular": 0.5, "specularTint": 0.0, "anisotropic": 0.0, "sheen": 0.0,
+                "sheenTint": 0.5, "clearcoat": 0.0, "clearcoatGloss": 1.0, "specTrans": 0.0,
+                "ior": 1.5, "opacity": 1.0, "subsurface": 0.0, "emissiveColor": [0.0, 0.0, 0.0]}
+
+
+#: Shader nodes _bsdf_params translates (MIX_SHADER: when both its shaders are supported).
+SHADER_KINDS = ("BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "EMISSION",
+                "SUBSURFACE_SCATTERING", "MIX_SHADER")
+
+
+def supported_shader(node, depth=0):
+    """True if _bsdf_params translates the shader node (nested Mix Shaders included)."""
+    if node is None or node.type not in SHADER_KINDS or depth > 16:
+        return False
+    if node.type != "MIX_SHADER":
+        return True
+    return all(supported_shader(_linked_node(node.inputs[i]), depth + 1) for i in (1, 2))
+
+
+def _bsdf_params(node, material, textures, warnings, links, bake=None, bake_images=False):
+    """Inputs of one shader node of SHADER_KINDS (textures into links); None for others. A
+    Subsurface Scattering node is a diffuse of its Color (warned); a Mix Shader is
+    mix_shader_params."""
+    t = node.type
+    if t == "BSDF_PRINCIPLED":
+        return _principled_params(node, material, textures, warnings, links, bake, bake_images)
+    if t == "EMISSION":
+        return emission_params(node, material.name, warnings, bake, links)
+    if t == "MIX_SHADER":
+        return mix_shader_params(node, material, textures, warnings, links, bake, bake_images)
+    if t == "SUBSURFACE_SCATTERING":
+        warnings.append(f"material '{material.name}': {node.name} rendered as a diffuse of its "
+                        "Color (no subsurface transport)")
+        color = [float(c) for c in node.inputs["Color"].default_value[:3]]
+        if node.inputs["Color"].is_linked:
+            r = bake(node.inputs["Color"]) if bake is not None else None
+            if r is not None:
+                links["diffuseColor"] = (r[0], "rgb", None, "clamp")
+            else:
+                warnings.append(f"material '{material.name}': {node.name} input 'Color' is "
+                                "linked; using the socket value")
+        return {"diffuseColor": color, "roughness": 0.25, "specular": 0.0, "metallic": 0.0}
+    return bsdf_node_params(node, material.name, warnings, bake, links)
+
+
+def _lin(w, x, wo=0.0, y=0.0):
+    """w x + wo y for numbers or 3-lists (a number meets a list: applied to each channel)."""
+    if isinstance(x, list) or isinstance(y, list):
+        xs = x if isinstance(x, list) else [x] * 3
+        ys = y if isinstance(y, list) else [y] * 3
+        return [w * a + wo * b for a, b in zip(xs, ys)]
+    return w * x + wo * y
+
+
+def _affine(extra):
+    """A link's extra as texel -> scale * texel + bias: None, an emission strength, 'invert'."""
+    if extra is None:
+        return 1.0, 0.0
+    if extra == "invert":
+        return -1.0, 1.0
+    if isinstance(extra, tuple) and extra and extra[0] == "affine":
+        return extra[1], extra[2]
+    return float(extra), 0.0
+
+
+def mix_shader_params(node, material, textures, warnings, links, bake=None, bake_images=False):
+    """A Mix Shader of two shaders _bsdf_params translates (Principled, Diffuse, Glossy,
+    Glass, Emission, Subsurface Scattering, nested Mix Shaders of those) with Fac f -> one
+    BSDF whose inputs are (1 - f) a + f b (colours per channel; an input one side leaves out
+    takes MIX_DEFAULTS). Cycles picks one of the two BSDFs per shading point with probability
+    1 - f / f, i.e. it sums the two lobes weighted; a single Disney BSDF of blended parameters
+    is an approximation of that sum (exact for the diffuse colour of two diffuse lobes, not for
+    blended roughness or metallic): it is warned. A texture on one side is kept as
+    scale * texel + bias (scale (1 - f) or f, bias the other side's weighted value); an input
+    textured on both sides keeps the heavier side's texture (warned). None if not applicable.
+    A linked Fac is baked when `bake` is given (final renders): every input untextured on both
+    sides becomes the Fac texture F as a + (b - a) F (scale b - a, bias a); textured inputs
+    then use the Fac's socket value as above (warned). Without `bake`: the socket value."""
+    fac = node.inputs[0]
+    a, b = _linked_node(node.inputs[1]), _linked_node(node.inputs[2])
+    if not (supported_shader(a) and supported_shader(b)):
+        return None
+    where = f"material '{material.name}'"
+    fac_tex = None
+    if fac.is_linked:
+        src = _linked_node(fac)
+        if bake is not None:
+            fac_tex = bake(fac, scalar=True)
+        if fac_tex is None:
+            warnings.append(f"{where}: Mix Shader Fac linked to '{src.type}' (not baked); "
+                            "using its socket value")
+    f = min(1.0, max(0.0, float(fac.default_value)))
+    la, lb = {}, {}
+    pa = _bsdf_params(a, material, textures, warnings, la, bake, bake_images)
+    pb = _bsdf_params(b, material, textures, warnings, lb, bake, bake_images)
+    wa, wb = 1.0 - f, f
+    out = {}
+    if fac_tex is not None:
+        for k in list(dict.fromkeys(list(pa) + list(pb))):
+            if k in la or k in lb or k == "normal":
+                continue
+            va, vb = pa.get(k, MIX_DEFAULTS.get(k)), pb.get(k, MIX_DEFAULTS.get(k))
+            if va is None or vb is None:
+                continue
+            if isinstance(va, list):
+                links[k] = (fac_tex[0], "rgb", ("affine", [y - x for x, y in zip(va, vb)],
+                                                list(va)), "clamp")
+            else:
+                links[k] = (fac_tex[0], "r", ("affine", vb - va, va), "clamp")
+        if la or lb:
+            warnings.append(f"{where}: Mix Shader inputs textured on a side are blended by the "
+                            f"Fac's socket value {f:.3g}, not by its baked texture")
+    for k in list(dict.fromkeys(list(pa) + list(pb))):
+        va, vb = pa.get(k, MIX_DEFAULTS.get(k)), pb.get(k, MIX_DEFAULTS.get(k))
+        if va is None or vb is None:
+            out[k] = va if vb is None else vb
+        elif isinstance(va, list):
+            out[k] = [wa * x + wb * y for x, y in zip(va, vb)]
+        else:
+            out[k] = wa * va + wb * vb
+    for k in list(dict.fromkeys(list(la) + list(lb))):
+        if k in la and k in lb:
+            warnings.append(f"{where}: Mix Shader input '{k}' textured on both sides; using "
+                            "the texture of the heavier side")
+        if k == "normal":  # a normal map is not blended: the side's own
+            links[k] = la[k] if (k in la and (wa >= wb or k not in lb)) else lb[k]
+            continue
+        if k in la and (wa >= wb or k not in lb):
+            (file, channel, extra, wrap), w, other, wo = la[k], wa, pb, wb
+        else:
+            (file, channel, extra, wrap), w, other, wo = lb[k], wb, pa, wa
+        s0, b0 = _affine(extra)
+        ov = other.get(k, MIX_DEFAULTS.get(k, 0.0))
+        links[k] = (file, channel, ("affine", _lin(w, s0), _lin(w, b0, wo, ov)), wrap)
+    fac_text = "baked Fac" if fac_tex is not None else f"Fac {f:.3g}"
+    warnings.append(f"{where}: Mix Shader of '{a.name}' and '{b.name}' ({fac_text}) rendered "
+                    "as one BSDF of blended inputs, an approximation of Cycles' mix of the two "
+                    "BSDFs")
+    return out
+
+
+def _principled_params(bsdf, material, textures, warnings, links, bake=None, bake_images=False):
+    """_base_material_params' Principled BSDF translation (inputs; textures into links)."""
+    inputs = {}
     I = bsdf.inputs
 
     def value(name):
@@ -515,7 +693,7 @@ def _base_material_params(material, textures, bake=None, bake_images=False):
                             "(only a tangent-space Normal Map node is translated); ignored")
     if bsdf.distribution == "MULTI_GGX":
         warnings.append(f"material '{material.name}': Multiscatter GGX rendered as GGX")
-    return inputs, links, warnings
+    return inputs
 
 
 def spot_shaping(spot_size, spot_blend):
@@ -897,7 +1075,7 @@ class SceneExport:
                 mesh_key = (orig.name_full, _bake.mesh_fingerprint(md, mw))
                 results = {}
                 for sock, scalar, transform in requests:
-                    rk = (sock.node.name, sock.identifier, transform)
+                    rk = (sock.node.name, socket_key(sock), transform)
                     if rk in results:
                         continue
                     if uv is None:
@@ -905,7 +1083,7 @@ class SceneExport:
                                        f"object type {orig.type} (meshes only)")
                         continue
                     try:
-                        px = baker.bake(orig, mat, sock.node.name, sock.identifier, mesh_key,
+                        px = baker.bake(orig, mat, sock.node.name, socket_key(sock), mesh_key,
                                         uv.name)
                     except _bake.BakeError as e:
                         results[rk] = str(e)
@@ -917,6 +1095,12 @@ class SceneExport:
                         "\0".join((mname, oname) + tuple(str(x) for x in rk)), px)
                     results[rk] = (file, "r" if scalar else "rgb")
                     sockets += 1
+                    vd = sorted(upstream_types(sock) & VIEW_DEPENDENT)
+                    if vd:
+                        self.warnings.append(
+                            f"material '{mname}': {sock.node.name} input '{sock.name}' depends "
+                            f"on {', '.join(vd)} (view or light path): baked for a view along "
+                            "the normal")
                 self.bakes[(mname, oname)] = (results, images)
         finally:
             baker.close()
@@ -939,7 +1123,7 @@ class SceneExport:
             failures = []
 
             def bake(sock, scalar=False, transform=None):
-                r = results.get((sock.node.name, sock.identifier, transform))
+                r = results.get((sock.node.name, socket_key(sock), transform))
                 if isinstance(r, tuple):
                     return r
                 src = _linked_node(sock)
@@ -969,7 +1153,19 @@ class SceneExport:
                 # Float data (a float image's, a bake's) is linear: say so rather than rely on
                 # the delegate's "auto" (which reads float files as raw too).
                 b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
-            if k == "normal":
+            if isinstance(strength, tuple) and strength[0] == "affine":  # mix_shader_params
+                sc, bi = strength[1], strength[2]
+                if channel == "rgb":
+                    bi = list(bi) if isinstance(bi, list) else [bi, bi, bi]
+                    sc = list(sc) if isinstance(sc, list) else [sc, sc, sc]
+                    b.set_attribute(tex, "float4", "inputs:scale", sc + [1.0])
+                    b.set_attribute(tex, "float4", "inputs:bias", bi + [0.0])
+                else:  # one channel (r or a) read
+                    b.set_attribute(tex, "float4", "inputs:scale", [sc] * 4)
+                    b.set_attribute(tex, "float4", "inputs:bias", [bi] * 4)
+                if k != "diffuseColor":
+                    b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
+            elif k == "normal":
                 s = 1.0 if strength is None else max(0.0, strength)
                 # Tangent-space map stored as 0.5 + 0.5 n (raw data). Cycles' Strength s blends
                 # the normals, N = normalize(N0 + s (n - N0)) with N0 = (0, 0, 1) here, i.e.

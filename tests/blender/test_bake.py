@@ -211,6 +211,22 @@ def test_no_uvs():
     tex_inputs = sorted(k for (_p, k) in b.textures)
     check(tex_inputs == ["opacity"],
           f"only the plane with UVs gets a baked texture ({tex_inputs})")
+    # A bake that fails inside Cycles' operator (an unknown UV map): BakeError, and the
+    # temporary copies are gone all the same.
+    data, trees = data_state(), [tree_state(m) for m in mats]
+    bk = bake.Baker(32)
+    obj = next(o for o in bpy.data.objects if o.active_material == mats[1])
+    b = mats[1].node_tree.nodes["Principled BSDF"]
+    try:
+        bk.bake(obj, mats[1], b.name, b.inputs["Alpha"].identifier, ("x", "fail"), "NoSuchUV")
+        raised = None
+    except bake.BakeError as e:
+        raised = str(e)
+    finally:
+        bk.close()
+    check(raised is not None and data_state() == data and
+          [tree_state(m) for m in mats] == trees,
+          f"failed bake: BakeError ({raised}), bpy.data and node trees unchanged")
 
 
 def test_mix_shader():

@@ -62,7 +62,8 @@ def _linked_node(sock):
 
 #: Nodes whose output depends on the view or the light path: a bake evaluates them for a view
 #: along the normal (warned).
-VIEW_DEPENDENT = {"FRESNEL", "LAYER_WEIGHT", "LIGHT_PATH", "CAMERA", "AMBIENT_OCCLUSION"}
+VIEW_DEPENDENT = {"FRESNEL", "LAYER_WEIGHT", "LIGHT_PATH", "CAMERA", "AMBIENT_OCCLUSION",
+                  "GEOMETRY_INCOMING"}
 
 
 def socket_key(sock):
@@ -71,7 +72,8 @@ def socket_key(sock):
 
 
 def upstream_types(sock, limit=500):
-    """The node types feeding a socket, through groups' outer nodes (not inside them)."""
+    """The node types feeding a socket, everything inside (nested) groups on the way included;
+    a Geometry node's Incoming output (the view direction) counts as GEOMETRY_INCOMING."""
     seen, todo, out = set(), [sock], set()
     if sock.is_output:
         todo = list(sock.node.inputs)
@@ -79,12 +81,24 @@ def upstream_types(sock, limit=500):
         s = todo.pop()
         for link in s.links if s.is_linked else ():
             n = link.from_node
+            if n.type == "NEW_GEOMETRY" and link.from_socket.name == "Incoming":
+                out.add("GEOMETRY_INCOMING")
             if n.name in seen:
                 continue
             seen.add(n.name)
             out.add(n.type)
-            if n.type == "GROUP" and n.node_tree is not None:
-                out.update(x.type for x in n.node_tree.nodes)
+            trees = [n.node_tree] if n.type == "GROUP" and n.node_tree is not None else []
+            while trees:  # everything inside (nested) groups counts
+                t = trees.pop()
+                if "\0" + t.name_full in seen:
+                    continue
+                seen.add("\0" + t.name_full)
+                for x in t.nodes:
+                    out.add(x.type)
+                    if x.type == "NEW_GEOMETRY" and x.outputs["Incoming"].is_linked:
+                        out.add("GEOMETRY_INCOMING")
+                    if x.type == "GROUP" and x.node_tree is not None:
+                        trees.append(x.node_tree)
             todo.extend(n.inputs)
     return out
 
@@ -1082,11 +1096,19 @@ class SceneExport:
                         results[rk] = ("the object has no UV map" if orig.type == "MESH" else
                                        f"object type {orig.type} (meshes only)")
                         continue
+                    vd = sorted(upstream_types(sock) & VIEW_DEPENDENT)
+                    if vd and sock.node.type == "MIX_SHADER":
+                        # A shader chosen by the view direction or the ray type: a bake sees
+                        # one head-on view (and one ray type). On the material library this
+                        # did worse than the socket value overall, so it is not baked.
+                        results[rk] = (f"the Fac depends on {', '.join(vd)} (view or ray "
+                                       "type), which a bake sees from one direction only")
+                        continue
                     try:
                         px = baker.bake(orig, mat, sock.node.name, socket_key(sock), mesh_key,
                                         uv.name)
-                    except _bake.BakeError as e:
-                        results[rk] = str(e)
+                    except Exception as e:  # BakeError, or no Cycles (add-on disabled), ...
+                        results[rk] = str(e) or type(e).__name__
                         failed += 1
                         continue
                     if transform == "clearcoatGloss":
@@ -1095,7 +1117,6 @@ class SceneExport:
                         "\0".join((mname, oname) + tuple(str(x) for x in rk)), px)
                     results[rk] = (file, "r" if scalar else "rgb")
                     sockets += 1
-                    vd = sorted(upstream_types(sock) & VIEW_DEPENDENT)
                     if vd:
                         self.warnings.append(
                             f"material '{mname}': {sock.node.name} input '{sock.name}' depends "

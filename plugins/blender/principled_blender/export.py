@@ -201,8 +201,10 @@ def texture_wrap(node):
 
 def link_signature(links, mapping=None):
     """What a change of needs a rebuild (set_material_texture, the mesh's st): the linked
-    inputs, their wrap modes and the material's UV Mapping (uv_mapping)."""
-    return tuple(sorted((k, v[3]) for k, v in links.items())) + (mapping,)
+    inputs, their wrap modes, their scale/bias extras (an emission map's strength, a Mix
+    Shader's blend: written on the texture prim, not re-set by a material edit) and the
+    material's UV Mapping (uv_mapping)."""
+    return tuple(sorted((k, v[3], repr(v[2])) for k, v in links.items())) + (mapping,)
 
 
 def _mapping_affine(node, warnings, where):

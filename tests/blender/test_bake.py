@@ -14,6 +14,8 @@ Also checked: the materials' node trees, the objects' material slots and bpy.dat
 materials/images/objects/scenes are unchanged by the render; a second render of the unchanged
 scene bakes nothing (session cache); editing the ramp bakes again; a plane without UVs keeps
 the socket value with a warning.
+Export level: bakes per (material, object) for a two-slot grid, a shared material, an
+instanced copy (shares its object's bake) and a text object (not baked, warned).
 Mix Shader of two BSDFs with a constant Fac (export.mix_shader_params): blended inputs, checked
 against Cycles for Diffuse/Diffuse and Principled (baked base colour)/Diffuse.
 Exit code 0 = pass.
@@ -182,6 +184,84 @@ def test_bake_vs_cycles():
           f"ramp edit: {c3.n} bake (the edited material only), plane now green {left.round(3)}")
 
 
+class StubBuilder:
+    """A SceneBuilder stand-in recording material inputs, textures and bindings."""
+
+    def __init__(self):
+        self.inputs, self.textures, self.bindings = {}, {}, {}
+
+    def __getattr__(self, name):
+        return lambda *a, **k: None
+
+    def set_material_input(self, path, k, v):
+        self.inputs[(path, k)] = v
+
+    def set_material_texture(self, path, k, file, channel):
+        self.textures[(path, k)] = (file, channel)
+
+    def bind_material(self, prim, material):
+        self.bindings[prim] = material
+
+
+def stub_export(resolution=32):
+    b = StubBuilder()
+    ex = export.SceneExport(type("P", (), {"SceneBuilder": staticmethod(lambda: b)}),
+                            bpy.context.evaluated_depsgraph_get(),
+                            os.path.join(tr.A["out"] or "/tmp", "principled-bake-tex"), W, H,
+                            baker=bake.Baker(resolution))
+    ex.build()
+    return ex, b
+
+
+def test_slots_shared_instances():
+    """Export-level: a plane with two procedural materials in two slots, a second plane sharing
+    one of them, a collection instance of the first plane, a text object with a procedural
+    material: bakes per (material, object), one material prim per pair, instances reuse theirs,
+    non-mesh objects keep the socket value (warned)."""
+    scene, mats = build()
+    ramp_mat, alpha_mat = mats
+    a = next(o for o in bpy.data.objects if o.active_material == ramp_mat)
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=4, y_subdivisions=4, size=1.0,
+                                    location=(0, 2, 0))
+    grid = bpy.context.active_object  # two slots, both procedural, half the faces each
+    grid.data.materials.append(ramp_mat)
+    grid.data.materials.append(alpha_mat)
+    for p in grid.data.polygons:
+        p.material_index = int(p.center.x > 0)
+    coll = bpy.data.collections.new("Inst")
+    coll.objects.link(a.copy())
+    inst = bpy.data.objects.new("Instancer", None)
+    inst.instance_type, inst.instance_collection = "COLLECTION", coll
+    inst.location = (0, -2, 0)
+    scene.collection.objects.link(inst)
+    bpy.ops.object.text_add(location=(0, 4, 0))
+    txt = bpy.context.active_object
+    txt.data.materials.append(ramp_mat)
+    bake.CACHE.clear()
+    with CountBakes() as c:
+        ex, b = stub_export()
+    keys = sorted(ex.bakes)
+    copy = coll.objects[0].name  # the instanced copy of the plane (same mesh and matrix)
+    want = sorted([("RampWave", a.name), ("CheckerAlpha", "Plane.001"), ("RampWave", grid.name),
+                   ("CheckerAlpha", grid.name), ("RampWave", txt.name), ("RampWave", copy)])
+    check(keys == want, f"bakes per (material, object): {keys}")
+    # The instanced copy has the plane's mesh and matrix: it shares the plane's bake (the
+    # cache key). The text object is not baked.
+    check(c.n == 4, f"{c.n} Cycles bakes (4: RampWave on Plane, CheckerAlpha on Plane.001, both "
+          "on the grid; the instanced copy reuses the plane's)")
+    check(any("FONT" in w and "RampWave" in w for w in ex.warnings),
+          "a text object with a procedural material: warned, socket value")
+    tex = {p: k for (p, k) in b.textures}
+    grid_mats = sorted({m for prim, m in b.bindings.items() if grid.name in prim})
+    check(len(grid_mats) == 2 and all(m in tex for m in grid_mats),
+          f"the grid's two slots: two textured material prims {grid_mats}")
+    ramp_prims = sorted({m for prim, m in b.bindings.items()
+                         if m.startswith("/World/Looks/RampWave")})
+    check(len(ramp_prims) == 4 and all(m.replace("/World/Looks/", "").isidentifier()
+                                       for m in ramp_prims),
+          f"RampWave: one prim per object (plane, grid, text, instanced copy) {ramp_prims}")
+
+
 def test_no_uvs():
     scene, mats = build()
     obj = next(o for o in bpy.data.objects if o.active_material == mats[0])
@@ -276,4 +356,4 @@ def test_mix_shader():
               f"({d_ / ref:.1%} of Cycles' mean {ref:.4f}, < 5 %)")
 
 
-tr.run_main(test_bake_vs_cycles, test_no_uvs, test_mix_shader)
+tr.run_main(test_bake_vs_cycles, test_no_uvs, test_slots_shared_instances, test_mix_shader)

@@ -1070,8 +1070,9 @@ class SceneExport:
                     continue
                 mat = obj.material_slots[slot].material
                 if mat is not None and (mat.name, obj.name) not in jobs:
+                    # The bake evaluates the original object where it is (its own matrix).
                     jobs[(mat.name, obj.name)] = (obj.original, mat.original, md,
-                                                  obj.matrix_world.copy())
+                                                  obj.original.matrix_world.copy())
         t0, sockets, failed = time.perf_counter(), 0, 0
         try:
             for (mname, oname), (orig, mat, md, mw) in jobs.items():
@@ -1088,7 +1089,8 @@ class SceneExport:
                     requests.clear()
                     material_params(mat, self.textures, record, True)
                 uv = orig.data.uv_layers.active if orig.type == "MESH" else None
-                mesh_key = (orig.name_full, _bake.mesh_fingerprint(md, mw))
+                # Objects with the same mesh and matrix share bakes (the cache key).
+                mesh_key = _bake.mesh_fingerprint(md, mw)
                 results = {}
                 for sock, scalar, transform in requests:
                     rk = (sock.node.name, socket_key(sock), transform)

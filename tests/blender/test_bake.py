@@ -14,6 +14,8 @@ Also checked: the materials' node trees, the objects' material slots and bpy.dat
 materials/images/objects/scenes are unchanged by the render; a second render of the unchanged
 scene bakes nothing (session cache); editing the ramp bakes again; a plane without UVs keeps
 the socket value with a warning.
+Off the main thread (interactive F12, simulated) nothing is baked; the Bake Procedural
+Textures operator fills the cache such a render then uses.
 Export level: bakes per (material, object) for a two-slot grid, a shared material, an
 instanced copy (shares its object's bake) and a text object (not baked, warned).
 Mix Shader of two BSDFs with a constant Fac (export.mix_shader_params): blended inputs, checked
@@ -262,6 +264,35 @@ def test_slots_shared_instances():
           f"RampWave: one prim per object (plane, grid, text, instanced copy) {ramp_prims}")
 
 
+def test_interactive_prebake():
+    """An interactive F12 renders off the main thread, where Cycles cannot bake (simulated:
+    Baker.available() False): without the cache the inputs keep their socket values; after the
+    Bake Procedural Textures operator (main thread) the render uses its bakes, baking nothing."""
+    scene, mats = build()
+    bake.CACHE.clear()
+    available = bake.Baker.__dict__["available"]  # the staticmethod itself
+    bake.Baker.available = staticmethod(lambda: False)
+    try:
+        with CountBakes() as c1:
+            cold = tr.render_combined(scene)
+        bake.Baker.available = available
+        with CountBakes() as c2:
+            r = bpy.ops.principled.bake_procedural()
+        bake.Baker.available = staticmethod(lambda: False)
+        with CountBakes() as c3:
+            warm = tr.render_combined(scene)
+    finally:
+        bake.Baker.available = available
+    ramp = np.s_[5:45, 6:46]
+    cold_c, warm_c = cold[ramp][:, :, :3].mean(), warm[ramp][:, :, :3].std()
+    check(c1.n == 0 and abs(cold_c - 0.8) < 0.02,
+          f"off the main thread, empty cache: {c1.n} bakes, the ramp plane at the socket value "
+          f"(mean {cold_c:.3f} ~ 0.8)")
+    check("FINISHED" in r and c2.n == 2, f"the operator baked {c2.n} inputs ({r})")
+    check(c3.n == 0 and warm_c > 0.1,
+          f"off the main thread after the operator: {c3.n} bakes, the ramp shows (std {warm_c:.3f})")
+
+
 def test_no_uvs():
     scene, mats = build()
     obj = next(o for o in bpy.data.objects if o.active_material == mats[0])
@@ -356,4 +387,4 @@ def test_mix_shader():
               f"({d_ / ref:.1%} of Cycles' mean {ref:.4f}, < 5 %)")
 
 
-tr.run_main(test_bake_vs_cycles, test_no_uvs, test_slots_shared_instances, test_mix_shader)
+tr.run_main(test_bake_vs_cycles, test_interactive_prebake, test_no_uvs, test_slots_shared_instances, test_mix_shader)

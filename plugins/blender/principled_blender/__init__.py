@@ -312,6 +312,35 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
         gpu.state.blend_set("NONE")
 
 
+class PRINCIPLED_OT_bake_procedural(bpy.types.Operator):
+    """Bake the scene's procedural material inputs with Cycles now (main thread), into the
+    session cache an interactive render (F12, which runs off the main thread and cannot bake)
+    then uses"""
+    bl_idname = "principled.bake_procedural"
+    bl_label = "Bake Procedural Textures"
+    bl_options = {"REGISTER"}
+
+    def execute(self, context):
+        import shutil
+        import tempfile
+
+        from . import bake, export
+
+        scene = context.scene
+        tmp = tempfile.mkdtemp(prefix="principled-bake-")
+        try:
+            ex = export.SceneExport(None, context.evaluated_depsgraph_get(), tmp, 1, 1,
+                                    baker=bake.Baker(scene.principled.bake_resolution))
+            ex.prepare_bakes()
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+        for msg in ex.warnings:
+            self.report({"WARNING"}, f"principled: {msg}")
+        for msg in ex.info or ["no procedural inputs to bake"]:
+            self.report({"INFO"}, f"principled: {msg}")
+        return {"FINISHED"}
+
+
 class PRINCIPLED_PT_sampling(bpy.types.Panel):
     bl_label = "principled"
     bl_space_type = "PROPERTIES"
@@ -337,6 +366,7 @@ class PRINCIPLED_PT_sampling(bpy.types.Panel):
         sub = col.column()
         sub.active = s.bake_procedural
         sub.prop(s, "bake_resolution")
+        sub.operator(PRINCIPLED_OT_bake_procedural.bl_idname, icon="RENDER_STILL")
 
 
 def _compat_panels():
@@ -358,6 +388,7 @@ def register():
     bpy.utils.register_class(PrincipledSettings)
     bpy.types.Scene.principled = bpy.props.PointerProperty(type=PrincipledSettings)
     bpy.utils.register_class(PrincipledRenderEngine)
+    bpy.utils.register_class(PRINCIPLED_OT_bake_procedural)
     bpy.utils.register_class(PRINCIPLED_PT_sampling)
     for p in _compat_panels():
         p.COMPAT_ENGINES.add("PRINCIPLED")
@@ -369,6 +400,7 @@ def unregister():
         p.COMPAT_ENGINES.discard("PRINCIPLED")
     _ENGINE_PANELS.clear()
     bpy.utils.unregister_class(PRINCIPLED_PT_sampling)
+    bpy.utils.unregister_class(PRINCIPLED_OT_bake_procedural)
     bpy.utils.unregister_class(PrincipledRenderEngine)
     del bpy.types.Scene.principled
     bpy.utils.unregister_class(PrincipledSettings)

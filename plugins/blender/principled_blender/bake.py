@@ -14,7 +14,9 @@ resolution, so re-rendering an unchanged scene does not bake again.
 
 bpy.ops must run on Blender's main thread: command-line renders (`blender -b ... -f`) and
 bpy.ops.render.render() from a script call the engine there; an interactive F12 renders on a
-job thread, where Baker.available() is False and the inputs keep their socket values (warned).
+job thread, where Baker.available() is False: it uses what CACHE holds (the operator
+PRINCIPLED_OT_bake_procedural fills it from the main thread) and leaves the other inputs at
+their socket values (warned).
 """
 import hashlib
 import threading
@@ -121,6 +123,11 @@ class BakeError(RuntimeError):
     pass
 
 
+OFF_THREAD = ("not in the bake cache, and an interactive render runs off Blender's main "
+              "thread where Cycles cannot bake: press Render properties > principled > Bake "
+              "Procedural Textures first")
+
+
 class Baker:
     """Bakes sockets of one render's materials; owns the temporary scene while it lives
     (close() removes it)."""
@@ -130,6 +137,7 @@ class Baker:
         self.seconds = 0.0   # time spent in Cycles bakes (cache hits excluded)
         self.baked = 0       # sockets baked
         self.reused = 0      # sockets found in CACHE
+        self.off_thread = 0  # sockets not in CACHE that could not be baked (not main thread)
         self._scene = None
         self._objects = {}   # original object name -> temporary copy
         self._other = None   # the material given to slots not being baked
@@ -157,7 +165,8 @@ class Baker:
             self.reused += 1
             return px
         if not self.available():
-            raise BakeError("not on Blender's main thread (interactive render)")
+            self.off_thread += 1
+            raise BakeError(OFF_THREAD)
         t0 = time.perf_counter()
         px = self._bake(obj, material, node_name, socket_identifier, uv_name)
         self.seconds += time.perf_counter() - t0

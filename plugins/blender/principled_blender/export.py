@@ -1050,11 +1050,6 @@ class SceneExport:
         from . import bake as _bake
 
         baker = self.baker
-        if not baker.available():
-            self.warnings.append("procedural inputs not baked: the render runs off Blender's "
-                                 "main thread (interactive F12); render from the command line "
-                                 "or a script to bake them")
-            return
         jobs = {}
         for inst in self.depsgraph.object_instances:
             obj = inst.object
@@ -1112,7 +1107,9 @@ class SceneExport:
                         px = baker.bake(orig, mat, sock.node.name, socket_key(sock), mesh_key,
                                         uv.name)
                     except Exception as e:  # BakeError, or no Cycles (add-on disabled), ...
-                        results[rk] = str(e) or type(e).__name__
+                        results[rk] = ("not in the bake cache (interactive render)"
+                                       if str(e) == _bake.OFF_THREAD else
+                                       str(e) or type(e).__name__)
                         failed += 1
                         continue
                     if transform == "clearcoatGloss":
@@ -1129,6 +1126,8 @@ class SceneExport:
                 self.bakes[(mname, oname)] = (results, images)
         finally:
             baker.close()
+        if baker.off_thread:
+            self.warnings.append(f"{baker.off_thread} procedural input(s) {_bake.OFF_THREAD}")
         if sockets or failed:
             self.info.append(
                 f"baked {sockets} procedural input(s) of {len(self.bakes)} material/object "

@@ -16,7 +16,8 @@ scene bakes nothing (session cache); editing the ramp bakes again; a plane witho
 the socket value with a warning.
 Off the main thread (interactive F12, simulated) nothing is baked; the Bake Procedural
 Textures operator fills the cache such a render then uses.
-Export level: bakes per (material, object) for a two-slot grid, a shared material, an
+Export level: four scalar inputs take two bakes (three packed one per channel), each
+texture holding its own value; bakes per (material, object) for a two-slot grid, a shared material, an
 instanced copy (shares its object's bake) and a text object (not baked, warned).
 Mix Shader of two BSDFs with a constant Fac (export.mix_shader_params): blended inputs, checked
 against Cycles for Diffuse/Diffuse and Principled (baked base colour)/Diffuse.
@@ -293,6 +294,40 @@ def test_interactive_prebake():
           f"off the main thread after the operator: {c3.n} bakes, the ramp shows (std {warm_c:.3f})")
 
 
+def read_pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        w, h = (int(x) for x in f.readline().split())
+        f.readline()
+        return np.frombuffer(f.read(), "<f4").reshape(h, w, 3)
+
+
+def test_packed_scalars():
+    """Four scalar inputs fed by Math nodes (constants 0.3, 0.6, 0.9 and a Clearcoat Roughness
+    0.2): two Cycles bakes (three scalars share one, one per channel), each texture holds its
+    own value (Clearcoat Roughness as gloss (0.1 - 0.04) / 0.099)."""
+    scene_setup()
+    _o, m, nt, b = plane(0, "Scalars")
+    want = {"Roughness": ("roughness", 0.3), "Metallic": ("metallic", 0.6),
+            "Specular": ("specular", 0.9),
+            "Clearcoat Roughness": ("clearcoatGloss", (0.1 - 0.04) / 0.099)}
+    for name, v in (("Roughness", 0.3), ("Metallic", 0.6), ("Specular", 0.9),
+                    ("Clearcoat Roughness", 0.2)):
+        mth = nt.nodes.new("ShaderNodeMath")
+        mth.operation = "ADD"
+        mth.inputs[0].default_value, mth.inputs[1].default_value = v - 0.1, 0.1
+        nt.links.new(mth.outputs[0], b.inputs[name])
+    bake.CACHE.clear()
+    with CountBakes() as c:
+        ex, bld = stub_export()
+    check(c.n == 2, f"four scalar inputs: {c.n} Cycles bakes (2: three packed + one)")
+    got = {k: (read_pfm(f)[:, :, 0].mean(), ch) for (_p, k), (f, ch) in bld.textures.items()}
+    for name, (usd, v) in want.items():
+        g, ch = got.get(usd, (float("nan"), None))
+        check(abs(g - v) < 1e-4 and ch == "r",
+              f"{name} -> {usd}: baked {g:.4f} = {v:.4f}, channel {ch}")
+
+
 def test_no_uvs():
     scene, mats = build()
     obj = next(o for o in bpy.data.objects if o.active_material == mats[0])
@@ -387,4 +422,5 @@ def test_mix_shader():
               f"({d_ / ref:.1%} of Cycles' mean {ref:.4f}, < 5 %)")
 
 
-tr.run_main(test_bake_vs_cycles, test_interactive_prebake, test_no_uvs, test_slots_shared_instances, test_mix_shader)
+tr.run_main(test_bake_vs_cycles, test_interactive_prebake, test_no_uvs, test_packed_scalars,
+            test_slots_shared_instances, test_mix_shader)

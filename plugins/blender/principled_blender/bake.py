@@ -153,28 +153,56 @@ class Baker:
             self._fingerprints[k] = tree_fingerprint(material)
         return self._fingerprints[k]
 
-    def bake(self, obj, material, node_name, socket_identifier, mesh_key, uv_name):
-        """Linear float32 (h, w, 3) pixels (rows bottom to top) of the socket `socket_identifier`
-        of node `node_name` in `material` (the value reaching that input; 'out:' + identifier:
-        an Emission node's own output) evaluated on the original object `obj` over its UV map
-        `uv_name`. Raises BakeError with the reason when it cannot."""
-        key = (self.material_key(material), mesh_key, node_name, socket_identifier,
-               self.resolution)
-        px = CACHE.get(key)
-        if px is not None:
-            self.reused += 1
-            return px
-        if not self.available():
-            self.off_thread += 1
-            raise BakeError(OFF_THREAD)
-        t0 = time.perf_counter()
-        px = self._bake(obj, material, node_name, socket_identifier, uv_name)
-        self.seconds += time.perf_counter() - t0
-        self.baked += 1
-        while len(CACHE) >= CACHE_LIMIT:
-            CACHE.pop(next(iter(CACHE)))
-        CACHE[key] = px
-        return px
+    def bake(self, obj, material, node_name, socket_identifier, mesh_key, uv_name,
+             scalar=False):
+        """Linear float32 pixels (rows bottom to top; (h, w, 3), or (h, w, 1) for a scalar) of
+        the socket `socket_identifier` of node `node_name` in `material` (the value reaching
+        that input; 'out:' + identifier: an Emission node's own output) evaluated on the
+        original object `obj` over its UV map `uv_name`. Raises BakeError with the reason."""
+        r = self.bake_many(obj, material, [(node_name, socket_identifier, scalar)], mesh_key,
+                           uv_name)[0]
+        if isinstance(r, BakeError):
+            raise r
+        return r
+
+    def bake_many(self, obj, material, sockets, mesh_key, uv_name):
+        """bake() for a list of (node name, socket identifier, scalar): one result per entry,
+        the pixels or a BakeError. Scalars missing from CACHE are baked three at a time, one
+        per channel (a Combine Color node), colours one per bake."""
+        mkey = self.material_key(material)
+        out = [None] * len(sockets)
+        todo = []
+        for i, (node_name, ident, scalar) in enumerate(sockets):
+            key = (mkey, mesh_key, node_name, ident, self.resolution)
+            px = CACHE.get(key)
+            if px is not None:
+                self.reused += 1
+                out[i] = px
+            elif not self.available():
+                self.off_thread += 1
+                out[i] = BakeError(OFF_THREAD)
+            else:
+                todo.append((i, key))
+        scalars = [t for t in todo if sockets[t[0]][2] and not sockets[t[0]][1].startswith("out:")]
+        groups = [scalars[k:k + 3] for k in range(0, len(scalars), 3)]
+        groups += [[t] for t in todo if t not in scalars]
+        for group in groups:
+            t0 = time.perf_counter()
+            try:
+                px = self._bake(obj, material, [sockets[i][:2] for i, _k in group], uv_name,
+                                packed=group[0] in scalars)
+            except BakeError as e:
+                for i, _k in group:
+                    out[i] = e
+                continue
+            self.seconds += time.perf_counter() - t0
+            self.baked += 1
+            for c, (i, key) in enumerate(group):
+                r = np.ascontiguousarray(px[:, :, c:c + 1]) if sockets[i][2] else px
+                while len(CACHE) >= CACHE_LIMIT:
+                    CACHE.pop(next(iter(CACHE)))
+                CACHE[key] = out[i] = r
+        return out
 
     # ---- the temporary scene -------------------------------------------------------------
     def _temp_scene(self):
@@ -221,7 +249,29 @@ class Baker:
             self._other = (m, img)
         return self._other[0]
 
-    def _bake(self, obj, material, node_name, socket_identifier, uv_name):
+    def _source(self, nt, node_name, socket_identifier):
+        """(source socket, True for an Emission node's own output) in the material copy."""
+        node = nt.nodes.get(node_name)
+        output = socket_identifier.startswith("out:")
+        ident = socket_identifier[4:] if output else socket_identifier
+        sock = None if node is None else next(
+            (s for s in (node.outputs if output else node.inputs) if s.identifier == ident), None)
+        if sock is None or not (output or sock.is_linked):
+            raise BakeError(f"socket {node_name}.{socket_identifier} not found")
+        if output:  # an Emission shader's own output (its Color x Strength)
+            if node.type != "EMISSION":
+                raise BakeError(f"output of a {node.type} node")
+            return sock, True
+        link = sock.links[0]
+        while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
+            link = link.from_node.inputs[0].links[0]
+        if link.from_socket.type == "SHADER":
+            raise BakeError("fed by a shader output")
+        return link.from_socket, False
+
+    def _bake(self, obj, material, sources, uv_name, packed=False):
+        """One Cycles bake: sources [(node name, socket identifier)] is one socket, or with
+        packed up to three scalar sockets written to R, G, B. (h, w, 3) pixels."""
         import bpy
 
         if obj.type != "MESH":
@@ -233,36 +283,28 @@ class Baker:
         img = None
         try:
             nt = mcopy.node_tree
-            node = nt.nodes.get(node_name)
-            output = socket_identifier.startswith("out:")
-            ident = socket_identifier[4:] if output else socket_identifier
-            sock = None if node is None else next(
-                (s for s in (node.outputs if output else node.inputs)
-                 if s.identifier == ident), None)
-            if sock is None or not (output or sock.is_linked):
-                raise BakeError(f"socket {node_name}.{socket_identifier} not found")
-            if output:  # an Emission shader's own output (its Color x Strength)
-                if node.type != "EMISSION":
-                    raise BakeError(f"output of a {node.type} node")
-                src = sock
-            else:
-                link = sock.links[0]
-                while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
-                    link = link.from_node.inputs[0].links[0]
-                src = link.from_socket
-                if src.type == "SHADER":
-                    raise BakeError("fed by a shader output")
+            found = [self._source(nt, n, i) for n, i in sources]
             for n in [n for n in nt.nodes if n.type == "OUTPUT_MATERIAL"]:
                 nt.nodes.remove(n)
             out = nt.nodes.new("ShaderNodeOutputMaterial")
             out.target = "ALL"
-            if output:
-                nt.links.new(src, out.inputs["Surface"])
+            if found[0][1]:
+                nt.links.new(found[0][0], out.inputs["Surface"])
             else:
                 em = nt.nodes.new("ShaderNodeEmission")
                 em.inputs["Strength"].default_value = 1.0
-                nt.links.new(src, em.inputs["Color"])
                 nt.links.new(em.outputs["Emission"], out.inputs["Surface"])
+                if packed:
+                    # Each scalar converted to a float as its own input would convert it.
+                    comb = nt.nodes.new("ShaderNodeCombineColor")
+                    comb.mode = "RGB"
+                    for c in range(3):
+                        comb.inputs[c].default_value = 0.0
+                    for c, (src, _o) in enumerate(found):
+                        nt.links.new(src, comb.inputs[c])
+                    nt.links.new(comb.outputs[0], em.inputs["Color"])
+                else:
+                    nt.links.new(found[0][0], em.inputs["Color"])
             res = self.resolution
             img = bpy.data.images.new("principled_bake", res, res, alpha=False,
                                       float_buffer=True, is_data=True)

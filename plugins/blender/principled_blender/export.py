@@ -180,8 +180,11 @@ class TextureWriter:
 
 
 def _write_pfm(path, px):
-    """PFM: linear floats, rows bottom to top (Blender's order too)."""
+    """PFM: linear floats, rows bottom to top (Blender's order too); one channel is written as
+    grey RGB."""
     h, w = px.shape[:2]
+    if px.shape[2] == 1:
+        px = np.repeat(px, 3, axis=2)
     with open(path, "wb") as f:
         f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
         f.write(np.ascontiguousarray(px[:, :, :3], dtype="<f4").tobytes())
@@ -1086,7 +1089,7 @@ class SceneExport:
                 uv = orig.data.uv_layers.active if orig.type == "MESH" else None
                 # Objects with the same mesh and matrix share bakes (the cache key).
                 mesh_key = _bake.mesh_fingerprint(md, mw)
-                results = {}
+                results, pending = {}, []
                 for sock, scalar, transform in requests:
                     rk = (sock.node.name, socket_key(sock), transform)
                     if rk in results:
@@ -1103,13 +1106,19 @@ class SceneExport:
                         results[rk] = (f"the Fac depends on {', '.join(vd)} (view or ray "
                                        "type), which a bake sees from one direction only")
                         continue
-                    try:
-                        px = baker.bake(orig, mat, sock.node.name, socket_key(sock), mesh_key,
-                                        uv.name)
-                    except Exception as e:  # BakeError, or no Cycles (add-on disabled), ...
+                    results[rk] = None
+                    pending.append((rk, sock, scalar, transform, vd))
+                try:
+                    baked = baker.bake_many(orig, mat, [(rk[0], rk[1], scalar) for
+                                                        rk, _s, scalar, _t, _v in pending],
+                                            mesh_key, uv.name if uv is not None else "")
+                except Exception as e:  # no Cycles (add-on disabled), ...
+                    baked = [e] * len(pending)
+                for (rk, sock, scalar, transform, vd), px in zip(pending, baked):
+                    if isinstance(px, Exception):
                         results[rk] = ("not in the bake cache (interactive render)"
-                                       if str(e) == _bake.OFF_THREAD else
-                                       str(e) or type(e).__name__)
+                                       if str(px) == _bake.OFF_THREAD else
+                                       str(px) or type(px).__name__)
                         failed += 1
                         continue
                     if transform == "clearcoatGloss":

@@ -396,6 +396,28 @@ def test_mix_shader():
           any("approximation" in w for w in warns),
           f"Mix Shader of two Diffuse BSDFs: diffuseColor {np.round(inputs['diffuseColor'], 4)}"
           f" = {np.round(want, 4)}, warned as an approximation")
+    # Nested cut-out: Mix(0.5, Mix(0.25, Transparent, Principled P), Diffuse D). Cycles:
+    # 0.375 T + 0.125 P + 0.5 D, i.e. opacity 0.625 and a visible surface 0.2 P + 0.8 D.
+    mt = bpy.data.materials.new("NestedCutout")
+    mt.use_nodes = True
+    t = mt.node_tree
+    p = t.nodes["Principled BSDF"]
+    p.inputs["Base Color"].default_value = (0.2, 0.4, 0.6, 1)
+    tr_ = t.nodes.new("ShaderNodeBsdfTransparent")
+    inner, outer = t.nodes.new("ShaderNodeMixShader"), t.nodes.new("ShaderNodeMixShader")
+    inner.inputs[0].default_value, outer.inputs[0].default_value = 0.25, 0.5
+    dd = t.nodes.new("ShaderNodeBsdfDiffuse")
+    dd.inputs["Color"].default_value = (1, 0, 0, 1)
+    t.links.new(tr_.outputs[0], inner.inputs[1])
+    t.links.new(p.outputs[0], inner.inputs[2])
+    t.links.new(inner.outputs[0], outer.inputs[1])
+    t.links.new(dd.outputs[0], outer.inputs[2])
+    t.links.new(outer.outputs[0], t.nodes["Material Output"].inputs["Surface"])
+    inputs, _l, _w = export.material_params(mt, None)
+    check(abs(inputs["opacity"] - 0.625) < 1e-6 and
+          np.allclose(inputs["diffuseColor"], [0.84, 0.08, 0.12]),
+          f"nested Transparent mix: opacity {inputs['opacity']:.4f} = 0.625, colour "
+          f"{np.round(inputs['diffuseColor'], 4).tolist()} = 0.2 P + 0.8 D (opacity-weighted)")
     _o, m2, nt, b = plane(1.2, "MixBaked")
     ramp = nt.nodes.new("ShaderNodeValToRGB")
     ramp.color_ramp.elements[0].color = (0.02, 0.05, 0.3, 1)

@@ -493,13 +493,15 @@ MIX_DEFAULTS = {"diffuseColor": [0.0, 0.0, 0.0], "metallic": 0.0, "roughness": 0
 
 #: Shader nodes _bsdf_params translates (MIX_SHADER: when both its shaders are supported).
 SHADER_KINDS = ("BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "EMISSION",
-                "SUBSURFACE_SCATTERING", "MIX_SHADER")
+                "SUBSURFACE_SCATTERING", "MIX_SHADER", "BSDF_TRANSPARENT")
 
 
 def supported_shader(node, depth=0):
     """True if _bsdf_params translates the shader node (nested Mix Shaders included)."""
     if node is None or node.type not in SHADER_KINDS or depth > 16:
         return False
+    if node.type == "BSDF_TRANSPARENT":
+        return depth > 0  # only as one side of a Mix Shader
     if node.type != "MIX_SHADER":
         return True
     return all(supported_shader(_linked_node(node.inputs[i]), depth + 1) for i in (1, 2))
@@ -516,6 +518,8 @@ def _bsdf_params(node, material, textures, warnings, links, bake=None, bake_imag
         return emission_params(node, material.name, warnings, bake, links)
     if t == "MIX_SHADER":
         return mix_shader_params(node, material, textures, warnings, links, bake, bake_images)
+    if t == "BSDF_TRANSPARENT":  # as a Mix Shader side: no surface (the other side's inputs)
+        return {"opacity": 0.0}
     if t == "SUBSURFACE_SCATTERING":
         warnings.append(f"material '{material.name}': {node.name} rendered as a diffuse of its "
                         "Color (no subsurface transport)")
@@ -566,7 +570,7 @@ def mix_shader_params(node, material, textures, warnings, links, bake=None, bake
     then use the Fac's socket value as above (warned). Without `bake`: the socket value."""
     fac = node.inputs[0]
     a, b = _linked_node(node.inputs[1]), _linked_node(node.inputs[2])
-    if not (supported_shader(a) and supported_shader(b)):
+    if not (supported_shader(a, 1) and supported_shader(b, 1)):
         return None
     where = f"material '{material.name}'"
     fac_tex = None
@@ -582,13 +586,21 @@ def mix_shader_params(node, material, textures, warnings, links, bake=None, bake
     pa = _bsdf_params(a, material, textures, warnings, la, bake, bake_images)
     pb = _bsdf_params(b, material, textures, warnings, lb, bake, bake_images)
     wa, wb = 1.0 - f, f
+    # A Transparent BSDF side has no surface: its other inputs are the other side's, so only
+    # the opacity blends (the cut-out mix, nested anywhere).
+    if a.type == "BSDF_TRANSPARENT":
+        pa = dict(pb, opacity=0.0)
+        la = {k: v for k, v in lb.items() if k != "opacity"}
+    elif b.type == "BSDF_TRANSPARENT":
+        pb = dict(pa, opacity=0.0)
+        lb = {k: v for k, v in la.items() if k != "opacity"}
     out = {}
     if fac_tex is not None:
         for k in list(dict.fromkeys(list(pa) + list(pb))):
             if k in la or k in lb or k == "normal":
                 continue
             va, vb = pa.get(k, MIX_DEFAULTS.get(k)), pb.get(k, MIX_DEFAULTS.get(k))
-            if va is None or vb is None:
+            if va is None or vb is None or va == vb:
                 continue
             if isinstance(va, list):
                 links[k] = (fac_tex[0], "rgb", ("affine", [y - x for x, y in zip(va, vb)],
@@ -598,25 +610,37 @@ def mix_shader_params(node, material, textures, warnings, links, bake=None, bake
         if la or lb:
             warnings.append(f"{where}: Mix Shader inputs textured on a side are blended by the "
                             f"Fac's socket value {f:.3g}, not by its baked texture")
+    # Cycles' mix is wa A + wb B: where A is partly transparent (opacity oa), the visible
+    # surface is wa oa A + wb ob B over wa oa + wb ob, so the non-opacity inputs blend with
+    # those weights (constant opacities; textured ones keep wa, wb).
+    ca, cb = wa, wb
+    oa, ob = pa.get("opacity", 1.0), pb.get("opacity", 1.0)
+    if "opacity" not in la and "opacity" not in lb and wa * oa + wb * ob > 0.0:
+        ca, cb = wa * oa / (wa * oa + wb * ob), wb * ob / (wa * oa + wb * ob)
     for k in list(dict.fromkeys(list(pa) + list(pb))):
         va, vb = pa.get(k, MIX_DEFAULTS.get(k)), pb.get(k, MIX_DEFAULTS.get(k))
+        u, v = (wa, wb) if k == "opacity" else (ca, cb)
         if va is None or vb is None:
             out[k] = va if vb is None else vb
         elif isinstance(va, list):
-            out[k] = [wa * x + wb * y for x, y in zip(va, vb)]
+            out[k] = [u * x + v * y for x, y in zip(va, vb)]
         else:
-            out[k] = wa * va + wb * vb
+            out[k] = u * va + v * vb
     for k in list(dict.fromkeys(list(la) + list(lb))):
+        if la.get(k) is not None and la.get(k) is lb.get(k):  # shared (a Transparent side)
+            links[k] = la[k]
+            continue
         if k in la and k in lb:
             warnings.append(f"{where}: Mix Shader input '{k}' textured on both sides; using "
                             "the texture of the heavier side")
         if k == "normal":  # a normal map is not blended: the side's own
             links[k] = la[k] if (k in la and (wa >= wb or k not in lb)) else lb[k]
             continue
-        if k in la and (wa >= wb or k not in lb):
-            (file, channel, extra, wrap), w, other, wo = la[k], wa, pb, wb
+        u, v = (wa, wb) if k == "opacity" else (ca, cb)
+        if k in la and (u >= v or k not in lb):
+            (file, channel, extra, wrap), w, other, wo = la[k], u, pb, v
         else:
-            (file, channel, extra, wrap), w, other, wo = lb[k], wb, pa, wa
+            (file, channel, extra, wrap), w, other, wo = lb[k], v, pa, u
         s0, b0 = _affine(extra)
         ov = other.get(k, MIX_DEFAULTS.get(k, 0.0))
         links[k] = (file, channel, ("affine", _lin(w, s0), _lin(w, b0, wo, ov)), wrap)

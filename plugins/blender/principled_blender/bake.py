@@ -24,10 +24,12 @@ import time
 
 import numpy as np
 
-#: (material fingerprint, object key, node name, socket identifier, resolution) -> float32
-#: (h, w, 3) linear pixels, rows bottom to top. Lives as long as the add-on module.
+#: (material fingerprint, mesh fingerprint, node name, socket identifier, resolution) ->
+#: float32 (h, w, 3) (colours) or (h, w, 1) (scalars) linear pixels, rows bottom to top. Lives
+#: as long as the add-on module.
 CACHE = {}
-CACHE_LIMIT = 256  # entries (a 512^2 bake is 3 MB): the oldest go first
+#: Bytes CACHE may hold (a 512^2 colour bake is 3 MB, a scalar 1 MB): the oldest go first.
+CACHE_BYTES = 512 << 20
 
 #: Cycles samples per texel. 4 (a filtered texel) rendered the material library no closer to
 #: Cycles than 1 and baked 2-3x slower.
@@ -123,6 +125,14 @@ class BakeError(RuntimeError):
     pass
 
 
+def _cache_put(key, px):
+    CACHE.pop(key, None)
+    total = sum(v.nbytes for v in CACHE.values()) + px.nbytes
+    while CACHE and total > CACHE_BYTES:
+        total -= CACHE.pop(next(iter(CACHE))).nbytes
+    CACHE[key] = px
+
+
 OFF_THREAD = ("not in the bake cache, and an interactive render runs off Blender's main "
               "thread where Cycles cannot bake: press Render properties > principled > Bake "
               "Procedural Textures first")
@@ -199,9 +209,8 @@ class Baker:
             self.baked += 1
             for c, (i, key) in enumerate(group):
                 r = np.ascontiguousarray(px[:, :, c:c + 1]) if sockets[i][2] else px
-                while len(CACHE) >= CACHE_LIMIT:
-                    CACHE.pop(next(iter(CACHE)))
-                CACHE[key] = out[i] = r
+                _cache_put(key, r)
+                out[i] = r
         return out
 
     # ---- the temporary scene -------------------------------------------------------------
@@ -230,6 +239,10 @@ class Baker:
             self._temp_scene().collection.objects.link(t)
             t.hide_render = False
             t.hide_viewport = False
+            for k in ("visible_camera", "visible_diffuse", "visible_glossy",
+                      "visible_transmission", "visible_volume_scatter", "visible_shadow"):
+                if hasattr(t, k):
+                    setattr(t, k, True)
             self._objects[obj.name_full] = t
         return t
 

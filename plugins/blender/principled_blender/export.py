@@ -1151,11 +1151,11 @@ class SceneExport:
                         "\0".join((mname, oname) + tuple(str(x) for x in rk)), px)
                     results[rk] = (file, "r" if scalar else "rgb")
                     sockets += 1
-                    if vd:
-                        self.warnings.append(
-                            f"material '{mname}': {sock.node.name} input '{sock.name}' depends "
-                            f"on {', '.join(vd)} (view or light path): baked for a view along "
-                            "the normal")
+                    msg = (f"material '{mname}': {sock.node.name} input '{sock.name}' depends "
+                           f"on {', '.join(vd)} (view or light path): baked for a view along "
+                           "the normal")
+                    if vd and msg not in self.warnings:  # once, not per object
+                        self.warnings.append(msg)
                 self.bakes[(mname, oname)] = (results, images)
         finally:
             baker.close()

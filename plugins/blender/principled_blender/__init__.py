@@ -47,6 +47,14 @@ class PrincipledSettings(bpy.types.PropertyGroup):
                ("SCHLICK", "Disney (Schlick)",
                 "Schlick's approximation, as in Burley's Disney BRDF and UsdPreviewSurface")],
         description="Fresnel curve of the specular lobe (the delegate's specularFresnel)")
+    bake_procedural: bpy.props.BoolProperty(
+        name="Bake Procedural Textures", default=True,
+        description="Final renders: bake material inputs fed by procedural nodes (noise, color "
+                    "ramps, math...) into textures with Cycles over the object's UV map; the "
+                    "viewport and objects without UVs keep the sockets' values")
+    bake_resolution: bpy.props.IntProperty(
+        name="Bake Resolution", default=512, min=16, max=8192,
+        description="Width and height in pixels of each baked procedural texture")
     viewport_scale: bpy.props.FloatProperty(
         name="Viewport Resolution", default=0.5, min=0.1, max=1.0, subtype="FACTOR",
         description="Viewport render size relative to the 3D view (the image is stretched to "
@@ -142,9 +150,15 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
                             lambda m: self.report({"WARNING"}, m))
             s.bind(s.required_aovs([p[0] for p in _session.PASSES]))
             self.update_stats("principled", "Exporting scene")
-            warnings = s.full_sync(depsgraph, w, h)
+            bake_res = scene.principled.bake_resolution if scene.principled.bake_procedural \
+                else None
+            if bake_res:
+                self.update_stats("principled", "Baking procedural textures")
+            warnings = s.full_sync(depsgraph, w, h, bake_resolution=bake_res)
             for wmsg in warnings + s.delegate.take_warnings():
                 self.report({"WARNING"}, f"principled: {wmsg}")
+            for msg in s.export.info:
+                self.report({"INFO"}, f"principled: {msg}")
             t_sync = time.perf_counter() - t0
             limit = scene.principled.time_limit
             start = time.perf_counter()
@@ -298,6 +312,35 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
         gpu.state.blend_set("NONE")
 
 
+class PRINCIPLED_OT_bake_procedural(bpy.types.Operator):
+    """Bake the scene's procedural material inputs with Cycles now (main thread), into the
+    session cache an interactive render (F12, which runs off the main thread and cannot bake)
+    then uses"""
+    bl_idname = "principled.bake_procedural"
+    bl_label = "Bake Procedural Textures"
+    bl_options = {"REGISTER"}
+
+    def execute(self, context):
+        import shutil
+        import tempfile
+
+        from . import bake, export
+
+        scene = context.scene
+        tmp = tempfile.mkdtemp(prefix="principled-bake-")
+        try:
+            ex = export.SceneExport(None, context.evaluated_depsgraph_get(), tmp, 1, 1,
+                                    baker=bake.Baker(scene.principled.bake_resolution))
+            ex.prepare_bakes()
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+        for msg in ex.warnings:
+            self.report({"WARNING"}, f"principled: {msg}")
+        for msg in ex.info or ["no procedural inputs to bake"]:
+            self.report({"INFO"}, f"principled: {msg}")
+        return {"FINISHED"}
+
+
 class PRINCIPLED_PT_sampling(bpy.types.Panel):
     bl_label = "principled"
     bl_space_type = "PROPERTIES"
@@ -319,6 +362,11 @@ class PRINCIPLED_PT_sampling(bpy.types.Panel):
         col.prop(s, "seed")
         col.prop(s, "fresnel")
         col.prop(s, "viewport_scale")
+        col.prop(s, "bake_procedural")
+        sub = col.column()
+        sub.active = s.bake_procedural
+        sub.prop(s, "bake_resolution")
+        sub.operator(PRINCIPLED_OT_bake_procedural.bl_idname, icon="RENDER_STILL")
 
 
 def _compat_panels():
@@ -340,6 +388,7 @@ def register():
     bpy.utils.register_class(PrincipledSettings)
     bpy.types.Scene.principled = bpy.props.PointerProperty(type=PrincipledSettings)
     bpy.utils.register_class(PrincipledRenderEngine)
+    bpy.utils.register_class(PRINCIPLED_OT_bake_procedural)
     bpy.utils.register_class(PRINCIPLED_PT_sampling)
     for p in _compat_panels():
         p.COMPAT_ENGINES.add("PRINCIPLED")
@@ -351,6 +400,7 @@ def unregister():
         p.COMPAT_ENGINES.discard("PRINCIPLED")
     _ENGINE_PANELS.clear()
     bpy.utils.unregister_class(PRINCIPLED_PT_sampling)
+    bpy.utils.unregister_class(PRINCIPLED_OT_bake_procedural)
     bpy.utils.unregister_class(PrincipledRenderEngine)
     del bpy.types.Scene.principled
     bpy.utils.unregister_class(PrincipledSettings)

@@ -12,6 +12,7 @@ Conventions (docs/hosts.md has the long form):
 import math
 import os
 import re
+import time
 
 import numpy as np
 
@@ -57,6 +58,49 @@ def _linked_node(sock):
     while node.type == "REROUTE" and node.inputs[0].is_linked:
         node = node.inputs[0].links[0].from_node
     return node
+
+
+#: Nodes whose output depends on the view or the light path: a bake evaluates them for a view
+#: along the normal (warned).
+VIEW_DEPENDENT = {"FRESNEL", "LAYER_WEIGHT", "LIGHT_PATH", "CAMERA", "AMBIENT_OCCLUSION",
+                  "GEOMETRY_INCOMING"}
+
+
+def socket_key(sock):
+    """A socket's key in a node: its identifier ('out:' + it for an output)."""
+    return ("out:" if sock.is_output else "") + sock.identifier
+
+
+def upstream_types(sock, limit=500):
+    """The node types feeding a socket, everything inside (nested) groups on the way included;
+    a Geometry node's Incoming output (the view direction) counts as GEOMETRY_INCOMING."""
+    seen, todo, out = set(), [sock], set()
+    if sock.is_output:
+        todo = list(sock.node.inputs)
+    while todo and len(seen) < limit:
+        s = todo.pop()
+        for link in s.links if s.is_linked else ():
+            n = link.from_node
+            if n.type == "NEW_GEOMETRY" and link.from_socket.name == "Incoming":
+                out.add("GEOMETRY_INCOMING")
+            if n.name in seen:
+                continue
+            seen.add(n.name)
+            out.add(n.type)
+            trees = [n.node_tree] if n.type == "GROUP" and n.node_tree is not None else []
+            while trees:  # everything inside (nested) groups counts
+                t = trees.pop()
+                if "\0" + t.name_full in seen:
+                    continue
+                seen.add("\0" + t.name_full)
+                for x in t.nodes:
+                    out.add(x.type)
+                    if x.type == "NEW_GEOMETRY" and x.outputs["Incoming"].is_linked:
+                        out.add("GEOMETRY_INCOMING")
+                    if x.type == "GROUP" and x.node_tree is not None:
+                        trees.append(x.node_tree)
+            todo.extend(n.inputs)
+    return out
 
 
 class TextureWriter:
@@ -113,11 +157,7 @@ class TextureWriter:
         os.makedirs(self.directory, exist_ok=True)
         base = os.path.join(self.directory, usd_name(image.name, "Image"))
         if image.is_float:
-            # PFM: linear floats, rows bottom to top (Blender's order too).
-            path = base + ".pfm"
-            with open(path, "wb") as f:
-                f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
-                f.write(np.ascontiguousarray(px[:, :, :3], dtype="<f4").tobytes())
+            path = _write_pfm(base + ".pfm", px)
         else:
             # 8-bit images: Blender's pixels are the stored (sRGB-encoded) values; an 8-bit
             # PPM is read as sRGB by the delegate, as the original PNG would be.
@@ -127,6 +167,28 @@ class TextureWriter:
                 f.write(b"P6\n%d %d\n255\n" % (w, h))
                 f.write(rgb.tobytes())
         return path
+
+    def file_for_pixels(self, key, px):
+        """A PFM of linear float pixels ((h, w, 3+) float32, rows bottom to top: a bake's), once
+        per key; read as raw (linear) data by the delegate (float files are never sRGB)."""
+        key = "\0pixels:" + key
+        if key not in self.files:
+            os.makedirs(self.directory, exist_ok=True)
+            name = "Bake_%d" % len(self.files)
+            self.files[key] = _write_pfm(os.path.join(self.directory, name + ".pfm"), px)
+        return self.files[key]
+
+
+def _write_pfm(path, px):
+    """PFM: linear floats, rows bottom to top (Blender's order too); one channel is written as
+    grey RGB."""
+    h, w = px.shape[:2]
+    if px.shape[2] == 1:
+        px = np.repeat(px, 3, axis=2)
+    with open(path, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
+        f.write(np.ascontiguousarray(px[:, :, :3], dtype="<f4").tobytes())
+    return path
 
 
 # Image Texture node extension -> UsdUVTexture wrapS/wrapT. UsdUVTexture's own fallback
@@ -142,8 +204,10 @@ def texture_wrap(node):
 
 def link_signature(links, mapping=None):
     """What a change of needs a rebuild (set_material_texture, the mesh's st): the linked
-    inputs, their wrap modes and the material's UV Mapping (uv_mapping)."""
-    return tuple(sorted((k, v[3]) for k, v in links.items())) + (mapping,)
+    inputs, their wrap modes, their scale/bias extras (an emission map's strength, a Mix
+    Shader's blend: written on the texture prim, not re-set by a material edit) and the
+    material's UV Mapping (uv_mapping)."""
+    return tuple(sorted((k, v[3], repr(v[2])) for k, v in links.items())) + (mapping,)
 
 
 def _mapping_affine(node, warnings, where):
@@ -269,21 +333,28 @@ def principled_bsdf(material):
     return node if node is not None and node.type == "BSDF_PRINCIPLED" else None
 
 
-def emission_params(node, material_name, warnings):
+def emission_params(node, material_name, warnings, bake=None, links=None):
     """An Emission shader alone on the output: Cycles renders a pure emitter (radiance colour x
     strength, both sides) that reflects nothing. principled: emissiveColor, black diffuse,
-    specular 0, roughness 1 (Disney keeps a faint grazing Schlick lobe at specular 0)."""
-    for name in ("Color", "Strength"):
-        if node.inputs[name].is_linked:
-            warnings.append(f"material '{material_name}': Emission {name} is linked; using the "
-                            "socket value")
+    specular 0, roughness 1 (Disney keeps a faint grazing Schlick lobe at specular 0). A linked
+    Color is baked (`bake`, see _base_material_params) into links['emissiveColor']."""
     strength = float(node.inputs["Strength"].default_value)
+    linked = [n for n in ("Color", "Strength") if node.inputs[n].is_linked]
+    if linked and bake is not None and links is not None:
+        # The node's own output: Color x Strength evaluated together.
+        t = bake(node.outputs[0])
+        if t is not None:
+            links["emissiveColor"] = (t[0], "rgb", None, "clamp")
+            linked = []
+    for name in linked:
+        warnings.append(f"material '{material_name}': Emission {name} is linked; using the "
+                        "socket value")
     color = [float(c) * strength for c in node.inputs["Color"].default_value[:3]]
     return {"diffuseColor": [0.0, 0.0, 0.0], "specular": 0.0, "roughness": 1.0,
             "metallic": 0.0, "emissiveColor": color}
 
 
-def bsdf_node_params(node, material_name, warnings):
+def bsdf_node_params(node, material_name, warnings, bake=None, links=None):
     """A single Diffuse, Glossy or Glass BSDF node on the output -> Disney inputs (socket values;
     links are warned about and ignored), or None for other nodes.
 
@@ -293,12 +364,22 @@ def bsdf_node_params(node, material_name, warnings):
     - Glossy BSDF (coloured mirror-like microfacet, no Fresnel): metallic 1 with F0 = Color,
       roughness (Disney's Schlick edge brightening remains).
     - Glass BSDF: specTrans 1, diffuseColor = Color (the transmission tint), roughness, ior,
-      specular = ((ior - 1)/(ior + 1))^2 / 0.08 (the same index for the reflection)."""
+      specular = ((ior - 1)/(ior + 1))^2 / 0.08 (the same index for the reflection).
+    With `bake` (final renders, see _base_material_params) a linked Color becomes
+    links['diffuseColor'] and a linked Glossy/Glass Roughness links['roughness']."""
     t = node.type
     if t not in ("BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS"):
         return None
     for sock in node.inputs:
         if sock.is_linked and sock.name != "Weight":
+            usd = {"Color": "diffuseColor", "Roughness": "roughness"}.get(sock.name)
+            if t == "BSDF_DIFFUSE" and usd == "roughness":
+                usd = None
+            if usd is not None and bake is not None and links is not None:
+                r = bake(sock, scalar=usd != "diffuseColor")
+                if r is not None:
+                    links[usd] = (r[0], r[1], None, "clamp")
+                    continue
             warnings.append(f"material '{material_name}': {node.name} input '{sock.name}' is "
                             "linked; using the socket value")
     color = [float(c) for c in node.inputs["Color"].default_value[:3]]
@@ -316,12 +397,12 @@ def bsdf_node_params(node, material_name, warnings):
             "ior": ior, "specular": min(spec, 1.0)}
 
 
-def material_params(material, textures):
+def material_params(material, textures, bake=None, bake_images=False):
     """_base_material_params, then a Mix Shader with a Transparent BSDF on the output
     (transparent_mix) multiplies the opacity by its Fac (or 1 - Fac): a constant, or an Image
     Texture's Alpha/Color output linked as the opacity texture (inverted with scale -1, bias 1
-    when the Transparent BSDF is the second input)."""
-    inputs, links, warnings = _base_material_params(material, textures)
+    when the Transparent BSDF is the second input), or with `bake` any other link baked."""
+    inputs, links, warnings = _base_material_params(material, textures, bake, bake_images)
     mix = transparent_mix(surface_node(material))
     if mix is None:
         return inputs, links, warnings
@@ -347,6 +428,12 @@ def material_params(material, textures):
                             texture_wrap(src))
         inputs["opacity"] = 1.0
         return inputs, links, warnings
+    if bake is not None:
+        t = bake(fac, scalar=True)
+        if t is not None:
+            links["opacity"] = (t[0], t[1], None if transparent_first else "invert", "clamp")
+            inputs["opacity"] = 1.0
+            return inputs, links, warnings
     warnings.append(f"material '{material.name}': Mix Shader Fac linked to '{src.type}'; "
                     "using its socket value")
     f = float(fac.default_value)
@@ -354,7 +441,7 @@ def material_params(material, textures):
     return inputs, links, warnings
 
 
-def _base_material_params(material, textures):
+def _base_material_params(material, textures, bake=None, bake_images=False):
     """Principled BSDF (v1, Blender 3.4) -> UsdPreviewSurface + Disney inputs.
 
     Returns (inputs: {name: float | [3 floats]}, links: {input: (file, channel, extra, wrap)},
@@ -367,25 +454,206 @@ def _base_material_params(material, textures):
     Every texture keeps its node's extension as wrapS/wrapT (texture_wrap). A scalar input fed
     by an Image Texture's Alpha output reads the image's alpha (TextureWriter.alpha_file_for),
     any other output its red channel.
+
+    `bake` (final renders; None in the viewport): a callable bake(socket, scalar=False,
+    transform=None) -> (file, channel) | None giving a texture of a linked input's upstream
+    value (SceneExport.prepare_bakes: a Cycles bake over the mesh's UVs, bake.py). Inputs linked
+    to anything but an Image Texture (to anything at all when bake_images: the material's Image
+    Textures use a UV Mapping, which the baked textures must not get) are baked; the textures
+    use the clamp wrap (UV islands with a margin). Without it, or when a bake fails (warned by
+    the callable), such inputs keep their socket values with a warning.
     """
     warnings = []
-    inputs = {}
     links = {}
     if material is None:
         return {"diffuseColor": [0.8, 0.8, 0.8], "roughness": 0.5}, links, warnings
-    bsdf = principled_bsdf(material)
-    if bsdf is None:
-        node = shading_node(material)
-        if node is not None and node.type == "EMISSION":
-            return emission_params(node, material.name, warnings), links, warnings
-        simple = bsdf_node_params(node, material.name, warnings) if node is not None else None
-        if simple is not None:
-            return simple, links, warnings
-        c = list(material.diffuse_color)[:3]
-        warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
-                        "output (nor a Diffuse, Glossy or Glass BSDF); using its viewport display color")
-        return {"diffuseColor": c, "roughness": float(material.roughness),
-                "metallic": float(material.metallic)}, links, warnings
+    node = shading_node(material)
+    if node is not None and node.type == "EMISSION":
+        return emission_params(node, material.name, warnings, bake, links), links, warnings
+    inputs = None
+    if supported_shader(node):
+        inputs = _bsdf_params(node, material, textures, warnings, links, bake, bake_images)
+    if inputs is not None:
+        return inputs, links, warnings
+    c = list(material.diffuse_color)[:3]
+    warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
+                    "output (nor a Diffuse, Glossy or Glass BSDF, nor a Mix Shader of two of "
+                    "them with a constant Fac); using its viewport display color")
+    return {"diffuseColor": c, "roughness": float(material.roughness),
+            "metallic": float(material.metallic)}, links, warnings
+
+
+#: Disney/UsdPreviewSurface values of inputs a BSDF's translation leaves out (blending a
+#: Diffuse BSDF with a clear-coated Principled halves the coat: the Diffuse has none).
+MIX_DEFAULTS = {"diffuseColor": [0.0, 0.0, 0.0], "metallic": 0.0, "roughness": 0.5,
+                "specular": 0.5, "specularTint": 0.0, "anisotropic": 0.0, "sheen": 0.0,
+                "sheenTint": 0.5, "clearcoat": 0.0, "clearcoatGloss": 1.0, "specTrans": 0.0,
+                "ior": 1.5, "opacity": 1.0, "subsurface": 0.0, "emissiveColor": [0.0, 0.0, 0.0]}
+
+
+#: Shader nodes _bsdf_params translates (MIX_SHADER: when both its shaders are supported).
+SHADER_KINDS = ("BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "EMISSION",
+                "SUBSURFACE_SCATTERING", "MIX_SHADER", "BSDF_TRANSPARENT")
+
+
+def supported_shader(node, depth=0):
+    """True if _bsdf_params translates the shader node (nested Mix Shaders included)."""
+    if node is None or node.type not in SHADER_KINDS or depth > 16:
+        return False
+    if node.type == "BSDF_TRANSPARENT":
+        return depth > 0  # only as one side of a Mix Shader
+    if node.type != "MIX_SHADER":
+        return True
+    return all(supported_shader(_linked_node(node.inputs[i]), depth + 1) for i in (1, 2))
+
+
+def _bsdf_params(node, material, textures, warnings, links, bake=None, bake_images=False):
+    """Inputs of one shader node of SHADER_KINDS (textures into links); None for others. A
+    Subsurface Scattering node is a diffuse of its Color (warned); a Mix Shader is
+    mix_shader_params."""
+    t = node.type
+    if t == "BSDF_PRINCIPLED":
+        return _principled_params(node, material, textures, warnings, links, bake, bake_images)
+    if t == "EMISSION":
+        return emission_params(node, material.name, warnings, bake, links)
+    if t == "MIX_SHADER":
+        return mix_shader_params(node, material, textures, warnings, links, bake, bake_images)
+    if t == "BSDF_TRANSPARENT":  # as a Mix Shader side: no surface (the other side's inputs)
+        return {"opacity": 0.0}
+    if t == "SUBSURFACE_SCATTERING":
+        warnings.append(f"material '{material.name}': {node.name} rendered as a diffuse of its "
+                        "Color (no subsurface transport)")
+        color = [float(c) for c in node.inputs["Color"].default_value[:3]]
+        if node.inputs["Color"].is_linked:
+            r = bake(node.inputs["Color"]) if bake is not None else None
+            if r is not None:
+                links["diffuseColor"] = (r[0], "rgb", None, "clamp")
+            else:
+                warnings.append(f"material '{material.name}': {node.name} input 'Color' is "
+                                "linked; using the socket value")
+        return {"diffuseColor": color, "roughness": 0.25, "specular": 0.0, "metallic": 0.0}
+    return bsdf_node_params(node, material.name, warnings, bake, links)
+
+
+def _lin(w, x, wo=0.0, y=0.0):
+    """w x + wo y for numbers or 3-lists (a number meets a list: applied to each channel)."""
+    if isinstance(x, list) or isinstance(y, list):
+        xs = x if isinstance(x, list) else [x] * 3
+        ys = y if isinstance(y, list) else [y] * 3
+        return [w * a + wo * b for a, b in zip(xs, ys)]
+    return w * x + wo * y
+
+
+def _affine(extra):
+    """A link's extra as texel -> scale * texel + bias: None, an emission strength, 'invert'."""
+    if extra is None:
+        return 1.0, 0.0
+    if extra == "invert":
+        return -1.0, 1.0
+    if isinstance(extra, tuple) and extra and extra[0] == "affine":
+        return extra[1], extra[2]
+    return float(extra), 0.0
+
+
+def mix_shader_params(node, material, textures, warnings, links, bake=None, bake_images=False):
+    """A Mix Shader of two shaders _bsdf_params translates (Principled, Diffuse, Glossy,
+    Glass, Emission, Subsurface Scattering, nested Mix Shaders of those) with Fac f -> one
+    BSDF whose inputs are (1 - f) a + f b (colours per channel; an input one side leaves out
+    takes MIX_DEFAULTS). Cycles picks one of the two BSDFs per shading point with probability
+    1 - f / f, i.e. it sums the two lobes weighted; a single Disney BSDF of blended parameters
+    is an approximation of that sum (exact for the diffuse colour of two diffuse lobes, not for
+    blended roughness or metallic): it is warned. A texture on one side is kept as
+    scale * texel + bias (scale (1 - f) or f, bias the other side's weighted value); an input
+    textured on both sides keeps the heavier side's texture (warned). None if not applicable.
+    A linked Fac is baked when `bake` is given (final renders): every input untextured on both
+    sides becomes the Fac texture F as a + (b - a) F (scale b - a, bias a); textured inputs
+    then use the Fac's socket value as above (warned). Without `bake`: the socket value."""
+    fac = node.inputs[0]
+    a, b = _linked_node(node.inputs[1]), _linked_node(node.inputs[2])
+    if not (supported_shader(a, 1) and supported_shader(b, 1)):
+        return None
+    where = f"material '{material.name}'"
+    fac_tex = None
+    if fac.is_linked:
+        src = _linked_node(fac)
+        if bake is not None:
+            fac_tex = bake(fac, scalar=True)
+        if fac_tex is None:
+            warnings.append(f"{where}: Mix Shader Fac linked to '{src.type}' (not baked); "
+                            "using its socket value")
+    f = min(1.0, max(0.0, float(fac.default_value)))
+    la, lb = {}, {}
+    pa = _bsdf_params(a, material, textures, warnings, la, bake, bake_images)
+    pb = _bsdf_params(b, material, textures, warnings, lb, bake, bake_images)
+    wa, wb = 1.0 - f, f
+    # A Transparent BSDF side has no surface: its other inputs are the other side's, so only
+    # the opacity blends (the cut-out mix, nested anywhere).
+    if a.type == "BSDF_TRANSPARENT":
+        pa = dict(pb, opacity=0.0)
+        la = {k: v for k, v in lb.items() if k != "opacity"}
+    elif b.type == "BSDF_TRANSPARENT":
+        pb = dict(pa, opacity=0.0)
+        lb = {k: v for k, v in la.items() if k != "opacity"}
+    out = {}
+    if fac_tex is not None:
+        for k in list(dict.fromkeys(list(pa) + list(pb))):
+            if k in la or k in lb or k == "normal":
+                continue
+            va, vb = pa.get(k, MIX_DEFAULTS.get(k)), pb.get(k, MIX_DEFAULTS.get(k))
+            if va is None or vb is None or va == vb:
+                continue
+            if isinstance(va, list):
+                links[k] = (fac_tex[0], "rgb", ("affine", [y - x for x, y in zip(va, vb)],
+                                                list(va)), "clamp")
+            else:
+                links[k] = (fac_tex[0], "r", ("affine", vb - va, va), "clamp")
+        if la or lb:
+            warnings.append(f"{where}: Mix Shader inputs textured on a side are blended by the "
+                            f"Fac's socket value {f:.3g}, not by its baked texture")
+    # Cycles' mix is wa A + wb B: where A is partly transparent (opacity oa), the visible
+    # surface is wa oa A + wb ob B over wa oa + wb ob, so the non-opacity inputs blend with
+    # those weights (constant opacities; textured ones keep wa, wb).
+    ca, cb = wa, wb
+    oa, ob = pa.get("opacity", 1.0), pb.get("opacity", 1.0)
+    if "opacity" not in la and "opacity" not in lb and wa * oa + wb * ob > 0.0:
+        ca, cb = wa * oa / (wa * oa + wb * ob), wb * ob / (wa * oa + wb * ob)
+    for k in list(dict.fromkeys(list(pa) + list(pb))):
+        va, vb = pa.get(k, MIX_DEFAULTS.get(k)), pb.get(k, MIX_DEFAULTS.get(k))
+        u, v = (wa, wb) if k == "opacity" else (ca, cb)
+        if va is None or vb is None:
+            out[k] = va if vb is None else vb
+        elif isinstance(va, list):
+            out[k] = [u * x + v * y for x, y in zip(va, vb)]
+        else:
+            out[k] = u * va + v * vb
+    for k in list(dict.fromkeys(list(la) + list(lb))):
+        if la.get(k) is not None and la.get(k) is lb.get(k):  # shared (a Transparent side)
+            links[k] = la[k]
+            continue
+        if k in la and k in lb:
+            warnings.append(f"{where}: Mix Shader input '{k}' textured on both sides; using "
+                            "the texture of the heavier side")
+        if k == "normal":  # a normal map is not blended: the side's own
+            links[k] = la[k] if (k in la and (wa >= wb or k not in lb)) else lb[k]
+            continue
+        u, v = (wa, wb) if k == "opacity" else (ca, cb)
+        if k in la and (u >= v or k not in lb):
+            (file, channel, extra, wrap), w, other, wo = la[k], u, pb, v
+        else:
+            (file, channel, extra, wrap), w, other, wo = lb[k], v, pa, u
+        s0, b0 = _affine(extra)
+        ov = other.get(k, MIX_DEFAULTS.get(k, 0.0))
+        links[k] = (file, channel, ("affine", _lin(w, s0), _lin(w, b0, wo, ov)), wrap)
+    fac_text = "baked Fac" if fac_tex is not None else f"Fac {f:.3g}"
+    warnings.append(f"{where}: Mix Shader of '{a.name}' and '{b.name}' ({fac_text}) rendered "
+                    "as one BSDF of blended inputs, an approximation of Cycles' mix of the two "
+                    "BSDFs")
+    return out
+
+
+def _principled_params(bsdf, material, textures, warnings, links, bake=None, bake_images=False):
+    """_base_material_params' Principled BSDF translation (inputs; textures into links)."""
+    inputs = {}
     I = bsdf.inputs
 
     def value(name):
@@ -398,21 +666,30 @@ def _base_material_params(material, textures):
             warnings.append(f"material '{material.name}': image '{image.name}': {e}")
             return None
 
-    def image_link(name):
-        node = _linked_node(I[name])
+    def texture(sock, scalar, transform=None):
+        """(file, channel, wrap) of an input fed by an Image Texture, or baked, or None."""
+        node = _linked_node(sock)
         if node is None:
             return None
-        if node.type == "TEX_IMAGE" and node.image is not None:
-            return node if image_file(node.image) else None
-        warnings.append(f"material '{material.name}': input '{name}' is linked to a "
+        if node.type == "TEX_IMAGE" and node.image is not None and not \
+                (bake is not None and bake_images):
+            if not image_file(node.image):
+                return None
+            if scalar and _linked_socket(sock).name == "Alpha":  # the image's alpha
+                return textures.alpha_file_for(node.image) + (texture_wrap(node),)
+            return textures.file_for(node.image), "r" if scalar else "rgb", texture_wrap(node)
+        if bake is not None:
+            t = bake(sock, scalar=scalar, transform=transform)
+            return None if t is None else (t[0], t[1], "clamp")
+        warnings.append(f"material '{material.name}': input '{sock.name}' is linked to a "
                         f"'{node.type}' node; only Image Texture links are translated, "
                         "using the socket value")
         return None
 
     inputs["diffuseColor"] = value("Base Color")[:3]
-    tex = image_link("Base Color")
-    if tex is not None:
-        links["diffuseColor"] = (textures.file_for(tex.image), "rgb", None, texture_wrap(tex))
+    t = texture(I["Base Color"], False)
+    if t is not None:
+        links["diffuseColor"] = (t[0], t[1], None, t[2])
     for blender, usd in (("Metallic", "metallic"), ("Roughness", "roughness"),
                          ("Specular", "specular"), ("Specular Tint", "specularTint"),
                          ("Anisotropic", "anisotropic"), ("Sheen", "sheen"),
@@ -420,26 +697,33 @@ def _base_material_params(material, textures):
                          ("Transmission", "specTrans"), ("IOR", "ior"), ("Alpha", "opacity"),
                          ("Subsurface", "subsurface")):
         inputs[usd] = float(value(blender))
-        tex = image_link(blender)
-        if tex is not None:
-            if _linked_socket(I[blender]).name == "Alpha":  # the Image Texture's Alpha output
-                file, channel = textures.alpha_file_for(tex.image)
-            else:
-                file, channel = textures.file_for(tex.image), "r"
-            links[usd] = (file, channel, None, texture_wrap(tex))
+        t = texture(I[blender], True)
+        if t is not None:
+            links[usd] = (t[0], t[1], None, t[2])
     r = float(value("Clearcoat Roughness"))
     inputs["clearcoatGloss"] = min(1.0, max(0.0, (0.1 - r * r) / 0.099))
+    if I["Clearcoat Roughness"].is_linked and bake is not None:
+        # Baked roughness r -> gloss texel by texel (an Image Texture link is baked too: the
+        # conversion is not affine).
+        t = bake(I["Clearcoat Roughness"], scalar=True, transform="clearcoatGloss")
+        if t is not None:
+            links["clearcoatGloss"] = (t[0], t[1], None, "clamp")
     strength = float(value("Emission Strength"))
     inputs["emissiveColor"] = [c * strength for c in value("Emission")[:3]]
-    tex = image_link("Emission")
-    if tex is not None:  # an emission map (screens, signs): colour data, times the strength
-        links["emissiveColor"] = (textures.file_for(tex.image), "rgb", strength,
-                                  texture_wrap(tex))
+    t = texture(I["Emission"], False)
+    if t is not None:  # an emission map (screens, signs): colour data, times the strength
+        links["emissiveColor"] = (t[0], t[1], strength, t[2])
     nnode = _linked_node(I["Normal"])
     if nnode is not None:
         if nnode.type == "NORMAL_MAP" and nnode.space == "TANGENT":
             tex = _linked_node(nnode.inputs["Color"])
-            if tex is not None and tex.type == "TEX_IMAGE" and tex.image is not None and \
+            baked = None
+            if tex is not None and bake is not None and (bake_images or tex.type != "TEX_IMAGE"):
+                baked = bake(nnode.inputs["Color"])  # raw tangent-space colour, as an image's
+            if baked is not None:
+                links["normal"] = (baked[0], "rgb",
+                                   float(nnode.inputs["Strength"].default_value), "clamp")
+            elif tex is not None and tex.type == "TEX_IMAGE" and tex.image is not None and \
                     image_file(tex.image):
                 links["normal"] = (textures.file_for(tex.image), "rgb",
                                    float(nnode.inputs["Strength"].default_value),
@@ -452,7 +736,7 @@ def _base_material_params(material, textures):
                             "(only a tangent-space Normal Map node is translated); ignored")
     if bsdf.distribution == "MULTI_GGX":
         warnings.append(f"material '{material.name}': Multiscatter GGX rendered as GGX")
-    return inputs, links, warnings
+    return inputs
 
 
 def spot_shaping(spot_size, spot_blend):
@@ -728,8 +1012,12 @@ class SceneExport:
     wrote (objects, materials, lights, camera) so a viewport can edit them later."""
 
     def __init__(self, principled, depsgraph, texture_dir, width, height,
-                 camera_matrix=None, camera_data=None, view_camera=None):
+                 camera_matrix=None, camera_data=None, view_camera=None, baker=None):
         self.p = principled
+        self.baker = baker        # a bake.Baker (final renders with baking on) or None
+        self.bakes = {}           # (material name, object name) -> ({(node, socket identifier,
+        #                           transform): (file, channel) | reason}, bake_images)
+        self.info = []            # bake statistics (reported as information, not warnings)
         self.depsgraph = depsgraph
         self.textures = TextureWriter(texture_dir)
         self.width, self.height = width, height
@@ -763,14 +1051,152 @@ class SceneExport:
         self._names.add(n)
         return n
 
-    def material_path(self, b, material):
-        key = material.name if material is not None else "__default__"
+    def material_key(self, material, obj_name=None):
+        """The key of a material's prim in self.materials: its name, or name + object for a
+        material with baked inputs (a bake belongs to one mesh's UVs)."""
+        if material is None:
+            return "__default__"
+        if (material.name, obj_name) in self.bakes:
+            return material.name + "\0" + obj_name
+        return material.name
+
+    def _mesh_data(self, inst, obj):
+        md = self.meshes.get(obj.name)
+        if md is None:
+            # Never to_mesh() the temporary object of an instance (it shares runtime data with
+            # the evaluated object): convert that evaluated object instead.
+            geom = obj.original.evaluated_get(self.depsgraph) if inst.is_instance else obj
+            md = self.meshes[obj.name] = MeshData(geom)
+        return md
+
+    def prepare_bakes(self):
+        """Final renders with a Baker: bakes every linked input material_params would otherwise
+        use the socket value of (it asks through its `bake` callable, recorded here), per
+        (material, object), before build() writes anything. Fills self.bakes; timing in
+        self.info. The bakes change no user data (bake.py)."""
+        from . import bake as _bake
+
+        baker = self.baker
+        jobs = {}
+        for inst in self.depsgraph.object_instances:
+            obj = inst.object
+            if obj is None or obj.type not in ("MESH", "CURVE", "SURFACE", "META", "FONT") or \
+                    not inst.show_self:
+                continue
+            try:
+                md = self._mesh_data(inst, obj)
+            except RuntimeError:
+                continue  # build() reports it
+            for slot, _idx, _nrm, _st in md.parts:
+                if not 0 <= slot < len(obj.material_slots):
+                    continue
+                mat = obj.material_slots[slot].material
+                if mat is not None and (mat.name, obj.name) not in jobs:
+                    # The bake evaluates the original object where it is (its own matrix).
+                    jobs[(mat.name, obj.name)] = (obj.original, mat.original, md,
+                                                  obj.original.matrix_world.copy())
+        t0, sockets, failed = time.perf_counter(), 0, 0
+        try:
+            for (mname, oname), (orig, mat, md, mw) in jobs.items():
+                requests = []
+
+                def record(sock, scalar=False, transform=None):
+                    requests.append((sock, scalar, transform))
+
+                material_params(mat, self.textures, record)
+                if not requests:
+                    continue
+                images = uv_mapping(mat, []) is not None
+                if images:
+                    requests.clear()
+                    material_params(mat, self.textures, record, True)
+                uv = orig.data.uv_layers.active if orig.type == "MESH" else None
+                # Objects with the same mesh and matrix share bakes (the cache key).
+                mesh_key = _bake.mesh_fingerprint(md, mw)
+                results, pending = {}, []
+                for sock, scalar, transform in requests:
+                    rk = (sock.node.name, socket_key(sock), transform)
+                    if rk in results:
+                        continue
+                    if uv is None:
+                        results[rk] = ("the object has no UV map" if orig.type == "MESH" else
+                                       f"object type {orig.type} (meshes only)")
+                        continue
+                    vd = sorted(upstream_types(sock) & VIEW_DEPENDENT)
+                    if vd and sock.node.type == "MIX_SHADER":
+                        # A shader chosen by the view direction or the ray type: a bake sees
+                        # one head-on view (and one ray type). On the material library this
+                        # did worse than the socket value overall, so it is not baked.
+                        results[rk] = (f"the Fac depends on {', '.join(vd)} (view or ray "
+                                       "type), which a bake sees from one direction only")
+                        continue
+                    results[rk] = None
+                    pending.append((rk, sock, scalar, transform, vd))
+                try:
+                    baked = baker.bake_many(orig, mat, [(rk[0], rk[1], scalar) for
+                                                        rk, _s, scalar, _t, _v in pending],
+                                            mesh_key, uv.name if uv is not None else "")
+                except Exception as e:  # no Cycles (add-on disabled), ...
+                    baked = [e] * len(pending)
+                for (rk, sock, scalar, transform, vd), px in zip(pending, baked):
+                    if isinstance(px, Exception):
+                        results[rk] = ("not in the bake cache (interactive render)"
+                                       if str(px) == _bake.OFF_THREAD else
+                                       str(px) or type(px).__name__)
+                        failed += 1
+                        continue
+                    if transform == "clearcoatGloss":
+                        px = np.clip((0.1 - px * px) / 0.099, 0.0, 1.0).astype(np.float32)
+                    file = self.textures.file_for_pixels(
+                        "\0".join((mname, oname) + tuple(str(x) for x in rk)), px)
+                    results[rk] = (file, "r" if scalar else "rgb")
+                    sockets += 1
+                    msg = (f"material '{mname}': {sock.node.name} input '{sock.name}' depends "
+                           f"on {', '.join(vd)} (view or light path): baked for a view along "
+                           "the normal")
+                    if vd and msg not in self.warnings:  # once, not per object
+                        self.warnings.append(msg)
+                self.bakes[(mname, oname)] = (results, images)
+        finally:
+            baker.close()
+        if baker.off_thread:
+            self.warnings.append(f"{baker.off_thread} procedural input(s) {_bake.OFF_THREAD}")
+        if sockets or failed:
+            self.info.append(
+                f"baked {sockets} procedural input(s) of {len(self.bakes)} material/object "
+                f"pair(s) at {baker.resolution}px: {baker.baked} Cycles bake(s) in "
+                f"{baker.seconds:.2f} s, {baker.reused} from the session cache "
+                f"({time.perf_counter() - t0:.2f} s in all)")
+
+    def material_path(self, b, material, obj_name=None):
+        key = self.material_key(material, obj_name)
         if key in self.materials:
             return self.materials[key][0]
         path = "/World/Looks/" + self._unique(usd_name(key, "Mat"))
-        inputs, links, warns = material_params(material, self.textures)
+        entry = self.bakes.get((material.name, obj_name)) if material is not None else None
+        bake, images = None, False
+        if entry is not None:
+            results, images = entry
+            failures = []
+
+            def bake(sock, scalar=False, transform=None):
+                r = results.get((sock.node.name, socket_key(sock), transform))
+                if isinstance(r, tuple):
+                    return r
+                src = _linked_node(sock)
+                failures.append(f"material '{material.name}' on '{obj_name}': {sock.node.name} "
+                                f"input '{sock.name}' (linked to "
+                                f"'{src.type if src is not None else '?'}') not baked: {r}; "
+                                "using the socket value")
+                return None
+
+        inputs, links, warns = material_params(material, self.textures, bake, images)
         self.warnings += warns
-        mapping = uv_mapping(material, self.warnings) if material is not None else None
+        if entry is not None:
+            self.warnings += failures
+        mapping = None
+        if material is not None and not images:
+            mapping = uv_mapping(material, self.warnings)
         self.st_mappings[key] = mapping
         b.add_material(path)
         for k, v in inputs.items():
@@ -780,7 +1206,23 @@ class SceneExport:
             tex = f"{path}/{k}Texture"
             b.set_attribute_string(tex, "token", "inputs:wrapS", wrap)
             b.set_attribute_string(tex, "token", "inputs:wrapT", wrap)
-            if k == "normal":
+            if k == "diffuseColor" and file.endswith(".pfm"):
+                # Float data (a float image's, a bake's) is linear: say so rather than rely on
+                # the delegate's "auto" (which reads float files as raw too).
+                b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
+            if isinstance(strength, tuple) and strength[0] == "affine":  # mix_shader_params
+                sc, bi = strength[1], strength[2]
+                if channel == "rgb":
+                    bi = list(bi) if isinstance(bi, list) else [bi, bi, bi]
+                    sc = list(sc) if isinstance(sc, list) else [sc, sc, sc]
+                    b.set_attribute(tex, "float4", "inputs:scale", sc + [1.0])
+                    b.set_attribute(tex, "float4", "inputs:bias", bi + [0.0])
+                else:  # one channel (r or a) read
+                    b.set_attribute(tex, "float4", "inputs:scale", [sc] * 4)
+                    b.set_attribute(tex, "float4", "inputs:bias", [bi] * 4)
+                if k != "diffuseColor":
+                    b.set_attribute_string(tex, "token", "inputs:sourceColorSpace", "raw")
+            elif k == "normal":
                 s = 1.0 if strength is None else max(0.0, strength)
                 # Tangent-space map stored as 0.5 + 0.5 n (raw data). Cycles' Strength s blends
                 # the normals, N = normalize(N0 + s (n - N0)) with N0 = (0, 0, 1) here, i.e.
@@ -810,6 +1252,8 @@ class SceneExport:
         b.add_prim("/World", "Xform")
         counters = {}
         scene_cam = self.depsgraph.scene.camera
+        if self.baker is not None:
+            self.prepare_bakes()
         for inst in self.depsgraph.object_instances:
             obj = inst.object
             if obj is None:
@@ -838,12 +1282,7 @@ class SceneExport:
             if not inst.show_self:
                 continue
             try:
-                md = self.meshes.get(obj.name)
-                if md is None:
-                    # Never to_mesh() the temporary object of an instance (it shares runtime
-                    # data with the evaluated object): convert that evaluated object instead.
-                    geom = obj.original.evaluated_get(self.depsgraph) if inst.is_instance else obj
-                    md = self.meshes[obj.name] = MeshData(geom)
+                md = self._mesh_data(inst, obj)
             except RuntimeError as e:
                 self.warnings.append(f"object '{name}': {e}")
                 continue
@@ -865,9 +1304,8 @@ class SceneExport:
                     mat = obj.material_slots[slot].material
                 gp = f"{xf}/Geom_{slot}"
                 counts = np.full(len(idx) // 3, 3, np.int32)
-                mpath = self.material_path(b, mat)
-                st = transform_st(st, self.st_mappings.get(
-                    mat.name if mat is not None else "__default__"))
+                mpath = self.material_path(b, mat, obj.name)
+                st = transform_st(st, self.st_mappings.get(self.material_key(mat, obj.name)))
                 b.add_mesh(gp, md.points, counts, idx, normals=nrm, st=st,
                            normals_interpolation="faceVarying", st_interpolation="faceVarying",
                            double_sided=True)

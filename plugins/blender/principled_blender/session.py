@@ -92,12 +92,18 @@ class Session:
             self.delegate.resolution = (width, height)
             self.width, self.height = width, height
 
-    def full_sync(self, depsgraph, width, height, view_camera=None):
-        """Translates the whole depsgraph and opens it (a full rebuild)."""
+    def full_sync(self, depsgraph, width, height, view_camera=None, bake_resolution=None):
+        """Translates the whole depsgraph and opens it (a full rebuild). bake_resolution (final
+        renders): bake procedural material inputs with Cycles at that size (bake.py)."""
         self.resize(width, height)
         self.film_transparent = bool(depsgraph.scene.render.film_transparent)
+        baker = None
+        if bake_resolution:
+            from . import bake
+
+            baker = bake.Baker(bake_resolution)
         ex = export.SceneExport(self.p, depsgraph, self.texture_dir, width, height,
-                                view_camera=view_camera)
+                                view_camera=view_camera, baker=baker)
         builder = ex.build()
         self.delegate.open_builder(builder)
         if ex.camera_path:

@@ -366,14 +366,16 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
     };
     std::vector<std::string> stack;
     std::set<std::string> seen;
-    if (const usd::Attribute* surf = mat->attribute("outputs:surface");
-        surf && !surf->connections().empty()) {
+    // The universal render context first, then MaterialX; other contexts (mdl, ri) are ignored.
+    for (const char* terminal : {"outputs:surface", "outputs:mtlx:surface"}) {
+        const usd::Attribute* surf = mat->attribute(terminal);
+        if (!surf || surf->connections().empty()) continue;
         Value unused;
         auto [shader, output] = resolve(surf->connections().front(), &unused);
-        if (!shader.empty()) {
-            net.surfaceTerminal = Path(shader);
-            stack.push_back(shader);
-        }
+        if (shader.empty()) continue;
+        net.surfaceTerminal = Path(shader);
+        stack.push_back(shader);
+        break;
     }
     std::vector<MaterialNode> ordered;
     while (!stack.empty()) {
@@ -385,10 +387,14 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
         MaterialNode node;
         node.path = Path(path);
         node.identifier = Token(tokenAttr(*sh, "info:id", _time, ""));
+        node.where = sh->location().str();
         for (const usd::Attribute* a : sh->attributes()) {
             if (a->name().rfind("inputs:", 0) != 0) continue;
             Token input(stripNamespace(a->name(), "inputs:"));
             if (a->hasValue()) node.parameters[input] = toHdValue(a->get(_time));
+            if (const usd::Value* cs = a->metadata("colorSpace"))  // MaterialX image colour space
+                if (auto name = cs->getString())
+                    node.parameters[Token("colorSpace:" + input.str())] = Value(Token(*name));
             for (const std::string& c : a->connections()) {
                 Value iface;
                 auto [up, output] = resolve(c, &iface);

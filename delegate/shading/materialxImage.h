@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: Apache-2.0
+// MaterialX image nodes (ND_image_*, ND_tiledimage_*) resolved onto the UsdUVTexture lookup.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "delegate/hd/materialNetwork.h"
+#include "delegate/shading/textureCache.h"
+#include "delegate/shading/transform2d.h"
+#include "delegate/shading/uvTexture.h"
+
+namespace principled::shading {
+
+/// Resolves an ND_image_* or ND_tiledimage_* node for lookups: `file`, `default` (the value
+/// when the file is missing), `uaddressmode`/`vaddressmode` (periodic | clamp | mirror |
+/// constant), `filtertype`, and the file's colour space from the "colorSpace:file" parameter
+/// (srgb_texture decodes sRGB; lin_rec709, lin_srgb, raw are linear; absent: as UsdUVTexture
+/// auto). What cannot be honoured (constant addressing with a non-zero default, closest
+/// filtering, unknown colour spaces) is appended to *notes.
+UvTexture resolveMaterialXImage(const hd::MaterialNode& node, TextureCache& cache,
+                                std::vector<std::string>* notes);
+
+/// The texture-coordinate transform of ND_tiledimage_*: (uv * uvtiling - uvoffset) /
+/// realworldimagesize * realworldtilesize (MaterialX stdlib NG_tiledimage_*).
+Transform2d tiledImageTransform(const hd::MaterialNode& node);
+
+}  // namespace principled::shading

@@ -163,11 +163,10 @@ using program::numeric;
 using program::setSlot;
 
 std::optional<int16_t> MaterialProgram::Compiler::newRegister(const glm::vec4& init,
-                                                               bool constant) {
+                                                              bool constant) {
     if (static_cast<int>(_prog._initial.size()) >= kMaxRegisters) {
         if (!_overflowNoted)
-            _notes->push_back("material network needs more than " +
-                              std::to_string(kMaxRegisters) +
+            _notes->push_back("material network needs more than " + std::to_string(kMaxRegisters) +
                               " values; the remaining inputs use their fallbacks");
         _overflowNoted = true;
         return std::nullopt;
@@ -312,8 +311,7 @@ std::optional<int16_t> MaterialProgram::Compiler::compilePrimvarReader(const Mat
     return primvarRegister(Token(varname), components, op.fallback);
 }
 
-std::optional<int16_t> MaterialProgram::Compiler::primvarRegister(const Token& name,
-                                                                  int components,
+std::optional<int16_t> MaterialProgram::Compiler::primvarRegister(const Token& name, int components,
                                                                   const glm::vec4& fallback) {
     PrimvarOp op{name, components, fallback};
     auto reg = newRegister(op.fallback, false);

@@ -37,12 +37,12 @@ glm::vec4 defaultValue(const MaterialNode& node) {
     const Value* v = param(node, "default");
     glm::vec4 d(0.0f, 0.0f, 0.0f, 1.0f);
     if (!v) return d;
-    if (auto* x = getIf<glm::vec4>(*v))
-        d = *x;
-    else if (auto* x = getIf<glm::vec3>(*v))
-        d = glm::vec4(*x, 1.0f);
-    else if (auto* x = getIf<glm::vec2>(*v))
-        d = glm::vec4(x->x, x->y, 0.0f, 1.0f);
+    if (auto* c4 = getIf<glm::vec4>(*v))
+        d = *c4;
+    else if (auto* c3 = getIf<glm::vec3>(*v))
+        d = glm::vec4(*c3, 1.0f);
+    else if (auto* c2 = getIf<glm::vec2>(*v))
+        d = glm::vec4(c2->x, c2->y, 0.0f, 1.0f);
     else if (auto f = getFloat(*v))
         d = glm::vec4(*f);
     for (int i = 0; i < 4; ++i)
@@ -51,8 +51,7 @@ glm::vec4 defaultValue(const MaterialNode& node) {
 }
 
 void note(const MaterialNode& node, std::vector<std::string>* notes, const std::string& text) {
-    notes->push_back((node.where.empty() ? "" : node.where + ": ") + node.path.str() + ": " +
-                     text);
+    notes->push_back((node.where.empty() ? "" : node.where + ": ") + node.path.str() + ": " + text);
 }
 
 // MaterialX address modes (spec "Standard Source Nodes", image) onto the cache's wrap modes.

@@ -47,9 +47,8 @@ std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::constant(cons
 std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::mulAdd(
     const Operand& a, const Operand& b, const std::optional<Operand>& c, uint8_t count) {
     if (isConstant(a) && isConstant(b) && (!c || isConstant(*c)))
-        return constant(constantValue(a) * constantValue(b) +
-                            (c ? constantValue(*c) : glm::vec4(0.0f)),
-                        count);
+        return constant(
+            constantValue(a) * constantValue(b) + (c ? constantValue(*c) : glm::vec4(0.0f)), count);
     std::optional<Operand> addend = c ? c : constant(glm::vec4(0.0f), count);
     if (!addend) return std::nullopt;
     auto reg = newRegister(glm::vec4(0.0f), false);
@@ -188,8 +187,8 @@ void MaterialProgram::Compiler::compileStandardSurface(const MaterialNode& surfa
         }
     }
     if (!unused.empty()) note(surface, "inputs not used: " + unused);
-    for (auto [name, colour] : {std::pair{"specular_color", s.specularColor},
-                                std::pair{"sheen_color", s.sheenColor}})
+    for (auto [name, colour] :
+         {std::pair{"specular_color", s.specularColor}, std::pair{"sheen_color", s.sheenColor}})
         if (colour.x != colour.y || colour.y != colour.z)
             note(surface, std::string(name) + " only scales by its luminance (hue ignored)");
 
@@ -227,13 +226,12 @@ void MaterialProgram::Compiler::compileStandardSurface(const MaterialNode& surfa
     product(Slot::EmissiveColor, "emission_color", s.emissionColor, "emission", s.emission);
     scaled(Slot::Specular, "specular", disneySpecularPerWeight(s));
     scaled(Slot::Sheen, "sheen", disneySheenPerWeight(s));
-    for (auto [name, slot] : {std::pair{"metalness", Slot::Metallic},
-                              std::pair{"specular_roughness", Slot::Roughness},
-                              std::pair{"specular_anisotropy", Slot::Anisotropic},
-                              std::pair{"transmission", Slot::SpecTrans},
-                              std::pair{"subsurface", Slot::Subsurface},
-                              std::pair{"coat", Slot::Clearcoat},
-                              std::pair{"coat_roughness", Slot::ClearcoatRoughness}})
+    for (auto [name, slot] :
+         {std::pair{"metalness", Slot::Metallic}, std::pair{"specular_roughness", Slot::Roughness},
+          std::pair{"specular_anisotropy", Slot::Anisotropic},
+          std::pair{"transmission", Slot::SpecTrans}, std::pair{"subsurface", Slot::Subsurface},
+          std::pair{"coat", Slot::Clearcoat},
+          std::pair{"coat_roughness", Slot::ClearcoatRoughness}})
         bind(slot, take(name));
     if (auto o = take("opacity"))
         if (auto third = constant(glm::vec4(glm::vec3(1.0f / 3.0f), 0.0f), 3))

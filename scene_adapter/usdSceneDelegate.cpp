@@ -346,8 +346,10 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
     const usd::Prim* mat = prim(materialId);
     if (!mat) return net;
     // Follows a connection to its source: through material/node-graph interface inputs to a
-    // shader output. Returns the shader prim path and output name, or the interface value.
-    auto resolve = [&](std::string target, Value* interfaceValue) -> std::pair<std::string, std::string> {
+    // shader output. Returns the shader prim path and output name, or the interface value (and
+    // its colorSpace metadata, when asked for).
+    auto resolve = [&](std::string target, Value* interfaceValue,
+                       std::string* interfaceColorSpace = nullptr) -> std::pair<std::string, std::string> {
         for (int hop = 0; hop < 32; ++hop) {
             auto [primPath, prop] = splitProperty(target);
             const usd::Prim* up = _stage.prim(primPath);
@@ -360,6 +362,8 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
                 continue;
             }
             if (a->hasValue()) *interfaceValue = toHdValue(a->get(_time));
+            if (const usd::Value* cs = a->metadata("colorSpace"); cs && interfaceColorSpace)
+                *interfaceColorSpace = cs->getString().value_or("");
             return {"", ""};
         }
         return {"", ""};  // a connection cycle: treat as unconnected
@@ -397,13 +401,17 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
                     node.parameters[Token("colorSpace:" + input.str())] = Value(Token(*name));
             for (const std::string& c : a->connections()) {
                 Value iface;
-                auto [up, output] = resolve(c, &iface);
+                std::string ifaceColorSpace;
+                auto [up, output] = resolve(c, &iface, &ifaceColorSpace);
                 if (!up.empty()) {
                     node.inputConnections[input].push_back({Path(up), Token(output)});
                     stack.push_back(up);
                 } else if (!isEmpty(iface)) {
                     node.parameters[input] = iface;
                 }
+                Token csKey("colorSpace:" + input.str());  // the shader's own metadata wins
+                if (!ifaceColorSpace.empty() && !node.parameters.count(csKey))
+                    node.parameters[csKey] = Value(Token(ifaceColorSpace));
             }
         }
         ordered.push_back(std::move(node));

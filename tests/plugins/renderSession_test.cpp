@@ -382,7 +382,7 @@ TEST(RenderSession, MaterialXStandardSurfaceRendersItsBaseColor) {
 }
 )");
     ASSERT_GT(red, 0.0);
-    EXPECT_GT(red, 4.0 * green);  // red-dominant: the grey default would give red ~ green
+    EXPECT_GT(red, 3.0 * green);  // red-dominant (about 6x): the grey default gives red ~ green
     auto [greyRed, greyGreen] = redAndGreenOfBall("");
     EXPECT_NEAR(greyRed / greyGreen, 1.0, 0.05);
 }

@@ -278,11 +278,16 @@ def Scope "Looks"
             float inputs:specular_roughness.connect = </Looks/Graph.inputs:rough>
             float inputs:metalness = 0.25
             float inputs:metalness.connect = </Looks/Graph/NG.outputs:metal>
+            float inputs:coat_roughness.connect = </Looks/Graph/NG.outputs:coatRough>
             token outputs:out
         }
         def NodeGraph "NG"
         {
+            asset inputs:roughFile = @TEX@ (
+                colorSpace = "srgb_texture"
+            )
             color3f outputs:base_color.connect = </Looks/Graph/NG/Img.outputs:out>
+            float outputs:coatRough.connect = </Looks/Graph/NG/RoughImg.outputs:out>
             float outputs:metal.connect = </Looks/Graph/NG/Mul.outputs:out>
             def Shader "Uv"
             {
@@ -297,6 +302,12 @@ def Scope "Looks"
                 )
                 float2 inputs:texcoord.connect = </Looks/Graph/NG/Uv.outputs:out>
                 color3f outputs:out
+            }
+            def Shader "RoughImg"
+            {
+                uniform token info:id = "ND_image_float"
+                asset inputs:file.connect = </Looks/Graph/NG.inputs:roughFile>
+                float outputs:out
             }
             def Shader "Mul"
             {
@@ -335,7 +346,7 @@ struct MaterialXLooks {
         std::vector<float> px = {0.8f, 0.0f, 0.0f, 0.0f, 0.0f, 0.8f};
         EXPECT_TRUE(shading::test::writeImage(texture, 2, 1, 3, px, OIIO::TypeDesc::UINT8));
         std::string text = kMaterialXLooks;
-        text.replace(text.find("TEX"), 3, texture);
+        for (size_t at; (at = text.find("TEX")) != std::string::npos;) text.replace(at, 3, texture);
         scene = std::make_unique<Populated>(text);
     }
     hd::MaterialNetwork network(const char* material) {
@@ -399,6 +410,10 @@ TEST(UsdSceneDelegate, MaterialXNodeGraphTexturesAndUnsupportedNodes) {
     const hd::MaterialNode* img = n.node(hd::Path("/Looks/Graph/NG/Img"));
     ASSERT_TRUE(img);
     EXPECT_EQ(hd::getString(img->parameters.at(hd::Token("colorSpace:file"))), "lin_rec709");
+    // A file from the graph's interface input brings that input's colour space along.
+    const hd::MaterialNode* rough = n.node(hd::Path("/Looks/Graph/NG/RoughImg"));
+    ASSERT_TRUE(rough);
+    EXPECT_EQ(hd::getString(rough->parameters.at(hd::Token("colorSpace:file"))), "srgb_texture");
     const hd::MaterialNode* ss = n.node(n.surfaceTerminal);
     ASSERT_TRUE(ss);
     EXPECT_FLOAT_EQ(*hd::getFloat(ss->parameters.at(hd::Token("specular_roughness"))), 0.45f);
@@ -418,6 +433,8 @@ TEST(UsdSceneDelegate, MaterialXNodeGraphTexturesAndUnsupportedNodes) {
     ctx.st = {0.75f, 0.5f};
     EXPECT_NEAR(p.evaluate(ctx).params.baseColor.z, 0.8f, 1e-6f);
     EXPECT_FLOAT_EQ(left.params.roughness, 0.45f);  // from the material's interface input
+    // coat_roughness: the red channel decoded from sRGB (0.8 -> 0.6038), gloss = 1 - it.
+    EXPECT_NEAR(left.params.clearcoatGloss, 1.0f - 0.6038f, 1e-3f);
     // The multiply node is not supported: metalness keeps its authored 0.25, with a note that
     // names the node and where it was authored.
     EXPECT_FLOAT_EQ(left.params.metallic, 0.25f);

@@ -61,19 +61,22 @@ int primvarComponents(std::string_view type) {
 }
 
 // MaterialX spellings of the UsdPreviewSurface nodes (MaterialX libraries/bxdf/usd_*.mtlx).
+constexpr std::pair<const char*, const char*> kMaterialXAliases[] = {
+    {"ND_UsdPreviewSurface_surfaceshader", "UsdPreviewSurface"},
+    {"ND_UsdUVTexture", "UsdUVTexture"},
+    {"ND_UsdUVTexture_23", "UsdUVTexture"},
+    {"ND_UsdPrimvarReader_float", "UsdPrimvarReader_float"},
+    {"ND_UsdPrimvarReader_vector2", "UsdPrimvarReader_float2"},
+    {"ND_UsdPrimvarReader_vector", "UsdPrimvarReader_float3"},
+    {"ND_UsdPrimvarReader_vector4", "UsdPrimvarReader_float4"},
+    {"ND_UsdPrimvarReader_integer", "UsdPrimvarReader_int"},
+    {"ND_UsdTransform2d", "UsdTransform2d"}};
+
+// The UsdPreviewSurface node name of id (its MaterialX spelling mapped), else id itself.
 Token usdIdentifier(const Token& id) {
-    static const std::map<std::string, std::string> kAliases{
-        {"ND_UsdPreviewSurface_surfaceshader", "UsdPreviewSurface"},
-        {"ND_UsdUVTexture", "UsdUVTexture"},
-        {"ND_UsdUVTexture_23", "UsdUVTexture"},
-        {"ND_UsdPrimvarReader_float", "UsdPrimvarReader_float"},
-        {"ND_UsdPrimvarReader_vector2", "UsdPrimvarReader_float2"},
-        {"ND_UsdPrimvarReader_vector", "UsdPrimvarReader_float3"},
-        {"ND_UsdPrimvarReader_vector4", "UsdPrimvarReader_float4"},
-        {"ND_UsdPrimvarReader_integer", "UsdPrimvarReader_int"},
-        {"ND_UsdTransform2d", "UsdTransform2d"}};
-    auto it = kAliases.find(id.str());
-    return it == kAliases.end() ? id : Token(it->second);
+    for (const auto& [mtlx, usd] : kMaterialXAliases)
+        if (id.str() == mtlx) return Token(usd);
+    return id;
 }
 
 }  // namespace

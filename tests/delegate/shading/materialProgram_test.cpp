@@ -760,3 +760,28 @@ TEST_F(MaterialProgramTest, MaterialXUnsupportedNodeNotesAndKeepsTheConstant) {
     expectNear(q.evaluate(ctx).params.baseColor, glm::vec3(0.0f, 0.5f, 0.0f), 1e-6f);
     EXPECT_TRUE(anyNoteHas(notes, "/M/Img: ")) << notes.front();
 }
+
+TEST_F(MaterialProgramTest, MaterialXAddressModesAndUnsupportedSettingsAreNoted) {
+    // Periodic (the default) wraps st 1.375 onto 0.375; clamp holds the last column.
+    MaterialProgram periodic = compile(imageIntoBaseColor(png));
+    MaterialProgram clamped =
+        compile(imageIntoBaseColor(png, {{Token("uaddressmode"), Value(std::string("clamp"))}}));
+    glm::vec2 st = centre(1, 2) + glm::vec2(1.0f, 0.0f);
+    ctx.values["st"] = glm::vec4(st, 0, 0);
+    expectNear(periodic.evaluate(ctx).params.baseColor, decoded(1, 2));
+    expectNear(clamped.evaluate(ctx).params.baseColor, decoded(3, 2));
+    EXPECT_TRUE(notes.empty()) << notes.front();
+    // Closest filtering, an unknown colour space and constant addressing with a non-black
+    // default are each noted once; the image still samples.
+    MaterialProgram p = compile(
+        imageIntoBaseColor(png, {{Token("filtertype"), Value(std::string("closest"))},
+                                 {Token("colorSpace:file"), Value(Token("acescg"))},
+                                 {Token("vaddressmode"), Value(std::string("constant"))},
+                                 {Token("default"), Value(glm::vec3(0.5f))}}));
+    EXPECT_EQ(notes.size(), 3u);
+    EXPECT_TRUE(anyNoteHas(notes, "filtertype 'closest'"));
+    EXPECT_TRUE(anyNoteHas(notes, "colorspace 'acescg'"));
+    EXPECT_TRUE(anyNoteHas(notes, "vaddressmode 'constant'"));
+    ctx.values["st"] = glm::vec4(centre(2, 2), 0, 0);
+    expectNear(p.evaluate(ctx).params.baseColor, decoded(2, 2));  // 8-bit: auto decodes sRGB
+}

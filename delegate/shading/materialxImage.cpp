@@ -92,7 +92,13 @@ UvTexture resolveMaterialXImage(const MaterialNode& node, TextureCache& cache,
     if (filter != "linear" && filter != "cubic")
         note(node, notes, "filtertype '" + filter + "' not supported; filtered as linear");
     std::string cs = stringParam(node, "colorSpace:file", "");
-    if (cs == "srgb_texture" || cs == "sRGB") {
+    const std::string& id = node.identifier.str();
+    bool colourType = id.size() > 7 && (id.compare(id.size() - 7, 7, "_color3") == 0 ||
+                                        id.compare(id.size() - 7, 7, "_color4") == 0);
+    if (!colourType) {
+        // MaterialX: colour spaces apply to color3/color4 values only; data images stay raw.
+        t.decodeSrgb = false;
+    } else if (cs == "srgb_texture" || cs == "sRGB") {
         t.decodeSrgb = true;
     } else if (cs == "lin_rec709" || cs == "lin_srgb" || cs == "raw" || cs == "linear") {
         t.decodeSrgb = false;

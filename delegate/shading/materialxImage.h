@@ -14,9 +14,10 @@ namespace principled::shading {
 
 /// Resolves an ND_image_* or ND_tiledimage_* node for lookups: `file`, `default` (the value
 /// when the file is missing), `uaddressmode`/`vaddressmode` (periodic | clamp | mirror |
-/// constant), `filtertype`, and the file's colour space from the "colorSpace:file" parameter
-/// (srgb_texture decodes sRGB; lin_rec709, lin_srgb, raw are linear; absent: as UsdUVTexture
-/// auto). What cannot be honoured (constant addressing with a non-zero default, closest
+/// constant), `filtertype`, and, for color3/color4 images, the file's colour space from the
+/// "colorSpace:file" parameter (srgb_texture decodes sRGB; lin_rec709, lin_srgb, raw are
+/// linear; absent: as UsdUVTexture auto); float and vector images are always read raw.
+/// What cannot be honoured (constant addressing with a non-zero default, closest
 /// filtering, unknown colour spaces) is appended to *notes.
 UvTexture resolveMaterialXImage(const hd::MaterialNode& node, TextureCache& cache,
                                 std::vector<std::string>* notes);

@@ -278,16 +278,17 @@ def Scope "Looks"
             float inputs:specular_roughness.connect = </Looks/Graph.inputs:rough>
             float inputs:metalness = 0.25
             float inputs:metalness.connect = </Looks/Graph/NG.outputs:metal>
-            float inputs:coat_roughness.connect = </Looks/Graph/NG.outputs:coatRough>
+            float inputs:emission = 1
+            color3f inputs:emission_color.connect = </Looks/Graph/NG.outputs:glow>
             token outputs:out
         }
         def NodeGraph "NG"
         {
-            asset inputs:roughFile = @TEX@ (
+            asset inputs:glowFile = @TEX@ (
                 colorSpace = "srgb_texture"
             )
             color3f outputs:base_color.connect = </Looks/Graph/NG/Img.outputs:out>
-            float outputs:coatRough.connect = </Looks/Graph/NG/RoughImg.outputs:out>
+            color3f outputs:glow.connect = </Looks/Graph/NG/GlowImg.outputs:out>
             float outputs:metal.connect = </Looks/Graph/NG/Mul.outputs:out>
             def Shader "Uv"
             {
@@ -303,11 +304,11 @@ def Scope "Looks"
                 float2 inputs:texcoord.connect = </Looks/Graph/NG/Uv.outputs:out>
                 color3f outputs:out
             }
-            def Shader "RoughImg"
+            def Shader "GlowImg"
             {
-                uniform token info:id = "ND_image_float"
-                asset inputs:file.connect = </Looks/Graph/NG.inputs:roughFile>
-                float outputs:out
+                uniform token info:id = "ND_image_color3"
+                asset inputs:file.connect = </Looks/Graph/NG.inputs:glowFile>
+                color3f outputs:out
             }
             def Shader "Mul"
             {
@@ -411,9 +412,9 @@ TEST(UsdSceneDelegate, MaterialXNodeGraphTexturesAndUnsupportedNodes) {
     ASSERT_TRUE(img);
     EXPECT_EQ(hd::getString(img->parameters.at(hd::Token("colorSpace:file"))), "lin_rec709");
     // A file from the graph's interface input brings that input's colour space along.
-    const hd::MaterialNode* rough = n.node(hd::Path("/Looks/Graph/NG/RoughImg"));
-    ASSERT_TRUE(rough);
-    EXPECT_EQ(hd::getString(rough->parameters.at(hd::Token("colorSpace:file"))), "srgb_texture");
+    const hd::MaterialNode* glow = n.node(hd::Path("/Looks/Graph/NG/GlowImg"));
+    ASSERT_TRUE(glow);
+    EXPECT_EQ(hd::getString(glow->parameters.at(hd::Token("colorSpace:file"))), "srgb_texture");
     const hd::MaterialNode* ss = n.node(n.surfaceTerminal);
     ASSERT_TRUE(ss);
     EXPECT_FLOAT_EQ(*hd::getFloat(ss->parameters.at(hd::Token("specular_roughness"))), 0.45f);
@@ -433,8 +434,9 @@ TEST(UsdSceneDelegate, MaterialXNodeGraphTexturesAndUnsupportedNodes) {
     ctx.st = {0.75f, 0.5f};
     EXPECT_NEAR(p.evaluate(ctx).params.baseColor.z, 0.8f, 1e-6f);
     EXPECT_FLOAT_EQ(left.params.roughness, 0.45f);  // from the material's interface input
-    // coat_roughness: the red channel decoded from sRGB (0.8 -> 0.6038), gloss = 1 - it.
-    EXPECT_NEAR(left.params.clearcoatGloss, 1.0f - 0.6038f, 1e-3f);
+    // emission_color: the same texels decoded from sRGB (0.8 -> 0.6038), times emission 1.
+    EXPECT_NEAR(left.emission.x, 0.6038f, 1e-3f);
+    EXPECT_NEAR(left.emission.z, 0.0f, 1e-6f);
     // The multiply node is not supported: metalness keeps its authored 0.25, with a note that
     // names the node and where it was authored.
     EXPECT_FLOAT_EQ(left.params.metallic, 0.25f);

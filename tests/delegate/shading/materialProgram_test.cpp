@@ -674,10 +674,10 @@ TEST_F(MaterialProgramTest, MaterialXImageColourSpaceAndWeight) {
     MaterialProgram p = compile(n);
     ctx.values["st"] = glm::vec4(centre(1, 2), 0, 0);
     expectNear(p.evaluate(ctx).params.baseColor, 0.5f * code(1, 2));
-    // srgb_texture decodes; a varying base (a float image) multiplies per point.
+    // srgb_texture decodes; a varying base (a float image: data, read raw even from an 8-bit
+    // PNG without a colour space) multiplies per point.
     Net v = imageIntoBaseColor(png, {{Token("colorSpace:file"), Value(Token("srgb_texture"))}});
-    v.add("/M/W", "ND_image_float",
-          {{Token("file"), Value(png)}, {Token("colorSpace:file"), Value(Token("raw"))}})
+    v.add("/M/W", "ND_image_float", {{Token("file"), Value(png)}})
         .connect("/M/W", "texcoord", "/M/Uv", "out")
         .surfaceFrom("base", "/M/W", "out");
     MaterialProgram q = compile(v);

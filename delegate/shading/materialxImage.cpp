@@ -121,4 +121,31 @@ Transform2d tiledImageTransform(const MaterialNode& node) {
     return Transform2d::make(0.0f, tiling * k, -offset * k);
 }
 
+Transform2d place2dTransform(const MaterialNode& node) {
+    glm::vec2 pivot = vec2Param(node, "pivot", glm::vec2(0.0f));
+    glm::vec2 scale = vec2Param(node, "scale", glm::vec2(1.0f));
+    glm::vec2 offset = vec2Param(node, "offset", glm::vec2(0.0f));
+    float degrees = 0.0f;
+    if (const Value* v = param(node, "rotate"))
+        if (auto f = getFloat(*v); f && std::isfinite(*f)) degrees = *f;
+    int order = 0;
+    if (const Value* v = param(node, "operationorder"))
+        order = static_cast<int>(getFloat(*v).value_or(0.0f));
+    for (int i = 0; i < 2; ++i)
+        if (scale[i] == 0.0f) scale[i] = 1.0f;
+    float r = glm::radians(degrees), c = std::cos(r), s = std::sin(r);
+    // MaterialX rotate2d: (c x + s y, -s x + c y), i.e. clockwise for a positive angle.
+    glm::mat2 rotation(glm::vec2(c, -s), glm::vec2(s, c));
+    glm::mat2 inverseScale(glm::vec2(1.0f / scale.x, 0.0f), glm::vec2(0.0f, 1.0f / scale.y));
+    Transform2d t;
+    if (order == 1) {  // TRS: R(uv - pivot - offset) / scale + pivot
+        t.linear = inverseScale * rotation;
+        t.translation = -(t.linear * (pivot + offset)) + pivot;
+    } else {  // SRT: R((uv - pivot) / scale) - offset + pivot
+        t.linear = rotation * inverseScale;
+        t.translation = -(t.linear * pivot) - offset + pivot;
+    }
+    return t;
+}
+
 }  // namespace principled::shading

@@ -26,4 +26,10 @@ UvTexture resolveMaterialXImage(const hd::MaterialNode& node, TextureCache& cach
 /// realworldimagesize * realworldtilesize (MaterialX stdlib NG_tiledimage_*).
 Transform2d tiledImageTransform(const hd::MaterialNode& node);
 
+/// The transform of ND_place2d_vector2 (MaterialX stdlib NG_place2d_vector2): with R the
+/// clockwise rotation by `rotate` degrees, operationorder 0 (SRT) gives
+/// R((uv - pivot) / scale) - offset + pivot, 1 (TRS) gives R(uv - pivot - offset) / scale + pivot.
+/// A zero scale component reads as 1; connected inputs are the caller's business.
+Transform2d place2dTransform(const hd::MaterialNode& node);
+
 }  // namespace principled::shading

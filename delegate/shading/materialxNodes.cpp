@@ -86,6 +86,7 @@ std::optional<int16_t> MaterialProgram::Compiler::compileMaterialXNode(const Mat
     if (startsWith(id, "ND_image_")) return compileImage(node, false);
     if (startsWith(id, "ND_tiledimage_")) return compileImage(node, true);
     if (startsWith(id, "ND_normalmap")) return compileNormalMap(node);
+    if (id == "ND_place2d_vector2") return compilePlace2d(node);
     int components = program::materialxComponents(id);
     if (id == "ND_texcoord_vector2" || id == "ND_texcoord_vector3") {
         // MaterialX texcoord index 0 is the default UV set, "st" in USD.
@@ -120,14 +121,7 @@ std::optional<int16_t> MaterialProgram::Compiler::compileImage(const MaterialNod
                                                                bool tiled) {
     UvTexture tex = resolveMaterialXImage(node, _cache, _notes);
     if (!tex.texture) return newRegister(tex.fallback, true);
-    std::optional<Operand> st;
-    if (node.inputConnections.count(Token("texcoord"))) st = connection(node, "texcoord");
-    if (!st && node.parameters.count(Token("texcoord"))) {
-        st = vec2Input(node, "texcoord", glm::vec2(0.0f));
-    } else if (!st) {  // MaterialX image texcoord default: the UV0 geometric property ("st")
-        auto reg = primvarRegister(Token("st"), 2, glm::vec4(0.0f));
-        if (reg) st = Operand{*reg, 0, 2};
-    }
+    std::optional<Operand> st = texcoordOperand(node);
     if (!st) return std::nullopt;
     if (tiled) {
         auto reg = transformRegister(tiledImageTransform(node), *st);
@@ -135,6 +129,29 @@ std::optional<int16_t> MaterialProgram::Compiler::compileImage(const MaterialNod
         st = Operand{*reg, 0, 2};
     }
     return sampleTexture(tex, *st);
+}
+
+std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::texcoordOperand(
+    const MaterialNode& node) {
+    std::optional<Operand> st;
+    if (node.inputConnections.count(Token("texcoord"))) st = connection(node, "texcoord");
+    if (!st && node.parameters.count(Token("texcoord"))) {
+        st = vec2Input(node, "texcoord", glm::vec2(0.0f));
+    } else if (!st) {  // MaterialX texcoord default: the UV0 geometric property ("st")
+        auto reg = primvarRegister(Token("st"), 2, glm::vec4(0.0f));
+        if (reg) st = Operand{*reg, 0, 2};
+    }
+    return st;
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::compilePlace2d(const MaterialNode& node) {
+    for (const char* input : {"pivot", "scale", "rotate", "offset", "operationorder"})
+        if (node.inputConnections.count(Token(input)))
+            note(node, std::string("a connected '") + input +
+                           "' is not supported; using its authored value or default");
+    std::optional<Operand> st = texcoordOperand(node);
+    if (!st) return std::nullopt;
+    return transformRegister(place2dTransform(node), *st);
 }
 
 std::optional<int16_t> MaterialProgram::Compiler::compileNormalMap(const MaterialNode& node) {

@@ -87,6 +87,10 @@ class MaterialProgram::Compiler {
     std::optional<int16_t> compileGeomprop(const hd::MaterialNode& node, const hd::Token& name,
                                            int components);
     std::optional<int16_t> compileNormalMap(const hd::MaterialNode& node);
+    std::optional<int16_t> compilePlace2d(const hd::MaterialNode& node);
+    /// A MaterialX `texcoord` input: its connection, its authored value, else the "st" primvar
+    /// (MaterialX's default UV0 geometric property).
+    std::optional<Operand> texcoordOperand(const hd::MaterialNode& node);
     /// An input's operand: its connection, else a constant of its authored value or `fallback`.
     std::optional<Operand> inputOperand(const hd::MaterialNode& node, const char* input,
                                         const glm::vec4& fallback, uint8_t count);

@@ -785,3 +785,35 @@ TEST_F(MaterialProgramTest, MaterialXAddressModesAndUnsupportedSettingsAreNoted)
     ctx.values["st"] = glm::vec4(centre(2, 2), 0, 0);
     expectNear(p.evaluate(ctx).params.baseColor, decoded(2, 2));  // 8-bit: auto decodes sRGB
 }
+
+TEST_F(MaterialProgramTest, MaterialXPlace2dMovesTexcoords) {
+    // place2d between texcoord and image, with the given inputs; the image feeds base_color.
+    auto placed = [&](std::map<Token, Value> place) {
+        Net n = imageIntoBaseColor(png);
+        n.add("/M/Place", "ND_place2d_vector2", std::move(place))
+            .connect("/M/Place", "texcoord", "/M/Uv", "out");
+        n.node("/M/Img").inputConnections.clear();
+        n.connect("/M/Img", "texcoord", "/M/Place", "out");
+        return compile(n);
+    };
+    // SRT: (uv - pivot) / scale, rotated, - offset, + pivot. Scale 0.5, offset (0.25, 0):
+    // out = 2 uv - (0.25, 0).
+    MaterialProgram srt = placed({{Token("scale"), Value(glm::vec2(0.5f))},
+                                  {Token("offset"), Value(glm::vec2(0.25f, 0.0f))}});
+    glm::vec2 target = centre(1, 3);
+    ctx.values["st"] = glm::vec4((target + glm::vec2(0.25f, 0.0f)) / 2.0f, 0, 0);
+    expectNear(srt.evaluate(ctx).params.baseColor, decoded(1, 3));
+    // TRS: (uv - pivot - offset) rotated, / scale, + pivot: out = 2 (uv - (0.25, 0)).
+    MaterialProgram trs = placed({{Token("scale"), Value(glm::vec2(0.5f))},
+                                  {Token("offset"), Value(glm::vec2(0.25f, 0.0f))},
+                                  {Token("operationorder"), Value(1)}});
+    target = centre(2, 0);
+    ctx.values["st"] = glm::vec4(target / 2.0f + glm::vec2(0.25f, 0.0f), 0, 0);
+    expectNear(trs.evaluate(ctx).params.baseColor, decoded(2, 0));
+    // 90 degrees about the centre, clockwise as MaterialX's rotate2d: (x, y) -> (y, -x).
+    MaterialProgram rot = placed({{Token("rotate"), Value(90.0f)},
+                                  {Token("pivot"), Value(glm::vec2(0.5f))}});
+    ctx.values["st"] = glm::vec4(centre(1, 2), 0, 0);  // (-0.125, -0.125) from the pivot
+    expectNear(rot.evaluate(ctx).params.baseColor, decoded(1, 1));  // (-0.125, +0.125)
+    EXPECT_TRUE(notes.empty()) << notes.front();
+}

@@ -346,8 +346,10 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
     const usd::Prim* mat = prim(materialId);
     if (!mat) return net;
     // Follows a connection to its source: through material/node-graph interface inputs to a
-    // shader output. Returns the shader prim path and output name, or the interface value.
-    auto resolve = [&](std::string target, Value* interfaceValue) -> std::pair<std::string, std::string> {
+    // shader output. Returns the shader prim path and output name, or the interface value (and
+    // its colorSpace metadata, when asked for).
+    auto resolve = [&](std::string target, Value* interfaceValue,
+                       std::string* interfaceColorSpace = nullptr) -> std::pair<std::string, std::string> {
         for (int hop = 0; hop < 32; ++hop) {
             auto [primPath, prop] = splitProperty(target);
             const usd::Prim* up = _stage.prim(primPath);
@@ -360,20 +362,24 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
                 continue;
             }
             if (a->hasValue()) *interfaceValue = toHdValue(a->get(_time));
+            if (const usd::Value* cs = a->metadata("colorSpace"); cs && interfaceColorSpace)
+                *interfaceColorSpace = cs->getString().value_or("");
             return {"", ""};
         }
         return {"", ""};  // a connection cycle: treat as unconnected
     };
     std::vector<std::string> stack;
     std::set<std::string> seen;
-    if (const usd::Attribute* surf = mat->attribute("outputs:surface");
-        surf && !surf->connections().empty()) {
+    // The universal render context first, then MaterialX; other contexts (mdl, ri) are ignored.
+    for (const char* terminal : {"outputs:surface", "outputs:mtlx:surface"}) {
+        const usd::Attribute* surf = mat->attribute(terminal);
+        if (!surf || surf->connections().empty()) continue;
         Value unused;
         auto [shader, output] = resolve(surf->connections().front(), &unused);
-        if (!shader.empty()) {
-            net.surfaceTerminal = Path(shader);
-            stack.push_back(shader);
-        }
+        if (shader.empty()) continue;
+        net.surfaceTerminal = Path(shader);
+        stack.push_back(shader);
+        break;
     }
     std::vector<MaterialNode> ordered;
     while (!stack.empty()) {
@@ -385,19 +391,27 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
         MaterialNode node;
         node.path = Path(path);
         node.identifier = Token(tokenAttr(*sh, "info:id", _time, ""));
+        node.where = sh->location().str();
         for (const usd::Attribute* a : sh->attributes()) {
             if (a->name().rfind("inputs:", 0) != 0) continue;
             Token input(stripNamespace(a->name(), "inputs:"));
             if (a->hasValue()) node.parameters[input] = toHdValue(a->get(_time));
+            if (const usd::Value* cs = a->metadata("colorSpace"))  // MaterialX image colour space
+                if (auto name = cs->getString())
+                    node.parameters[Token("colorSpace:" + input.str())] = Value(Token(*name));
             for (const std::string& c : a->connections()) {
                 Value iface;
-                auto [up, output] = resolve(c, &iface);
+                std::string ifaceColorSpace;
+                auto [up, output] = resolve(c, &iface, &ifaceColorSpace);
                 if (!up.empty()) {
                     node.inputConnections[input].push_back({Path(up), Token(output)});
                     stack.push_back(up);
                 } else if (!isEmpty(iface)) {
                     node.parameters[input] = iface;
                 }
+                Token csKey("colorSpace:" + input.str());  // the shader's own metadata wins
+                if (!ifaceColorSpace.empty() && !node.parameters.count(csKey))
+                    node.parameters[csKey] = Value(Token(ifaceColorSpace));
             }
         }
         ordered.push_back(std::move(node));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <string>
 #include <vector>
 
 #include "delegate/hd/path.h"
@@ -20,13 +21,17 @@ struct MaterialConnection {
 struct MaterialNode {
     Path path;
     Token identifier;  ///< info:id, e.g. "UsdPreviewSurface", "UsdUVTexture"
-    std::map<Token, Value> parameters;                            ///< authored input values
+    std::string where;  ///< where it was authored ("file:line:col") for messages; may be empty
+    /// Authored input values; an input's colour-space metadata, when authored, is the token
+    /// parameter "colorSpace:<input>" (as UsdImaging passes it to Hydra).
+    std::map<Token, Value> parameters;
     std::map<Token, std::vector<MaterialConnection>> inputConnections;
 };
 
 struct MaterialNetwork {
     std::vector<MaterialNode> nodes;  ///< upstream nodes first
-    Path surfaceTerminal;             ///< the node feeding outputs:surface (empty if none)
+    /// The node feeding outputs:surface, else outputs:mtlx:surface (empty if none).
+    Path surfaceTerminal;
 
     const MaterialNode* node(const Path& p) const {
         for (const auto& n : nodes)

@@ -8,6 +8,9 @@
 #include <set>
 #include <string_view>
 
+#include "delegate/shading/programCompiler.h"
+#include "delegate/shading/standardSurface.h"
+
 namespace principled::shading {
 
 using namespace hd;
@@ -47,6 +50,38 @@ constexpr SlotInfo kSlots[] = {
 // Inputs read as constants only (interfaceOnly in the spec, or tokens) and inputs ignored.
 constexpr const char* kOtherInputs[] = {"useSpecularWorkflow", "opacityThreshold", "opacityMode",
                                         "displacement", "occlusion"};
+
+// Components of a UsdPrimvarReader_TYPE result; 0 for types a surface cannot consume.
+int primvarComponents(std::string_view type) {
+    if (type == "float" || type == "int") return 1;
+    if (type == "float2") return 2;
+    if (type == "float3" || type == "normal" || type == "point" || type == "vector") return 3;
+    if (type == "float4") return 4;
+    return 0;
+}
+
+// MaterialX spellings of the UsdPreviewSurface nodes (MaterialX libraries/bxdf/usd_*.mtlx).
+constexpr std::pair<const char*, const char*> kMaterialXAliases[] = {
+    {"ND_UsdPreviewSurface_surfaceshader", "UsdPreviewSurface"},
+    {"ND_UsdUVTexture", "UsdUVTexture"},
+    {"ND_UsdUVTexture_23", "UsdUVTexture"},
+    {"ND_UsdPrimvarReader_float", "UsdPrimvarReader_float"},
+    {"ND_UsdPrimvarReader_vector2", "UsdPrimvarReader_float2"},
+    {"ND_UsdPrimvarReader_vector", "UsdPrimvarReader_float3"},
+    {"ND_UsdPrimvarReader_vector4", "UsdPrimvarReader_float4"},
+    {"ND_UsdPrimvarReader_integer", "UsdPrimvarReader_int"},
+    {"ND_UsdTransform2d", "UsdTransform2d"}};
+
+// The UsdPreviewSurface node name of id (its MaterialX spelling mapped), else id itself.
+Token usdIdentifier(const Token& id) {
+    for (const auto& [mtlx, usd] : kMaterialXAliases)
+        if (id.str() == mtlx) return Token(usd);
+    return id;
+}
+
+}  // namespace
+
+namespace program {
 
 // v holds `count` meaningful components; a scalar feeding a colour is splatted. A non-finite
 // scalar keeps the current (authored or fallback) value, as the constant mapping does; colours
@@ -117,7 +152,6 @@ void setSlot(PreviewSurfaceParams& p, Slot slot, const glm::vec4& v, int count) 
     }
 }
 
-// An authored value as vec4 plus its component count; nullopt for non-numeric values.
 std::optional<std::pair<glm::vec4, int>> numeric(const Value& v) {
     if (auto* x = getIf<glm::vec4>(v)) return std::pair{*x, 4};
     if (auto* x = getIf<glm::vec3>(v)) return std::pair{glm::vec4(*x, 0.0f), 3};
@@ -126,73 +160,29 @@ std::optional<std::pair<glm::vec4, int>> numeric(const Value& v) {
     return std::nullopt;
 }
 
-// Components of a UsdPrimvarReader_TYPE result; 0 for types a surface cannot consume.
-int primvarComponents(std::string_view type) {
-    if (type == "float" || type == "int") return 1;
-    if (type == "float2") return 2;
-    if (type == "float3" || type == "normal" || type == "point" || type == "vector") return 3;
-    if (type == "float4") return 4;
-    return 0;
+}  // namespace program
+
+using program::numeric;
+using program::setSlot;
+
+std::optional<int16_t> MaterialProgram::Compiler::newRegister(const glm::vec4& init,
+                                                              bool constant) {
+    if (static_cast<int>(_prog._initial.size()) >= kMaxRegisters) {
+        if (!_overflowNoted)
+            _notes->push_back("material network needs more than " + std::to_string(kMaxRegisters) +
+                              " values; the remaining inputs use their fallbacks");
+        _overflowNoted = true;
+        return std::nullopt;
+    }
+    _prog._initial.push_back(init);
+    _info.push_back(RegInfo{constant, Token(), glm::mat2(1.0f)});
+    return static_cast<int16_t>(_prog._initial.size() - 1);
 }
 
-}  // namespace
-
-// Builds a program node by node; each node is compiled once into one register.
-class MaterialProgram::Compiler {
-  public:
-    Compiler(const MaterialNetwork& net, TextureCache& cache, std::vector<std::string>* notes,
-             MaterialProgram& prog)
-        : _net(net), _cache(cache), _notes(notes), _prog(prog) {}
-
-    void compileSurface(const MaterialNode& surface);
-
-  private:
-    struct RegInfo {
-        bool constant = true;
-        Token root;                ///< primvar the value derives from linearly (st chains)
-        glm::mat2 jacobian{1.0f};  ///< d value.xy / d root
-    };
-
-    std::optional<int16_t> newRegister(const glm::vec4& init, bool constant) {
-        if (static_cast<int>(_prog._initial.size()) >= kMaxRegisters) {
-            if (!_overflowNoted)
-                _notes->push_back("material network needs more than " +
-                                  std::to_string(kMaxRegisters) +
-                                  " values; the remaining inputs use their fallbacks");
-            _overflowNoted = true;
-            return std::nullopt;
-        }
-        _prog._initial.push_back(init);
-        _info.push_back(RegInfo{constant, Token(), glm::mat2(1.0f)});
-        return static_cast<int16_t>(_prog._initial.size() - 1);
-    }
-    bool isConstant(const Operand& o) const { return _info[o.reg].constant; }
-    glm::vec4 constantValue(const Operand& o) const {
-        return MaterialProgram::read(_prog._initial.data(), o);
-    }
-    void note(const MaterialNode& node, const std::string& text) {
-        _notes->push_back(node.path.str() + ": " + text);
-    }
-
-    /// The operand an input is connected to, or nullopt (unconnected or unusable).
-    std::optional<Operand> connection(const MaterialNode& consumer, const char* input);
-    /// An operand for a vec2 input: its connection, else a constant of its authored value.
-    std::optional<Operand> vec2Input(const MaterialNode& node, const char* input,
-                                     glm::vec2 fallback);
-    std::optional<int16_t> compileNode(const Path& path);
-    std::optional<int16_t> compileTexture(const MaterialNode& node);
-    std::optional<int16_t> compilePrimvarReader(const MaterialNode& node, int components);
-    std::optional<int16_t> compileTransform(const MaterialNode& node);
-
-    const MaterialNetwork& _net;
-    TextureCache& _cache;
-    std::vector<std::string>* _notes;
-    MaterialProgram& _prog;
-    std::vector<RegInfo> _info;
-    std::map<Path, std::optional<int16_t>> _compiled;
-    std::set<Path> _inProgress;
-    bool _overflowNoted = false;
-};
+void MaterialProgram::Compiler::note(const MaterialNode& node, const std::string& text) {
+    _notes->push_back((node.where.empty() ? "" : node.where + ": ") + node.path.str() + ": " +
+                      text);
+}
 
 std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::connection(
     const MaterialNode& consumer, const char* input) {
@@ -202,7 +192,7 @@ std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::connection(
     std::optional<int16_t> reg = compileNode(c.upstreamNode);
     if (!reg) return std::nullopt;
     const MaterialNode* up = _net.node(c.upstreamNode);
-    const std::string& id = up->identifier.str();
+    const std::string id = usdIdentifier(up->identifier).str();
     const std::string& out = c.upstreamOutput.str();
     Operand o;
     o.reg = *reg;
@@ -226,8 +216,10 @@ std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::connection(
         }
     } else if (id == "UsdTransform2d") {
         o = {*reg, 0, 2};
-    } else {  // UsdPrimvarReader_*: "result"
+    } else if (id.rfind("UsdPrimvarReader_", 0) == 0) {  // "result"
         o = {*reg, 0, static_cast<uint8_t>(primvarComponents(id.substr(17)))};
+    } else {  // a MaterialX node: its one output, "out"
+        o = {*reg, 0, static_cast<uint8_t>(program::materialxComponents(id))};
     }
     return o;
 }
@@ -257,7 +249,8 @@ std::optional<int16_t> MaterialProgram::Compiler::compileNode(const Path& path) 
         return std::nullopt;
     }
     std::optional<int16_t> reg;
-    const std::string& id = node->identifier.str();
+    const std::string id = usdIdentifier(node->identifier).str();
+    bool handled = false;
     if (id == "UsdUVTexture") {
         reg = compileTexture(*node);
     } else if (id.rfind("UsdPrimvarReader_", 0) == 0) {
@@ -268,8 +261,9 @@ std::optional<int16_t> MaterialProgram::Compiler::compileNode(const Path& path) 
             note(*node, "'" + id + "' cannot feed a surface input; using the fallback");
     } else if (id == "UsdTransform2d") {
         reg = compileTransform(*node);
-    } else {
-        note(*node, "unsupported shader '" + id + "'; inputs it feeds use their fallbacks");
+    } else if (reg = compileMaterialXNode(*node, &handled); !handled) {
+        note(*node, "node '" + id +
+                        "' not supported; inputs it feeds use their authored value or default");
     }
     _inProgress.erase(path);
     _compiled[path] = reg;
@@ -281,6 +275,12 @@ std::optional<int16_t> MaterialProgram::Compiler::compileTexture(const MaterialN
     if (!tex.texture) return newRegister(tex.fallback, true);
     std::optional<Operand> st = vec2Input(node, "st", glm::vec2(0.0f));
     if (!st) return std::nullopt;
+    return sampleTexture(tex, *st);
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::sampleTexture(const UvTexture& tex,
+                                                                const Operand& stIn) {
+    const Operand* st = &stIn;
     if (isConstant(*st))  // no primvar upstream: one lookup now, a constant afterwards
         return newRegister(tex.sample(_cache, glm::vec2(constantValue(*st))), true);
     auto reg = newRegister(glm::vec4(0.0f), false);
@@ -311,7 +311,12 @@ std::optional<int16_t> MaterialProgram::Compiler::compilePrimvarReader(const Mat
         note(node, "no varname; using the reader's fallback");
         return newRegister(op.fallback, true);
     }
-    op.name = Token(varname);
+    return primvarRegister(Token(varname), components, op.fallback);
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::primvarRegister(const Token& name, int components,
+                                                                  const glm::vec4& fallback) {
+    PrimvarOp op{name, components, fallback};
     auto reg = newRegister(op.fallback, false);
     if (!reg) return std::nullopt;
     if (components == 2) _info[*reg].root = op.name;
@@ -345,6 +350,12 @@ std::optional<int16_t> MaterialProgram::Compiler::compileTransform(const Materia
                                       vec2("translation", glm::vec2(0.0f)));
     std::optional<Operand> in = vec2Input(node, "in", glm::vec2(0.0f));
     if (!in) return std::nullopt;
+    return transformRegister(t, *in);
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::transformRegister(const Transform2d& t,
+                                                                    const Operand& inOperand) {
+    const Operand* in = &inOperand;
     if (isConstant(*in))
         return newRegister(glm::vec4(t.apply(glm::vec2(constantValue(*in))), 0.0f, 0.0f), true);
     auto reg = newRegister(glm::vec4(0.0f), false);
@@ -430,12 +441,18 @@ MaterialProgram MaterialProgram::compile(const MaterialNetwork& network, Texture
         notes->push_back("no surface shader; using UsdPreviewSurface defaults");
         return prog;
     }
-    if (surface->identifier != Token("UsdPreviewSurface")) {
-        notes->push_back("surface shader '" + surface->identifier.str() +
-                         "' is not UsdPreviewSurface; using its defaults");
+    Token id = usdIdentifier(surface->identifier);
+    if (id == Token("UsdPreviewSurface")) {
+        Compiler(network, cache, notes, prog).compileSurface(*surface);
+    } else if (isStandardSurface(id)) {
+        Compiler(network, cache, notes, prog).compileStandardSurface(*surface);
+    } else {
+        notes->push_back((surface->where.empty() ? "" : surface->where + ": ") +
+                         surface->path.str() + ": surface shader '" + surface->identifier.str() +
+                         "' is not UsdPreviewSurface or Standard Surface; using the "
+                         "UsdPreviewSurface defaults");
         return prog;
     }
-    Compiler(network, cache, notes, prog).compileSurface(*surface);
     prog._constant = mapPreviewSurface(prog._base);
     prog.findPresenceOps();
     return prog;
@@ -466,6 +483,12 @@ void MaterialProgram::run(const Op& op, const ShadingContext& context, glm::vec4
             regs[op.out] = glm::vec4(_transforms[op.index].apply(in), 0.0f, 0.0f);
             break;
         }
+        case Op::Kind::MulAdd:
+            regs[op.out] = read(regs, op.in) * read(regs, op.in2) + read(regs, op.in3);
+            break;
+        case Op::Kind::Dot:
+            regs[op.out] = glm::vec4(glm::dot(read(regs, op.in), read(regs, op.in2)));
+            break;
         case Op::Kind::Texture: {
             const TextureOp& t = _textures[op.index];
             glm::vec2 st(read(regs, op.in));
@@ -507,7 +530,9 @@ void MaterialProgram::findPresenceOps() {
         const Op& op = _ops[i];
         if (op.out < 0 || !needed[size_t(op.out)]) continue;
         _presenceOps.push_back(uint16_t(i));
-        if (op.kind != Op::Kind::Primvar && op.in.reg >= 0) needed[size_t(op.in.reg)] = true;
+        if (op.kind == Op::Kind::Primvar) continue;
+        for (const Operand* in : {&op.in, &op.in2, &op.in3})
+            if (in->reg >= 0) needed[size_t(in->reg)] = true;
     }
     std::reverse(_presenceOps.begin(), _presenceOps.end());
 }

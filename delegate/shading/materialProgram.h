@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// MaterialProgram: a UsdPreviewSurface network compiled into a flat list of operations over a
-// small register file, evaluated per shading point without allocation.
+// MaterialProgram: a UsdPreviewSurface (or MaterialX Standard Surface) network compiled into a
+// flat list of operations over a small register file, evaluated per shading point without
+// allocation.
 #pragma once
 
 #include <cstdint>
@@ -35,7 +36,10 @@ class MaterialProgram {
     /// The default program: UsdPreviewSurface fallbacks.
     MaterialProgram();
 
-    /// Compiles the network's surface shader. Unknown nodes, unknown inputs and outputs, cycles,
+    /// Compiles the network's surface shader: UsdPreviewSurface (also as MaterialX
+    /// ND_UsdPreviewSurface_surfaceshader) or Autodesk Standard Surface
+    /// (ND_standard_surface_surfaceshader, mapped by standardSurface.h), fed by UsdPreviewSurface
+    /// or MaterialX texture nodes (docs/materials.md). Unknown nodes, unknown inputs and outputs, cycles,
     /// missing files (once per file) and ignored inputs (displacement, occlusion) are each
     /// described by one line in *notes; the affected input uses its authored value or fallback.
     static MaterialProgram compile(const hd::MaterialNetwork& network, TextureCache& cache,
@@ -94,10 +98,13 @@ class MaterialProgram {
         uint8_t count = 4;
     };
     struct Op {
-        enum class Kind : uint8_t { Texture, Primvar, Transform } kind;
+        /// MulAdd: in * in2 + in3 per component; Dot: dot(in, in2) in every component.
+        enum class Kind : uint8_t { Texture, Primvar, Transform, MulAdd, Dot } kind;
         int16_t out;    ///< register written
-        Operand in;     ///< st (Texture) or in (Transform)
-        int16_t index;  ///< into _textures, _primvars or _transforms
+        Operand in;     ///< st (Texture), in (Transform), the first factor (MulAdd, Dot)
+        int16_t index;  ///< into _textures, _primvars or _transforms (other kinds: -1)
+        Operand in2{};  ///< the second factor (MulAdd, Dot)
+        Operand in3{};  ///< the addend (MulAdd)
     };
     struct TextureOp {
         UvTexture texture;

@@ -61,6 +61,7 @@ ShadedMaterial mapPreviewSurface(const PreviewSurfaceParams& in) {
     if (std::isfinite(in.ior) && in.ior > 0.0f) p.ior = in.ior;
     p.specular = specularFromIor(in.ior);
     p.clearcoat = in.clearcoat;
+    p.thin = in.thin;
     // Common convention (reference/hydra.md §4.4): gloss = 1 - roughness.
     p.clearcoatGloss = 1.0f - clamp01(in.clearcoatRoughness);
     if (in.useSpecularWorkflow) {

@@ -26,6 +26,7 @@ struct PreviewSurfaceParams {
     float ior = 1.5f;
     glm::vec3 normal{0.0f, 0.0f, 1.0f};
     bool normalVaries = false;  ///< the normal input is connected (a normal map)
+    bool thin = false;          ///< thin-walled transmission (Standard Surface thin_walled)
     // Disney inputs read from the same shader under MaterialX Disney BSDF names; unset ones
     // keep the values derived from the UsdPreviewSurface inputs.
     std::optional<float> subsurface, specular, specularTint, anisotropic, sheen, sheenTint,

@@ -81,14 +81,18 @@ UvTexture UvTexture::resolve(const MaterialNode& node, TextureCache& cache,
         if (cs != "auto")
             notes->push_back(node.path.str() + ": sourceColorSpace '" + cs +
                              "' is not raw|sRGB|auto; using auto");
-        // auto (spec 2.5): sRGB if the file says so, or if it is 8-bit with 3 or 4 channels.
-        // A file that explicitly says linear stays raw, as USD's Hio does for a gamma of 1.
-        bool eightBitColour = tex && tex->bitsPerChannel == 8 && !tex->isFloat &&
-                              (tex->channels == 3 || tex->channels == 4);
-        t.decodeSrgb = tex && (tex->colorTag == ColorTag::Srgb ||
-                               (tex->colorTag == ColorTag::Unknown && eightBitColour));
+        t.decodeSrgb = autoDecodesSrgb(tex);
     }
     return t;
+}
+
+bool autoDecodesSrgb(const Texture* tex) {
+    // auto (spec 2.5): sRGB if the file says so, or if it is 8-bit with 3 or 4 channels.
+    // A file that explicitly says linear stays raw, as USD's Hio does for a gamma of 1.
+    bool eightBitColour = tex && tex->bitsPerChannel == 8 && !tex->isFloat &&
+                          (tex->channels == 3 || tex->channels == 4);
+    return tex && (tex->colorTag == ColorTag::Srgb ||
+                   (tex->colorTag == ColorTag::Unknown && eightBitColour));
 }
 
 glm::vec4 UvTexture::sample(const TextureCache& cache, glm::vec2 st,

@@ -12,6 +12,10 @@
 
 namespace principled::shading {
 
+/// UsdUVTexture sourceColorSpace "auto" (spec 2.5): decode sRGB when the file says so, or when
+/// it is 8-bit with 3 or 4 channels and says nothing. False for a null texture.
+bool autoDecodesSrgb(const Texture* tex);
+
 /// A UsdUVTexture node ready to sample. Plain data: copyable, no ownership of the texture.
 struct UvTexture {
     const Texture* texture = nullptr;  ///< null: the file is missing or unreadable -> fallback

@@ -339,3 +339,50 @@ def Sphere "Fine"
     EXPECT_NE(all.find("/Flat: transform is singular"), std::string::npos) << all;
     for (int p = 0; p < 16 * 16 * 4; ++p) ASSERT_TRUE(std::isfinite(s->color()[p]));
 }
+
+namespace {
+
+// A ball under a white dome with the given material body (empty: no binding), rendered at 16 x 16;
+// returns the summed red and green of the pixels that hit it.
+std::pair<double, double> redAndGreenOfBall(const std::string& material) {
+    host::SessionOptions o;
+    o.width = o.height = 16;
+    o.samplesPerPixel = 4;
+    std::string text = R"(#usda 1.0
+def DomeLight "Sky" { float inputs:intensity = 1 }
+def Sphere "Ball" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+)" + std::string(material.empty() ? "" : "    rel material:binding = </Look>\n") + "}\n" + material;
+    auto s = host::RenderSession::openString(text, "mtlx.usda", o);
+    while (!s->step()) {
+    }
+    const float* c = s->color();
+    double red = 0.0, green = 0.0;
+    for (int i = 0; i < 16 * 16; ++i)
+        if (c[4 * i + 3] > 0.5f) {
+            red += c[4 * i];
+            green += c[4 * i + 1];
+        }
+    return {red, green};
+}
+
+}  // namespace
+
+TEST(RenderSession, MaterialXStandardSurfaceRendersItsBaseColor) {
+    auto [red, green] = redAndGreenOfBall(R"(def Material "Look"
+{
+    token outputs:mtlx:surface.connect = </Look/SS.outputs:out>
+    def Shader "SS"
+    {
+        uniform token info:id = "ND_standard_surface_surfaceshader"
+        color3f inputs:base_color = (0.8, 0.05, 0.05)
+        float inputs:specular_roughness = 0.5
+        token outputs:out
+    }
+}
+)");
+    ASSERT_GT(red, 0.0);
+    EXPECT_GT(red, 3.0 * green);  // red-dominant (about 6x): the grey default gives red ~ green
+    auto [greyRed, greyGreen] = redAndGreenOfBall("");
+    EXPECT_NEAR(greyRed / greyGreen, 1.0, 0.05);
+}

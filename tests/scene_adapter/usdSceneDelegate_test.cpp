@@ -7,7 +7,9 @@
 #include "delegate/hd/camera.h"
 #include "delegate/hd/tokens.h"
 #include "delegate/renderDelegate.h"
+#include "delegate/shading/materialProgram.h"
 #include "scene_adapter/usda/stage.h"
+#include "tests/delegate/shading/testImages.h"
 
 using namespace principled;
 
@@ -200,4 +202,245 @@ TEST(UsdSceneDelegate, EveryCorpusFileLoadsWithoutCrashing) {
         index.sync();
     }
     EXPECT_GT(files, 50);
+}
+
+namespace {
+
+// MaterialX materials (docs/materials.md, "MaterialX"): terminal choice, Standard Surface, and a
+// NodeGraph of MaterialX texture nodes. TEX is replaced by an image's path.
+const char* kMaterialXLooks = R"(#usda 1.0
+def Scope "Looks"
+{
+    def Material "MxOnly"
+    {
+        token outputs:mtlx:surface.connect = </Looks/MxOnly/SS.outputs:out>
+        def Shader "SS"
+        {
+            uniform token info:id = "ND_standard_surface_surfaceshader"
+            color3f inputs:base_color = (0.8, 0.1, 0.1)
+            float inputs:metalness = 1
+            float inputs:specular_roughness = 0.3
+            token outputs:out
+        }
+    }
+    def Material "Both"
+    {
+        token outputs:mdl:surface.connect = </Looks/Both/Mdl.outputs:out>
+        token outputs:mtlx:surface.connect = </Looks/Both/SS.outputs:out>
+        token outputs:surface.connect = </Looks/Both/Preview.outputs:surface>
+        def Shader "Preview"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor = (1, 0, 0)
+            token outputs:surface
+        }
+        def Shader "SS"
+        {
+            uniform token info:id = "ND_standard_surface_surfaceshader"
+            color3f inputs:base_color = (0, 0, 1)
+            token outputs:out
+        }
+        def Shader "Mdl"
+        {
+            uniform token info:implementationSource = "sourceAsset"
+            token outputs:out
+        }
+    }
+    def Material "MdlOnly"
+    {
+        token outputs:mdl:surface.connect = </Looks/MdlOnly/Mdl.outputs:out>
+        def Shader "Mdl"
+        {
+            uniform token info:implementationSource = "sourceAsset"
+            token outputs:out
+        }
+    }
+    def Material "PreviewAsMtlx"
+    {
+        token outputs:mtlx:surface.connect = </Looks/PreviewAsMtlx/S.outputs:out>
+        def Shader "S"
+        {
+            uniform token info:id = "ND_UsdPreviewSurface_surfaceshader"
+            color3f inputs:diffuseColor = (0.1, 0.7, 0.2)
+            float inputs:roughness = 0.4
+            float inputs:clearcoat = 0.5
+            token outputs:out
+        }
+    }
+    def Material "Graph"
+    {
+        float inputs:rough = 0.45
+        token outputs:mtlx:surface.connect = </Looks/Graph/SS.outputs:out>
+        def Shader "SS"
+        {
+            uniform token info:id = "ND_standard_surface_surfaceshader"
+            color3f inputs:base_color.connect = </Looks/Graph/NG.outputs:base_color>
+            float inputs:specular_roughness.connect = </Looks/Graph.inputs:rough>
+            float inputs:metalness = 0.25
+            float inputs:metalness.connect = </Looks/Graph/NG.outputs:metal>
+            float inputs:emission = 1
+            color3f inputs:emission_color.connect = </Looks/Graph/NG.outputs:glow>
+            token outputs:out
+        }
+        def NodeGraph "NG"
+        {
+            asset inputs:glowFile = @TEX@ (
+                colorSpace = "srgb_texture"
+            )
+            color3f outputs:base_color.connect = </Looks/Graph/NG/Img.outputs:out>
+            color3f outputs:glow.connect = </Looks/Graph/NG/GlowImg.outputs:out>
+            float outputs:metal.connect = </Looks/Graph/NG/Mul.outputs:out>
+            def Shader "Uv"
+            {
+                uniform token info:id = "ND_texcoord_vector2"
+                float2 outputs:out
+            }
+            def Shader "Img"
+            {
+                uniform token info:id = "ND_image_color3"
+                asset inputs:file = @TEX@ (
+                    colorSpace = "lin_rec709"
+                )
+                float2 inputs:texcoord.connect = </Looks/Graph/NG/Uv.outputs:out>
+                color3f outputs:out
+            }
+            def Shader "GlowImg"
+            {
+                uniform token info:id = "ND_image_color3"
+                asset inputs:file.connect = </Looks/Graph/NG.inputs:glowFile>
+                color3f outputs:out
+            }
+            def Shader "Mul"
+            {
+                uniform token info:id = "ND_multiply_float"
+                float inputs:in1 = 0.5
+                float outputs:out
+            }
+        }
+    }
+}
+)";
+
+class StContext : public shading::ShadingContext {
+  public:
+    glm::vec2 st{0.0f};
+    bool primvar(const hd::Token& name, int components, float* out) const override {
+        if (name != hd::Token("st") || components != 2) return false;
+        out[0] = st.x;
+        out[1] = st.y;
+        return true;
+    }
+    bool primvarDerivatives(const hd::Token&, glm::vec2*, glm::vec2*) const override {
+        return false;
+    }
+};
+
+struct MaterialXLooks {
+    shading::test::TempDir dir;
+    std::string texture = dir.file("rb.png");
+    std::unique_ptr<Populated> scene;
+    shading::TextureCache cache;
+    std::vector<std::string> notes;
+
+    MaterialXLooks() {
+        // 2 x 1 texels: red on the left, blue on the right (8-bit codes 204).
+        std::vector<float> px = {0.8f, 0.0f, 0.0f, 0.0f, 0.0f, 0.8f};
+        EXPECT_TRUE(shading::test::writeImage(texture, 2, 1, 3, px, OIIO::TypeDesc::UINT8));
+        std::string text = kMaterialXLooks;
+        for (size_t at; (at = text.find("TEX")) != std::string::npos;) text.replace(at, 3, texture);
+        scene = std::make_unique<Populated>(text);
+    }
+    hd::MaterialNetwork network(const char* material) {
+        return scene->scene->getMaterialResource(hd::Path(material));
+    }
+    shading::MaterialProgram compile(const char* material) {
+        return shading::MaterialProgram::compile(network(material), cache, &notes);
+    }
+};
+
+bool anyHas(const std::vector<std::string>& notes, const std::string& text) {
+    for (const auto& n : notes)
+        if (n.find(text) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST(UsdSceneDelegate, MaterialXSurfaceIsTheTerminalWhenNoUniversalSurface) {
+    MaterialXLooks looks;
+    hd::MaterialNetwork n = looks.network("/Looks/MxOnly");
+    EXPECT_EQ(n.surfaceTerminal, hd::Path("/Looks/MxOnly/SS"));
+    ASSERT_EQ(n.nodes.size(), 1u);
+    EXPECT_NE(n.nodes[0].where.find("t.usda:"), std::string::npos) << n.nodes[0].where;
+    StContext ctx;
+    shading::ShadedMaterial m = looks.compile("/Looks/MxOnly").evaluate(ctx);
+    EXPECT_NEAR(m.params.baseColor.x, 0.8f, 1e-6f);
+    EXPECT_NEAR(m.params.baseColor.y, 0.1f, 1e-6f);
+    EXPECT_NEAR(m.params.baseColor.z, 0.1f, 1e-6f);
+    EXPECT_FLOAT_EQ(m.params.metallic, 1.0f);
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.3f);
+    EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);
+    EXPECT_TRUE(looks.notes.empty()) << looks.notes.front();
+}
+
+TEST(UsdSceneDelegate, UniversalSurfaceWinsOverMaterialXAndOtherContextsAreIgnored) {
+    MaterialXLooks looks;
+    hd::MaterialNetwork both = looks.network("/Looks/Both");
+    EXPECT_EQ(both.surfaceTerminal, hd::Path("/Looks/Both/Preview"));
+    EXPECT_EQ(both.nodes.size(), 1u);  // the mtlx and mdl shaders are not walked
+    StContext ctx;
+    shading::ShadedMaterial m = looks.compile("/Looks/Both").evaluate(ctx);
+    EXPECT_EQ(m.params.baseColor, glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_TRUE(looks.network("/Looks/MdlOnly").surfaceTerminal.empty());
+}
+
+TEST(UsdSceneDelegate, MaterialXUsdPreviewSurfaceMapsLikeUsdPreviewSurface) {
+    MaterialXLooks looks;
+    StContext ctx;
+    shading::ShadedMaterial m = looks.compile("/Looks/PreviewAsMtlx").evaluate(ctx);
+    EXPECT_NEAR(m.params.baseColor.y, 0.7f, 1e-6f);
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.4f);
+    EXPECT_FLOAT_EQ(m.params.clearcoat, 0.5f);
+    EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);  // UsdPreviewSurface ior fallback 1.5
+    EXPECT_TRUE(looks.notes.empty()) << looks.notes.front();
+}
+
+TEST(UsdSceneDelegate, MaterialXNodeGraphTexturesAndUnsupportedNodes) {
+    MaterialXLooks looks;
+    hd::MaterialNetwork n = looks.network("/Looks/Graph");
+    const hd::MaterialNode* img = n.node(hd::Path("/Looks/Graph/NG/Img"));
+    ASSERT_TRUE(img);
+    EXPECT_EQ(hd::getString(img->parameters.at(hd::Token("colorSpace:file"))), "lin_rec709");
+    // A file from the graph's interface input brings that input's colour space along.
+    const hd::MaterialNode* glow = n.node(hd::Path("/Looks/Graph/NG/GlowImg"));
+    ASSERT_TRUE(glow);
+    EXPECT_EQ(hd::getString(glow->parameters.at(hd::Token("colorSpace:file"))), "srgb_texture");
+    const hd::MaterialNode* ss = n.node(n.surfaceTerminal);
+    ASSERT_TRUE(ss);
+    EXPECT_FLOAT_EQ(*hd::getFloat(ss->parameters.at(hd::Token("specular_roughness"))), 0.45f);
+    auto& c = ss->inputConnections.at(hd::Token("base_color"));
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_EQ(c[0].upstreamNode, hd::Path("/Looks/Graph/NG/Img"));  // through the graph output
+    EXPECT_EQ(c[0].upstreamOutput, hd::Token("out"));
+
+    shading::MaterialProgram p = looks.compile("/Looks/Graph");
+    ASSERT_EQ(p.primvarsRead().size(), 1u);
+    EXPECT_EQ(p.primvarsRead()[0], hd::Token("st"));
+    StContext ctx;
+    ctx.st = {0.25f, 0.5f};  // left texel, read linear (lin_rec709): code 204 -> 0.8
+    shading::ShadedMaterial left = p.evaluate(ctx);
+    EXPECT_NEAR(left.params.baseColor.x, 0.8f, 1e-6f);
+    EXPECT_NEAR(left.params.baseColor.z, 0.0f, 1e-6f);
+    ctx.st = {0.75f, 0.5f};
+    EXPECT_NEAR(p.evaluate(ctx).params.baseColor.z, 0.8f, 1e-6f);
+    EXPECT_FLOAT_EQ(left.params.roughness, 0.45f);  // from the material's interface input
+    // emission_color: the same texels decoded from sRGB (0.8 -> 0.6038), times emission 1.
+    EXPECT_NEAR(left.emission.x, 0.6038f, 1e-3f);
+    EXPECT_NEAR(left.emission.z, 0.0f, 1e-6f);
+    // The multiply node is not supported: metalness keeps its authored 0.25, with a note that
+    // names the node and where it was authored.
+    EXPECT_FLOAT_EQ(left.params.metallic, 0.25f);
+    EXPECT_TRUE(anyHas(looks.notes,
+                       ": /Looks/Graph/NG/Mul: node 'ND_multiply_float' not supported"));
+    EXPECT_TRUE(anyHas(looks.notes, "t.usda:")) << looks.notes.front();
 }

@@ -212,9 +212,9 @@ TEST_F(MaterialProgramTest, EmptyOrForeignNetworkGivesDefaultsWithANote) {
     EXPECT_FLOAT_EQ(p.evaluate(ctx).params.baseColor.x, 0.18f);
     EXPECT_EQ(notes.size(), 1u);
     Net n;
-    n.node("/M/Surface").identifier = Token("ND_standard_surface_surfaceshader");
+    n.node("/M/Surface").identifier = Token("ND_open_pbr_surface_surfaceshader");
     compile(n);
-    EXPECT_TRUE(anyNoteHas(notes, "ND_standard_surface_surfaceshader"));
+    EXPECT_TRUE(anyNoteHas(notes, "ND_open_pbr_surface_surfaceshader"));
 }
 
 TEST_F(MaterialProgramTest, TextureReadsStFromThePrimvar) {
@@ -385,7 +385,7 @@ TEST_F(MaterialProgramTest, PrimvarReaderFeedsAColourAndNaNNeverLeaves) {
 
 TEST_F(MaterialProgramTest, BadNetworksGiveNotesNotCrashes) {
     Net n;
-    n.add("/M/Weird", "ND_image_color3")
+    n.add("/M/Weird", "ND_multiply_color3")
         .add("/M/A", "UsdTransform2d")
         .add("/M/B", "UsdTransform2d")
         .connect("/M/A", "in", "/M/B", "result")
@@ -406,7 +406,7 @@ TEST_F(MaterialProgramTest, BadNetworksGiveNotesNotCrashes) {
     expectFinite(m);
     EXPECT_FLOAT_EQ(m.params.baseColor.x, 0.18f);
     EXPECT_TRUE(m.specularWorkflow);
-    EXPECT_TRUE(anyNoteHas(notes, "ND_image_color3"));
+    EXPECT_TRUE(anyNoteHas(notes, "node 'ND_multiply_color3' not supported"));
     EXPECT_TRUE(anyNoteHas(notes, "cycle"));
     EXPECT_TRUE(anyNoteHas(notes, "rgba_bogus"));
     EXPECT_TRUE(anyNoteHas(notes, "/M/Nowhere"));
@@ -575,4 +575,245 @@ TEST_F(MaterialProgramTest, PresenceRunsOnlyWhatOpacityNeeds) {
     counting.read.clear();
     EXPECT_FLOAT_EQ(q.presence(counting), 1.0f);
     EXPECT_TRUE(counting.read.empty());
+}
+
+// ---- MaterialX surfaces and nodes (materialxNodes.cpp, standardSurface.cpp) ----
+
+namespace {
+
+/// A network whose surface is ND_standard_surface_surfaceshader (the Net helper's node, renamed).
+Net standardSurface() {
+    Net n;
+    n.node("/M/Surface").identifier = Token("ND_standard_surface_surfaceshader");
+    return n;
+}
+
+/// An ND_image_color3 of `file` read at an ND_texcoord_vector2, feeding base_color.
+Net imageIntoBaseColor(const std::string& file, std::map<Token, Value> extra = {}) {
+    Net n = standardSurface();
+    extra[Token("file")] = Value(file);
+    n.add("/M/Uv", "ND_texcoord_vector2")
+        .add("/M/Img", "ND_image_color3", std::move(extra))
+        .connect("/M/Img", "texcoord", "/M/Uv", "out")
+        .surfaceFrom("base_color", "/M/Img", "out");
+    return n;
+}
+
+}  // namespace
+
+TEST_F(MaterialProgramTest, StandardSurfaceConstantsMapOntoDisney) {
+    Net n = standardSurface();
+    n.surface("base_color", Value(glm::vec3(0.8f, 0.1f, 0.1f)))
+        .surface("metalness", Value(1.0f))
+        .surface("specular_roughness", Value(0.3f))
+        .surface("coat_color", Value(glm::vec3(1.0f)));
+    MaterialProgram p = compile(n);
+    EXPECT_TRUE(p.isConstant());
+    ShadedMaterial m = p.evaluate(ctx);
+    expectNear(m.params.baseColor, glm::vec3(0.8f, 0.1f, 0.1f), 1e-6f);  // base 1 (1.0.1)
+    EXPECT_FLOAT_EQ(m.params.metallic, 1.0f);
+    EXPECT_FLOAT_EQ(m.params.roughness, 0.3f);
+    EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);        // specular 1, IOR 1.5
+    EXPECT_NEAR(m.params.clearcoatGloss, 0.9f, 1e-6f);  // coat_roughness 0.1
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("inputs not used: coat_color"), std::string::npos) << notes[0];
+}
+
+TEST_F(MaterialProgramTest, UsdPreviewSurfaceUnderItsMaterialXNameMapsTheSame) {
+    auto build = [&](const char* surfaceId, const char* textureId) {
+        Net n;
+        n.node("/M/Surface").identifier = Token(surfaceId);
+        n.stReader()
+            .add("/M/Tex", textureId, {{Token("file"), Value(png)}})
+            .connect("/M/Tex", "st", "/M/St", "result")
+            .surfaceFrom("diffuseColor", "/M/Tex", "rgb")
+            .surface("roughness", Value(0.35f))
+            .surface("clearcoat", Value(0.6f))
+            .surface("sheen", Value(0.2f));
+        return n;
+    };
+    MaterialProgram usd = compile(build("UsdPreviewSurface", "UsdUVTexture"));
+    MaterialProgram mtlx = compile(build("ND_UsdPreviewSurface_surfaceshader", "ND_UsdUVTexture"));
+    EXPECT_TRUE(notes.empty()) << notes.front();
+    ctx.values["st"] = glm::vec4(centre(2, 1), 0, 0);
+    ShadedMaterial a = usd.evaluate(ctx), b = mtlx.evaluate(ctx);
+    expectNear(b.params.baseColor, decoded(2, 1));
+    expectNear(b.params.baseColor, a.params.baseColor, 0.0f);
+    EXPECT_EQ(b.params.roughness, a.params.roughness);
+    EXPECT_EQ(b.params.clearcoat, a.params.clearcoat);
+    EXPECT_EQ(b.params.sheen, a.params.sheen);
+    EXPECT_EQ(b.params.specular, a.params.specular);
+}
+
+TEST_F(MaterialProgramTest, MaterialXImageAtTexcoordSamplesTheTexture) {
+    MaterialProgram p = compile(imageIntoBaseColor(png));
+    EXPECT_FALSE(p.isConstant());
+    ASSERT_EQ(p.primvarsRead().size(), 1u);
+    EXPECT_EQ(p.primvarsRead()[0], Token("st"));
+    for (int row = 0; row < kSize; ++row)
+        for (int x = 0; x < kSize; ++x) {
+            ctx.values["st"] = glm::vec4(centre(x, row), 0, 0);
+            // 8-bit RGB without a colour space: decoded as sRGB; base 1 (1.0.1 default).
+            expectNear(p.evaluate(ctx).params.baseColor, decoded(x, row));
+        }
+    EXPECT_TRUE(notes.empty()) << notes.front();
+    // Without a texcoord node the image reads the default UV set "st" itself.
+    Net implicit = standardSurface();
+    implicit.add("/M/Img", "ND_image_color3", {{Token("file"), Value(png)}})
+        .surfaceFrom("base_color", "/M/Img", "out");
+    MaterialProgram q = compile(implicit);
+    ASSERT_EQ(q.primvarsRead().size(), 1u);
+    ctx.values["st"] = glm::vec4(centre(3, 0), 0, 0);
+    expectNear(q.evaluate(ctx).params.baseColor, decoded(3, 0));
+}
+
+TEST_F(MaterialProgramTest, MaterialXImageColourSpaceAndWeight) {
+    // lin_rec709 reads the codes as linear values; a base weight of 0.5 halves them.
+    Net n = imageIntoBaseColor(png, {{Token("colorSpace:file"), Value(Token("lin_rec709"))}});
+    n.surface("base", Value(0.5f));
+    MaterialProgram p = compile(n);
+    ctx.values["st"] = glm::vec4(centre(1, 2), 0, 0);
+    expectNear(p.evaluate(ctx).params.baseColor, 0.5f * code(1, 2));
+    // srgb_texture decodes; a varying base (a float image: data, read raw even from an 8-bit
+    // PNG without a colour space) multiplies per point.
+    Net v = imageIntoBaseColor(png, {{Token("colorSpace:file"), Value(Token("srgb_texture"))}});
+    v.add("/M/W", "ND_image_float", {{Token("file"), Value(png)}})
+        .connect("/M/W", "texcoord", "/M/Uv", "out")
+        .surfaceFrom("base", "/M/W", "out");
+    MaterialProgram q = compile(v);
+    ctx.values["st"] = glm::vec4(centre(3, 1), 0, 0);
+    expectNear(q.evaluate(ctx).params.baseColor, code(3, 1).x * decoded(3, 1));
+    EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
+TEST_F(MaterialProgramTest, MaterialXTiledImageAndGeomprop) {
+    // uv from the "uv" primvar; tiled twice with an offset: (uv * 2 - 0.5) wraps periodically.
+    Net n = standardSurface();
+    n.add("/M/Uv", "ND_geompropvalue_vector2", {{Token("geomprop"), Value(std::string("uv"))}})
+        .add("/M/Img", "ND_tiledimage_color3",
+             {{Token("file"), Value(png)},
+              {Token("uvtiling"), Value(glm::vec2(2.0f))},
+              {Token("uvoffset"), Value(glm::vec2(0.5f, 0.0f))}})
+        .connect("/M/Img", "texcoord", "/M/Uv", "out")
+        .surfaceFrom("base_color", "/M/Img", "out");
+    MaterialProgram p = compile(n);
+    ASSERT_EQ(p.primvarsRead().size(), 1u);
+    EXPECT_EQ(p.primvarsRead()[0], Token("uv"));
+    glm::vec2 target = centre(1, 3);                         // (0.375, 0.125)
+    glm::vec2 uv = (target + glm::vec2(0.5f, 0.0f)) / 2.0f;  // inverse of uv * 2 - offset
+    ctx.values["uv"] = glm::vec4(uv, 0, 0);
+    expectNear(p.evaluate(ctx).params.baseColor, decoded(1, 3));
+    ctx.values["uv"] = glm::vec4(uv + glm::vec2(0.5f, 0.0f), 0, 0);  // one tile on: periodic
+    expectNear(p.evaluate(ctx).params.baseColor, decoded(1, 3));
+}
+
+TEST_F(MaterialProgramTest, MaterialXNormalMapAndOpacity) {
+    std::string exr = dir.file("mx_normal.exr");
+    std::vector<float> px;
+    for (int i = 0; i < 4; ++i) px.insert(px.end(), {0.75f, 0.5f, 1.0f});
+    ASSERT_TRUE(writeImage(exr, 2, 2, 3, px, OIIO::TypeDesc::FLOAT));
+    std::string alpha = dir.file("mx_alpha.exr");
+    std::vector<float> a = {0.0f, 0.3f, 0.6f, 0.9f};
+    ASSERT_TRUE(writeImage(alpha, 2, 2, 1, a, OIIO::TypeDesc::FLOAT));
+    Net n = standardSurface();
+    n.add("/M/N", "ND_image_vector3", {{Token("file"), Value(exr)}})
+        .add("/M/Map", "ND_normalmap", {{Token("scale"), Value(2.0f)}})
+        .connect("/M/Map", "in", "/M/N", "out")
+        .surfaceFrom("normal", "/M/Map", "out")
+        .add("/M/A", "ND_image_float", {{Token("file"), Value(alpha)}})
+        .surfaceFrom("opacity", "/M/A", "out");
+    MaterialProgram p = compile(n);
+    EXPECT_TRUE(p.mayBePartlyPresent());
+    ctx.values["st"] = glm::vec4(0.25f, 0.75f, 0, 0);  // top-left texel: alpha 0
+    ShadedMaterial m = p.evaluate(ctx);
+    EXPECT_TRUE(m.hasNormalMap);
+    // (2 * 0.75 - 1) * scale 2 = 1 in x; z = 2 * 1 - 1 = 1.
+    expectNear(m.tangentNormal, glm::normalize(glm::vec3(1.0f, 0.0f, 1.0f)));
+    EXPECT_NEAR(m.opacity, 0.0f, 1e-5f);
+    EXPECT_FLOAT_EQ(p.presence(ctx), m.presence());
+    ctx.values["st"] = glm::vec4(0.75f, 0.25f, 0, 0);  // bottom-right texel: alpha 0.9
+    EXPECT_NEAR(p.evaluate(ctx).opacity, 0.9f, 1e-5f);
+    EXPECT_NEAR(p.presence(ctx), 0.9f, 1e-5f);
+    EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
+TEST_F(MaterialProgramTest, MaterialXUnsupportedNodeNotesAndKeepsTheConstant) {
+    Net n = standardSurface();
+    n.node("/M/Surface").where = "look.usda:12:9";
+    n.add("/M/Mul", "ND_multiply_color3")
+        .surface("base_color", Value(glm::vec3(0.2f, 0.3f, 0.4f)))
+        .surfaceFrom("base_color", "/M/Mul", "out");
+    n.node("/M/Mul").where = "look.usda:20:5";
+    MaterialProgram p = compile(n);
+    EXPECT_TRUE(p.isConstant());
+    expectNear(p.evaluate(ctx).params.baseColor, glm::vec3(0.2f, 0.3f, 0.4f), 1e-6f);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(notes[0],
+              "look.usda:20:5: /M/Mul: node 'ND_multiply_color3' not supported; inputs it feeds "
+              "use their authored value or default");
+    // A missing image file gives the node's default, with a note naming the node.
+    notes.clear();
+    Net missing = imageIntoBaseColor(dir.file("gone.png"),
+                                     {{Token("default"), Value(glm::vec3(0.0f, 0.5f, 0.0f))}});
+    MaterialProgram q = compile(missing);
+    EXPECT_TRUE(q.isConstant());
+    expectNear(q.evaluate(ctx).params.baseColor, glm::vec3(0.0f, 0.5f, 0.0f), 1e-6f);
+    EXPECT_TRUE(anyNoteHas(notes, "/M/Img: ")) << notes.front();
+}
+
+TEST_F(MaterialProgramTest, MaterialXAddressModesAndUnsupportedSettingsAreNoted) {
+    // Periodic (the default) wraps st 1.375 onto 0.375; clamp holds the last column.
+    MaterialProgram periodic = compile(imageIntoBaseColor(png));
+    MaterialProgram clamped =
+        compile(imageIntoBaseColor(png, {{Token("uaddressmode"), Value(std::string("clamp"))}}));
+    glm::vec2 st = centre(1, 2) + glm::vec2(1.0f, 0.0f);
+    ctx.values["st"] = glm::vec4(st, 0, 0);
+    expectNear(periodic.evaluate(ctx).params.baseColor, decoded(1, 2));
+    expectNear(clamped.evaluate(ctx).params.baseColor, decoded(3, 2));
+    EXPECT_TRUE(notes.empty()) << notes.front();
+    // Closest filtering, an unknown colour space and constant addressing with a non-black
+    // default are each noted once; the image still samples.
+    MaterialProgram p = compile(
+        imageIntoBaseColor(png, {{Token("filtertype"), Value(std::string("closest"))},
+                                 {Token("colorSpace:file"), Value(Token("acescg"))},
+                                 {Token("vaddressmode"), Value(std::string("constant"))},
+                                 {Token("default"), Value(glm::vec3(0.5f))}}));
+    EXPECT_EQ(notes.size(), 3u);
+    EXPECT_TRUE(anyNoteHas(notes, "filtertype 'closest'"));
+    EXPECT_TRUE(anyNoteHas(notes, "colorspace 'acescg'"));
+    EXPECT_TRUE(anyNoteHas(notes, "vaddressmode 'constant'"));
+    ctx.values["st"] = glm::vec4(centre(2, 2), 0, 0);
+    expectNear(p.evaluate(ctx).params.baseColor, decoded(2, 2));  // 8-bit: auto decodes sRGB
+}
+
+TEST_F(MaterialProgramTest, MaterialXPlace2dMovesTexcoords) {
+    // place2d between texcoord and image, with the given inputs; the image feeds base_color.
+    auto placed = [&](std::map<Token, Value> place) {
+        Net n = imageIntoBaseColor(png);
+        n.add("/M/Place", "ND_place2d_vector2", std::move(place))
+            .connect("/M/Place", "texcoord", "/M/Uv", "out");
+        n.node("/M/Img").inputConnections.clear();
+        n.connect("/M/Img", "texcoord", "/M/Place", "out");
+        return compile(n);
+    };
+    // SRT: (uv - pivot) / scale, rotated, - offset, + pivot. Scale 0.5, offset (0.25, 0):
+    // out = 2 uv - (0.25, 0).
+    MaterialProgram srt = placed({{Token("scale"), Value(glm::vec2(0.5f))},
+                                  {Token("offset"), Value(glm::vec2(0.25f, 0.0f))}});
+    glm::vec2 target = centre(1, 3);
+    ctx.values["st"] = glm::vec4((target + glm::vec2(0.25f, 0.0f)) / 2.0f, 0, 0);
+    expectNear(srt.evaluate(ctx).params.baseColor, decoded(1, 3));
+    // TRS: (uv - pivot - offset) rotated, / scale, + pivot: out = 2 (uv - (0.25, 0)).
+    MaterialProgram trs = placed({{Token("scale"), Value(glm::vec2(0.5f))},
+                                  {Token("offset"), Value(glm::vec2(0.25f, 0.0f))},
+                                  {Token("operationorder"), Value(1)}});
+    target = centre(2, 0);
+    ctx.values["st"] = glm::vec4(target / 2.0f + glm::vec2(0.25f, 0.0f), 0, 0);
+    expectNear(trs.evaluate(ctx).params.baseColor, decoded(2, 0));
+    // 90 degrees about the centre, clockwise as MaterialX's rotate2d: (x, y) -> (y, -x).
+    MaterialProgram rot = placed({{Token("rotate"), Value(90.0f)},
+                                  {Token("pivot"), Value(glm::vec2(0.5f))}});
+    ctx.values["st"] = glm::vec4(centre(1, 2), 0, 0);  // (-0.125, -0.125) from the pivot
+    expectNear(rot.evaluate(ctx).params.baseColor, decoded(1, 1));  // (-0.125, +0.125)
+    EXPECT_TRUE(notes.empty()) << notes.front();
 }

@@ -1,0 +1,267 @@
+// SPDX-License-Identifier: Apache-2.0
+// The MaterialX part of MaterialProgram::Compiler: Standard Surface lowered onto the principled
+// inputs, and the MaterialX texture nodes lowered onto the texture, primvar and arithmetic ops.
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+#include "delegate/shading/materialxImage.h"
+#include "delegate/shading/programCompiler.h"
+#include "delegate/shading/standardSurface.h"
+
+namespace principled::shading {
+
+using namespace hd;
+using Slot = MaterialProgram::Slot;
+using program::numeric;
+
+namespace {
+
+bool startsWith(const std::string& s, const char* prefix) {
+    return s.rfind(prefix, 0) == 0;
+}
+
+}  // namespace
+
+namespace program {
+
+int materialxComponents(const std::string& id) {
+    if (startsWith(id, "ND_normalmap")) return 3;
+    std::string type = id.substr(id.rfind('_') + 1);
+    if (type == "float" || type == "integer" || type == "boolean") return 1;
+    if (type == "vector2") return 2;
+    if (type == "color3" || type == "vector3") return 3;
+    return 4;
+}
+
+}  // namespace program
+
+std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::constant(const glm::vec4& v,
+                                                                            uint8_t count) {
+    auto reg = newRegister(v, true);
+    if (!reg) return std::nullopt;
+    return Operand{*reg, 0, count};
+}
+
+std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::mulAdd(
+    const Operand& a, const Operand& b, const std::optional<Operand>& c, uint8_t count) {
+    if (isConstant(a) && isConstant(b) && (!c || isConstant(*c)))
+        return constant(
+            constantValue(a) * constantValue(b) + (c ? constantValue(*c) : glm::vec4(0.0f)), count);
+    std::optional<Operand> addend = c ? c : constant(glm::vec4(0.0f), count);
+    if (!addend) return std::nullopt;
+    auto reg = newRegister(glm::vec4(0.0f), false);
+    if (!reg) return std::nullopt;
+    _prog._ops.push_back({Op::Kind::MulAdd, *reg, a, -1, b, *addend});
+    return Operand{*reg, 0, count};
+}
+
+std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::dot(const Operand& a,
+                                                                       const Operand& b) {
+    if (isConstant(a) && isConstant(b))
+        return constant(glm::vec4(glm::dot(constantValue(a), constantValue(b))), 1);
+    auto reg = newRegister(glm::vec4(0.0f), false);
+    if (!reg) return std::nullopt;
+    _prog._ops.push_back({Op::Kind::Dot, *reg, a, -1, b, Operand{}});
+    return Operand{*reg, 0, 1};
+}
+
+std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::inputOperand(
+    const MaterialNode& node, const char* input, const glm::vec4& fallback, uint8_t count) {
+    if (node.inputConnections.count(Token(input)))
+        if (auto c = connection(node, input)) return c;
+    glm::vec4 v = fallback;
+    if (auto it = node.parameters.find(Token(input)); it != node.parameters.end())
+        if (auto n = numeric(it->second))
+            v = n->second == 1 && count > 1 ? glm::vec4(glm::vec3(n->first.x), fallback.w)
+                                            : n->first;
+    return constant(v, count);
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::compileMaterialXNode(const MaterialNode& node,
+                                                                       bool* handled) {
+    const std::string& id = node.identifier.str();
+    *handled = true;
+    if (startsWith(id, "ND_image_")) return compileImage(node, false);
+    if (startsWith(id, "ND_tiledimage_")) return compileImage(node, true);
+    if (startsWith(id, "ND_normalmap")) return compileNormalMap(node);
+    if (id == "ND_place2d_vector2") return compilePlace2d(node);
+    int components = program::materialxComponents(id);
+    if (id == "ND_texcoord_vector2" || id == "ND_texcoord_vector3") {
+        // MaterialX texcoord index 0 is the default UV set, "st" in USD.
+        int index = 0;
+        if (auto it = node.parameters.find(Token("index")); it != node.parameters.end())
+            index = static_cast<int>(getFloat(it->second).value_or(0.0f));
+        return compileGeomprop(node, Token(index > 0 ? "st" + std::to_string(index) : "st"),
+                               components);
+    }
+    if (startsWith(id, "ND_geompropvalue_")) {
+        std::string name;
+        if (auto it = node.parameters.find(Token("geomprop")); it != node.parameters.end())
+            name = getString(it->second).value_or("");
+        if (name.empty()) note(node, "no geomprop; using the default");
+        return compileGeomprop(node, Token(name), components);
+    }
+    *handled = false;
+    return std::nullopt;
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::compileGeomprop(const MaterialNode& node,
+                                                                  const Token& name,
+                                                                  int components) {
+    glm::vec4 fallback(0.0f);
+    if (auto it = node.parameters.find(Token("default")); it != node.parameters.end())
+        if (auto n = numeric(it->second)) fallback = n->first;
+    if (name.empty()) return newRegister(fallback, true);
+    return primvarRegister(name, components, fallback);
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::compileImage(const MaterialNode& node,
+                                                               bool tiled) {
+    UvTexture tex = resolveMaterialXImage(node, _cache, _notes);
+    if (!tex.texture) return newRegister(tex.fallback, true);
+    std::optional<Operand> st = texcoordOperand(node);
+    if (!st) return std::nullopt;
+    if (tiled) {
+        auto reg = transformRegister(tiledImageTransform(node), *st);
+        if (!reg) return std::nullopt;
+        st = Operand{*reg, 0, 2};
+    }
+    return sampleTexture(tex, *st);
+}
+
+std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::texcoordOperand(
+    const MaterialNode& node) {
+    std::optional<Operand> st;
+    if (node.inputConnections.count(Token("texcoord"))) st = connection(node, "texcoord");
+    if (!st && node.parameters.count(Token("texcoord"))) {
+        st = vec2Input(node, "texcoord", glm::vec2(0.0f));
+    } else if (!st) {  // MaterialX texcoord default: the UV0 geometric property ("st")
+        auto reg = primvarRegister(Token("st"), 2, glm::vec4(0.0f));
+        if (reg) st = Operand{*reg, 0, 2};
+    }
+    return st;
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::compilePlace2d(const MaterialNode& node) {
+    for (const char* input : {"pivot", "scale", "rotate", "offset", "operationorder"})
+        if (node.inputConnections.count(Token(input)))
+            note(node, std::string("a connected '") + input +
+                           "' is not supported; using its authored value or default");
+    std::optional<Operand> st = texcoordOperand(node);
+    if (!st) return std::nullopt;
+    return transformRegister(place2dTransform(node), *st);
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::compileNormalMap(const MaterialNode& node) {
+    std::optional<Operand> in = inputOperand(node, "in", glm::vec4(0.5f, 0.5f, 1.0f, 0.0f), 3);
+    if (!in) return std::nullopt;
+    glm::vec2 s(1.0f);
+    if (auto it = node.parameters.find(Token("scale")); it != node.parameters.end())
+        if (auto n = numeric(it->second))
+            s = n->second == 1 ? glm::vec2(n->first.x) : glm::vec2(n->first);
+    if (!std::isfinite(s.x) || !std::isfinite(s.y)) s = glm::vec2(1.0f);
+    if (node.inputConnections.count(Token("scale")))
+        note(node, "a connected 'scale' is not supported; using its value");
+    if (auto it = node.parameters.find(Token("space")); it != node.parameters.end())
+        if (getString(it->second).value_or("tangent") != "tangent")
+            note(node, "only tangent-space normal maps are supported; read as tangent space");
+    // MaterialX ND_normalmap: tangent-space n = (2 in - 1) with x and y times scale.
+    auto mul = constant(glm::vec4(2.0f * s.x, 2.0f * s.y, 2.0f, 0.0f), 3);
+    auto add = constant(glm::vec4(-s.x, -s.y, -1.0f, 0.0f), 3);
+    if (!mul || !add) return std::nullopt;
+    auto out = mulAdd(*in, *mul, add, 3);
+    if (!out) return std::nullopt;
+    return out->reg;
+}
+
+void MaterialProgram::Compiler::compileStandardSurface(const MaterialNode& surface) {
+    StandardSurfaceParams s = StandardSurfaceParams::defaults(surface.identifier);
+    std::set<std::string> names;
+    for (const auto& [k, v] : surface.parameters)
+        if (!startsWith(k.str(), "colorSpace:")) names.insert(k.str());
+    for (const auto& [k, v] : surface.inputConnections) names.insert(k.str());
+    std::map<std::string, Operand> varying;
+    std::optional<Operand> constantNormal;  // a normal map folded to one value
+    std::string unused;
+    for (const std::string& name : names) {
+        if (name != "normal" && !StandardSurfaceParams().set(name, glm::vec4(0.0f), 1)) {
+            unused += (unused.empty() ? "" : ", ") + name;
+            continue;
+        }
+        // The authored value first: it stays when a connection is unusable.
+        if (auto it = surface.parameters.find(Token(name)); it != surface.parameters.end())
+            if (auto n = numeric(it->second)) s.set(name, n->first, n->second);
+        if (!surface.inputConnections.count(Token(name))) continue;
+        if (auto c = connection(surface, name.c_str())) {
+            if (!isConstant(*c))
+                varying[name] = *c;
+            else if (name == "normal")
+                constantNormal = c;
+            else
+                s.set(name, constantValue(*c), c->count);
+        }
+    }
+    if (!unused.empty()) note(surface, "inputs not used: " + unused);
+    for (auto [name, colour] :
+         {std::pair{"specular_color", s.specularColor}, std::pair{"sheen_color", s.sheenColor}})
+        if (colour.x != colour.y || colour.y != colour.z)
+            note(surface, std::string(name) + " only scales by its luminance (hue ignored)");
+
+    PreviewSurfaceParams& base = _prog._base;
+    base = mapStandardSurface(s);
+    auto bind = [&](Slot slot, const std::optional<Operand>& o) {
+        if (!o) return;
+        if (isConstant(*o))
+            program::setSlot(base, slot, constantValue(*o), o->count);
+        else
+            _prog._bindings.push_back({slot, *o});
+    };
+    auto take = [&](const char* name) -> std::optional<Operand> {
+        auto it = varying.find(name);
+        if (it == varying.end()) return std::nullopt;
+        Operand o = it->second;
+        varying.erase(it);
+        return o;
+    };
+    // A varying colour or weight: the product with its (constant or varying) partner.
+    auto product = [&](Slot slot, const char* colourName, glm::vec3 colour, const char* weightName,
+                       float weight) {
+        std::optional<Operand> c = take(colourName), w = take(weightName);
+        if (!c && !w) return;
+        if (!c) c = constant(glm::vec4(colour, 0.0f), 3);
+        if (!w) w = constant(glm::vec4(weight), 1);
+        if (c && w) bind(slot, mulAdd(*c, *w, std::nullopt, 3));
+    };
+    auto scaled = [&](Slot slot, const char* name, float k) {
+        if (auto o = take(name))
+            if (auto kc = constant(glm::vec4(k), 1)) bind(slot, mulAdd(*o, *kc, std::nullopt, 1));
+    };
+    // The same mapping as mapStandardSurface(), per shading point (standardSurface.cpp cites it).
+    product(Slot::DiffuseColor, "base_color", s.baseColor, "base", s.base);
+    product(Slot::EmissiveColor, "emission_color", s.emissionColor, "emission", s.emission);
+    scaled(Slot::Specular, "specular", disneySpecularPerWeight(s));
+    scaled(Slot::Sheen, "sheen", disneySheenPerWeight(s));
+    for (auto [name, slot] :
+         {std::pair{"metalness", Slot::Metallic}, std::pair{"specular_roughness", Slot::Roughness},
+          std::pair{"specular_anisotropy", Slot::Anisotropic},
+          std::pair{"transmission", Slot::SpecTrans}, std::pair{"subsurface", Slot::Subsurface},
+          std::pair{"coat", Slot::Clearcoat},
+          std::pair{"coat_roughness", Slot::ClearcoatRoughness}})
+        bind(slot, take(name));
+    if (auto o = take("opacity"))
+        if (auto third = constant(glm::vec4(glm::vec3(1.0f / 3.0f), 0.0f), 3))
+            bind(Slot::Opacity, dot(*o, *third));
+    bind(Slot::Normal, constantNormal);
+    if (auto o = take("normal")) {
+        bind(Slot::Normal, o);
+        base.normalVaries = true;
+    }
+    for (const auto& [name, o] : varying)
+        note(surface, "input '" + name +
+                          "' varies per shading point, which is not supported; using its "
+                          "authored value or default");
+}
+
+}  // namespace principled::shading

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <new>
+#include <tuple>
 #include <type_traits>
 
 #include "delegate/hd/token.h"
@@ -57,6 +58,7 @@ struct Hit {
     float t = 0.0f;   ///< distance along the (unit) ray
     bool backface = false;  ///< the ray hit the back of the surface (inside a closed object)
     const InstanceRecord* instance = nullptr;  ///< PointInstancer placement, else record's
+    unsigned instId = RTC_INVALID_GEOMETRY_ID;  ///< Embree geomID of the top-level instance hit
     int element = 0;  ///< authored face (meshes), 0 for implicit surfaces
     unsigned triangle = 0;
     float u = 0.0f, v = 0.0f;  ///< barycentrics of corners 1 and 2
@@ -87,6 +89,7 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     const InstanceRecord* placed =
         inst < scene.instanceByInstance.size() ? scene.instanceByInstance[inst] : nullptr;
     hit->instance = placed;
+    hit->instId = inst;
     const glm::mat3 normalToWorld =
         placed ? placed->normalToWorld : rec.normalToWorld;
     hit->p = ray.origin + rh.ray.tfar * ray.direction;
@@ -173,11 +176,19 @@ glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3&
     return p + (glm::dot(dir, ng) >= 0.0f ? scale : -scale) * ng;
 }
 
-// The mesh light that holds the emitting triangles of material `material` of prim `rec` (the
-// prim's lights are consecutive, one per emitting material), or null.
-const LightRecord* meshLightOf(const std::vector<LightRecord>& lights, const GeometryRecord& rec, int material) {
-    for (int i = rec.emissiveLight; i >= 0 && i < rec.emissiveLight + rec.emissiveLightCount &&
-                                    i < int(lights.size()); ++i)
+// The mesh light that holds the emitting triangles of material `material` at a hit: among the
+// lights of the hit's placed copy (instanced prototypes) or of its prim (consecutive, one per
+// emitting material); null when none does.
+const LightRecord* meshLightOf(const SceneSnapshot& scene, const GeometryRecord& rec, unsigned instId,
+                               int material) {
+    int first = rec.emissiveLight, count = rec.emissiveLightCount;
+    if (instId < scene.instanceByInstance.size() && scene.instanceByInstance[instId]) {
+        // A placed copy of an instanced prototype: its own lights, if it got any (budget).
+        if (instId >= scene.instanceLights.size()) return nullptr;
+        std::tie(first, count) = scene.instanceLights[instId];
+    }
+    const auto& lights = scene.lights;
+    for (int i = first; i >= 0 && i < first + count && i < int(lights.size()); ++i)
         if (lights[size_t(i)].meshMaterial == material) return &lights[size_t(i)];
     return nullptr;
 }
@@ -403,7 +414,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (mat->emission != glm::vec3(0.0f)) {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
             float lightPdf = 0.0f;
-            if (const LightRecord* ml = meshLightOf(lights, rec, materialIndex))
+            if (const LightRecord* ml = meshLightOf(_scene, rec, hit.instId, materialIndex))
                 lightPdf = ml->pickProbability * meshLightPdf(*ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f

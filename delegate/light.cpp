@@ -235,6 +235,10 @@ void Light::finalize(RenderParam* renderParam) {
 }
 
 void prepareMeshLight(LightRecord* l) {
+    prepareMeshLight(l, l->mesh ? l->mesh->objectToWorld : glm::mat4(1.0f));
+}
+
+void prepareMeshLight(LightRecord* l, const glm::mat4& objectToWorld) {
     auto world = std::make_shared<std::vector<MeshLightTriangle>>();
     if (l->mesh && l->meshTriangles) {
         const GeometryRecord& g = *l->mesh;
@@ -242,9 +246,9 @@ void prepareMeshLight(LightRecord* l) {
         for (uint32_t t : *l->meshTriangles) {
             const glm::uvec3& tri = g.triangles[t];
             MeshLightTriangle m;
-            m.a = glm::vec3(g.objectToWorld * glm::vec4(g.points[tri.x], 1.0f));
-            m.b = glm::vec3(g.objectToWorld * glm::vec4(g.points[tri.y], 1.0f));
-            m.c = glm::vec3(g.objectToWorld * glm::vec4(g.points[tri.z], 1.0f));
+            m.a = glm::vec3(objectToWorld * glm::vec4(g.points[tri.x], 1.0f));
+            m.b = glm::vec3(objectToWorld * glm::vec4(g.points[tri.y], 1.0f));
+            m.c = glm::vec3(objectToWorld * glm::vec4(g.points[tri.z], 1.0f));
             glm::vec3 n = glm::cross(m.b - m.a, m.c - m.a);
             float len = glm::length(n);
             // A zero-area triangle keeps a zero normal: the samplers reject it.

@@ -28,7 +28,9 @@ private:
 
 /// Commit-time tables of mesh light l (kind Mesh, mesh and meshTriangles set): its emitting
 /// triangles in world space with their normals and areas (l->meshWorld), read by sampleLight()
-/// and meshLightPdf() instead of transforming the mesh's points per sample.
+/// and meshLightPdf() instead of transforming the mesh's points per sample. The mesh's points
+/// are placed by objectToWorld (a PointInstancer or scene-graph instance), else by the mesh's own.
 void prepareMeshLight(LightRecord* l);
+void prepareMeshLight(LightRecord* l, const glm::mat4& objectToWorld);
 
 }  // namespace principled::embree

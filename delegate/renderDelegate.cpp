@@ -159,13 +159,24 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
     if (lightTable || meshLights) {
         _snapshot.lights = _sceneLights;
         const int firstMeshLight = int(_snapshot.lights.size());
-        for (size_t i = 0; i < _meshLights.size(); ++i) {
-            GeometryRecord* r = _meshLightRecords[i];
-            if (i == 0 || _meshLightRecords[i - 1] != r) r->emissiveLight = firstMeshLight + int(i);
-            _snapshot.lights.push_back(_meshLights[i]);
+        _snapshot.lights.insert(_snapshot.lights.end(), _meshLights.begin(), _meshLights.end());
+        // Where each prim's (or placed copy's) lights are: the integrator weights a BSDF ray that
+        // hits emitting geometry against the light holding that triangle.
+        _snapshot.instanceLights.clear();
+        for (const MeshLightGroup& g : _meshLightGroups) {
+            const int first = firstMeshLight + g.first;
+            if (g.instance == RTC_INVALID_GEOMETRY_ID) {
+                g.record->emissiveLight = first;
+                g.record->emissiveLightCount = g.count;
+                continue;
+            }
+            if (g.instance >= _snapshot.instanceLights.size())
+                _snapshot.instanceLights.resize(size_t(g.instance) + 1, {-1, 0});
+            _snapshot.instanceLights[g.instance] = {first, g.count};
         }
         _snapshot.usingDefaultLight = false;
-        if (_snapshot.lights.empty() && intSetting("defaultLighting", 1) != 0) {
+        // Emissive geometry lights the scene even when none of it could be made a light.
+        if (_snapshot.lights.empty() && !_anyEmitter && intSetting("defaultLighting", 1) != 0) {
             // A scene without lights would render black; light it like an overcast sky
             // (a white dome of radiance 1) and say so in the stats.
             LightRecord dome;
@@ -222,13 +233,15 @@ bool EmbreeRenderDelegate::mayEmit(const GeometryRecord* r) const {
 
 void EmbreeRenderDelegate::buildMeshLights() {
     _meshLights.clear();
-    _meshLightRecords.clear();
+    _meshLightGroups.clear();
+    _anyEmitter = false;
     // Triangle meshes whose material emits become lights NEE can sample, one light per emitting
     // material of the prim (so a BSDF ray that hits an emitting triangle always finds the light
-    // that could have sampled it, and weights it against that light's pdf). A textured emission
-    // is evaluated at each sampled point; its radiance here is an estimate for picking lights.
-    // PointInstancer copies are still found by BSDF sampling only. Ordered by prim id, then
-    // material, so the light list does not depend on pointer order.
+    // that could have sampled it, and weights it against that light's pdf), and per placed copy
+    // of an instanced prototype (PointInstancers, instanceable prims) up to a triangle budget.
+    // A textured emission is evaluated at each sampled point; its radiance here is an estimate
+    // for picking lights. Ordered by prim id, then instance, then material, so the light list
+    // does not depend on pointer order.
     std::vector<GeometrySource*> sources(_param->geometry().begin(), _param->geometry().end());
     std::sort(sources.begin(), sources.end(),
               [](GeometrySource* a, GeometrySource* b) { return a->record()->primId < b->record()->primId; });
@@ -237,70 +250,96 @@ void EmbreeRenderDelegate::buildMeshLights() {
         const MaterialRecord& m = _snapshot.materials[size_t(mi)];
         return m.mayEmit || m.constant.emission != glm::vec3(0.0f);
     };
+    // Instanced emitters copy their emitting triangles per placement (≈ 60 bytes each).
+    constexpr size_t kInstancedTriangleBudget = size_t(1) << 20;
+    size_t instancedTriangles = 0;
     for (GeometrySource* g : sources) {
         GeometryRecord* r = g->record();
         r->emissiveLight = -1;
         r->emissiveLightCount = 0;
-        if (r->kind != GeometryRecord::Kind::Triangles || g->instanceId() == RTC_INVALID_GEOMETRY_ID) continue;
-        if (g->instanceGeomIds()) continue;  // an instancer prototype: its record is not placed
-        std::vector<int> materials;          // the emitting materials this prim uses, sorted
+        if (r->kind != GeometryRecord::Kind::Triangles) continue;
+        const std::vector<unsigned>* ids = g->instanceGeomIds();
+        if (!ids && g->instanceId() == RTC_INVALID_GEOMETRY_ID) continue;
+        std::vector<int> materials;  // the emitting materials this prim uses, sorted
         if (emits(r->materialIndex)) materials.push_back(r->materialIndex);
         for (int mi : r->triangleMaterial)
             if (emits(mi)) materials.push_back(mi);
+        if (materials.empty()) continue;
+        _anyEmitter = true;
         std::sort(materials.begin(), materials.end());
         materials.erase(std::unique(materials.begin(), materials.end()), materials.end());
-        for (int mi : materials) {
-            const MaterialRecord& m = _snapshot.materials[size_t(mi)];
-            auto tris = std::make_shared<std::vector<uint32_t>>();
-            auto cdf = std::make_shared<std::vector<float>>(1, 0.0f);
-            double area = 0.0;
-            for (uint32_t t = 0; t < r->triangles.size(); ++t) {
-                if (r->materialFor(t) != mi) continue;
-                const glm::uvec3& tri = r->triangles[t];
-                glm::vec3 a = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.x], 1.0f));
-                glm::vec3 b = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.y], 1.0f));
-                glm::vec3 c = glm::vec3(r->objectToWorld * glm::vec4(r->points[tri.z], 1.0f));
-                double ta = 0.5 * glm::length(glm::cross(b - a, c - a));
-                if (!(ta > 0.0) || !std::isfinite(ta)) continue;
-                area += ta;
-                tris->push_back(t);
-                cdf->push_back(float(area));
-            }
-            if (tris->empty() || !(area > 0.0)) continue;
-            for (auto& v : *cdf) v = float(v / area);
-            cdf->back() = 1.0f;
-            LightRecord l;
-            l.kind = LightRecord::Kind::Mesh;
-            l.solidAngleSampling = intSetting("lightSolidAngle", 1) != 0;
-            l.meshMaterial = mi;
-            l.texturedEmission = m.program != nullptr && m.mayEmit;
-            l.radiance = l.texturedEmission ? meanEmission(*r, m, *tris) : m.constant.emission;
-            if (!l.texturedEmission && l.radiance == glm::vec3(0.0f)) continue;
-            l.area = float(area);
-            l.mesh = r;
-            // Bounding sphere of the emitting triangles (vertex mean, farthest vertex): solid-angle
-            // sampling is used only near the light (lightSampling.cpp).
-            {
-                glm::dvec3 sum(0.0);
-                for (uint32_t t : *tris)
-                    for (int k = 0; k < 3; ++k)
-                        sum += glm::dvec3(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)));
-                l.center = glm::vec3(sum / double(3 * tris->size()));
-                float rad = 0.0f;
-                for (uint32_t t : *tris)
-                    for (int k = 0; k < 3; ++k)
-                        rad = std::max(rad, glm::length(glm::vec3(r->objectToWorld * glm::vec4(r->points[r->triangles[t][k]], 1.0f)) - l.center));
-                l.radius = rad;
-            }
-            l.meshTriangles = std::move(tris);
-            l.meshAreaCdf = std::move(cdf);
-            prepareMeshLight(&l);
-            l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
-            if (r->emissiveLightCount++ == 0) r->emissiveLight = int(_meshLights.size());  // made absolute at commit
-            _meshLights.push_back(std::move(l));
-            _meshLightRecords.push_back(r);
+        if (!ids) {
+            addMeshLights(r, materials, r->objectToWorld, RTC_INVALID_GEOMETRY_ID);
+            continue;
         }
+        const std::vector<InstanceRecord>& placed = *g->instanceRecords();
+        size_t perCopy = 0;
+        for (uint32_t t = 0; t < r->triangles.size(); ++t)
+            perCopy += std::binary_search(materials.begin(), materials.end(), r->materialFor(t));
+        size_t skipped = 0;
+        for (size_t k = 0; k < ids->size() && k < placed.size(); ++k) {
+            if (instancedTriangles + perCopy > kInstancedTriangleBudget) {
+                ++skipped;
+                continue;
+            }
+            instancedTriangles += perCopy;
+            addMeshLights(r, materials, placed[k].objectToWorld, (*ids)[k]);
+        }
+        if (skipped)
+            warn(g->instancerId(), std::to_string(skipped) + " emissive instances beyond the budget of " +
+                                       std::to_string(kInstancedTriangleBudget) +
+                                       " light triangles are found by BSDF sampling only (noisier)");
     }
+}
+
+void EmbreeRenderDelegate::addMeshLights(GeometryRecord* r, const std::vector<int>& materials,
+                                         const glm::mat4& objectToWorld, unsigned instance) {
+    MeshLightGroup group{r, instance, int(_meshLights.size()), 0};
+    for (int mi : materials) {
+        const MaterialRecord& m = _snapshot.materials[size_t(mi)];
+        auto tris = std::make_shared<std::vector<uint32_t>>();
+        auto cdf = std::make_shared<std::vector<float>>(1, 0.0f);
+        double area = 0.0;
+        glm::dvec3 sum(0.0);
+        auto world = [&](uint32_t point) { return glm::vec3(objectToWorld * glm::vec4(r->points[point], 1.0f)); };
+        for (uint32_t t = 0; t < r->triangles.size(); ++t) {
+            if (r->materialFor(t) != mi) continue;
+            const glm::uvec3& tri = r->triangles[t];
+            glm::vec3 a = world(tri.x), b = world(tri.y), c = world(tri.z);
+            double ta = 0.5 * glm::length(glm::cross(b - a, c - a));
+            if (!(ta > 0.0) || !std::isfinite(ta)) continue;
+            area += ta;
+            sum += glm::dvec3(a) + glm::dvec3(b) + glm::dvec3(c);
+            tris->push_back(t);
+            cdf->push_back(float(area));
+        }
+        if (tris->empty() || !(area > 0.0)) continue;
+        for (auto& v : *cdf) v = float(v / area);
+        cdf->back() = 1.0f;
+        LightRecord l;
+        l.kind = LightRecord::Kind::Mesh;
+        l.solidAngleSampling = intSetting("lightSolidAngle", 1) != 0;
+        l.meshMaterial = mi;
+        l.texturedEmission = m.program != nullptr && m.mayEmit;
+        l.radiance = l.texturedEmission ? meanEmission(*r, m, *tris) : m.constant.emission;
+        if (!l.texturedEmission && l.radiance == glm::vec3(0.0f)) continue;
+        l.area = float(area);
+        l.mesh = r;
+        // Bounding sphere of the emitting triangles (vertex mean, farthest vertex): solid-angle
+        // sampling is used only near the light (lightSampling.cpp).
+        l.center = glm::vec3(sum / double(3 * tris->size()));
+        float rad = 0.0f;
+        for (uint32_t t : *tris)
+            for (int k = 0; k < 3; ++k) rad = std::max(rad, glm::length(world(r->triangles[t][k]) - l.center));
+        l.radius = rad;
+        l.meshTriangles = std::move(tris);
+        l.meshAreaCdf = std::move(cdf);
+        prepareMeshLight(&l, objectToWorld);
+        l.visibleToCamera = false;  // the geometry itself is seen; the light is not drawn twice
+        _meshLights.push_back(std::move(l));
+        ++group.count;
+    }
+    if (group.count) _meshLightGroups.push_back(group);
 }
 
 glm::vec3 EmbreeRenderDelegate::meanEmission(const GeometryRecord& r, const MaterialRecord& m,

@@ -85,6 +85,10 @@ private:
     void updateDicing();
     void buildLightDistribution();
     void buildMeshLights();
+    /// One mesh light per material in `materials` (the emitting ones of r), r's points placed by
+    /// objectToWorld; instance is the placed copy's Embree geomID (or RTC_INVALID_GEOMETRY_ID).
+    void addMeshLights(GeometryRecord* r, const std::vector<int>& materials, const glm::mat4& objectToWorld,
+                       unsigned instance);
     /// Estimated mean of a textured emission over a mesh light's triangles (for light picking).
     glm::vec3 meanEmission(const GeometryRecord& r, const MaterialRecord& m,
                            const std::vector<uint32_t>& triangles) const;
@@ -100,7 +104,16 @@ private:
     SceneSnapshot _snapshot;
     std::vector<LightRecord> _sceneLights;  ///< the UsdLux lights, sorted by path
     std::vector<LightRecord> _meshLights;   ///< emissive meshes, by prim id (after _sceneLights)
-    std::vector<GeometryRecord*> _meshLightRecords;  ///< the prim record of each mesh light
+    /// The mesh lights of one prim, or of one placed copy of an instanced prototype (instance =
+    /// its Embree geomID; RTC_INVALID_GEOMETRY_ID for a prim drawn on its own): count lights
+    /// from _meshLights[first].
+    struct MeshLightGroup {
+        GeometryRecord* record;
+        unsigned instance;
+        int first, count;
+    };
+    std::vector<MeshLightGroup> _meshLightGroups;
+    bool _anyEmitter = false;  ///< some geometry emits (then no default dome is added)
     std::unordered_map<hd::Path, int> _materialIndex;  ///< path -> index in _snapshot.materials
     std::vector<float> _lightPower;         ///< per light, without the R^2 of distant/dome
     std::vector<char> _lightPowerScales;    ///< 1: multiply by R^2

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -178,6 +179,9 @@ struct SceneSnapshot {
     /// Also by geomID: the instance's own placement for PointInstancer instances, else null
     /// (empty when the scene has no instancer).
     std::vector<const InstanceRecord*> instanceByInstance;
+    /// Mesh lights of placed copies of instanced emitters, by Embree instance geomID: (first
+    /// light, count), (-1, 0) for none. Prims drawn on their own use GeometryRecord::emissiveLight.
+    std::vector<std::pair<int, int>> instanceLights;
     std::vector<MaterialRecord> materials;
     std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
     std::vector<float> lightCdf;                      ///< lights.size() + 1 entries, by power

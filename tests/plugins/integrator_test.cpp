@@ -450,6 +450,81 @@ TEST(Integrator, TexturedEmissionIsSampledAsALight) {
     EXPECT_LT(r["11"].noise, 0.25 * r["01"].noise) << r["11"].noise << " vs " << r["01"].noise;
 }
 
+TEST(Integrator, InstancedEmittersAreLights) {
+    // The only light comes from instanced emitters: two instanceable copies of a panel and two
+    // PointInstancer copies of another. Each placed copy is a light (before, instanced emitters
+    // were no lights at all and a white default dome was added to the "unlit" scene).
+    const std::string scene = R"(#usda 1.0
+class Xform "Lamp"
+{
+    def Mesh "Panel" (prepend apiSchemas = ["MaterialBindingAPI"])
+    {
+        uniform token subdivisionScheme = "none"
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 2, 3, 1]
+        point3f[] points = [(-0.2, -0.2, 1), (0.2, -0.2, 1), (-0.2, 0.2, 1), (0.2, 0.2, 1)]
+        rel material:binding = </Lamp/Glow>
+    }
+    def Material "Glow"
+    {
+        token outputs:surface.connect = </Lamp/Glow/S.outputs:surface>
+        def Shader "S"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor = (0, 0, 0)
+            color3f inputs:emissiveColor = (10, 10, 10)
+            token outputs:surface
+        }
+    }
+}
+def Xform "A" (instanceable = true references = </Lamp>)
+{
+    double3 xformOp:translate = (-1, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "B" (instanceable = true references = </Lamp>)
+{
+    double3 xformOp:translate = (1, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def PointInstancer "Row"
+{
+    rel prototypes = [</Row/Protos/Lamp>]
+    int[] protoIndices = [0, 0]
+    point3f[] positions = [(0, -1, 0.5), (0, 1, 0.5)]
+    def Scope "Protos"
+    {
+        def Xform "Lamp" (references = </Lamp>) {}
+    }
+}
+def Mesh "Floor"
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-4, -4, 0), (4, -4, 0), (4, 4, 0), (-4, 4, 0)]
+}
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, -3, 5)
+    float3 xformOp:rotateXYZ = (30, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ"]
+}
+)";
+    {
+        host::SessionOptions o;
+        o.width = o.height = 8;
+        o.samplesPerPixel = 1;
+        auto s = run(scene, o);
+        EXPECT_EQ(s->stats()["defaultLight"], 0.0);
+    }
+    auto r = renderStrategies(scene, 64);
+    ASSERT_GT(r["01"].stats.mean, 0.01);
+    EXPECT_TRUE(sameMean(r["11"], r["01"]));
+    EXPECT_TRUE(sameMean(r["10"], r["01"]));
+    EXPECT_LT(r["11"].noise, 0.25 * r["01"].noise) << r["11"].noise << " vs " << r["01"].noise;
+}
+
 TEST(Integrator, FarFromTheOriginRendersLikeAtTheOrigin) {
     // The same sphere-on-a-plane scene translated by 1e5: hit points and ray offsets are
     // relative to the geometry's magnitude, so shading and contact shadows survive.

@@ -103,7 +103,10 @@ struct TextureOpenResult {
 /// `loading` under the lock, reads, then publishes a new TextureVersion under the lock; others
 /// asking for the same file wait for that one read (a file is decoded once), while other files
 /// are read concurrently. invalidate() publishes stale versions and retires the old ones, whose
-/// pixels lock-free readers may still be using; collectRetired() frees them at a quiescent point.
+/// pixels lock-free readers may still be using; collectRetired() frees them at a quiescent point
+/// (the render delegate's commitResources(): no render pass runs during a commit). This is
+/// quiescent-state-based reclamation (McKenney & Slingwine 1998, "Read-Copy Update"), with
+/// the quiescent point named by the caller instead of detected.
 class TextureCache {
   public:
     struct Options {

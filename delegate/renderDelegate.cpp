@@ -90,6 +90,9 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
     // Incremental (issue 7, edit latency): each table is rebuilt only when what it depends on
     // changed. The result is what a full rebuild of the same scene gives, bit for bit (tables
     // keep the same order and indices; the light distribution uses the same arithmetic).
+    // A quiescent point for texture lookups (render passes run between commits, not during
+    // one): free the texture versions that TextureCache::invalidate() retired.
+    _textures.collectRetired();
     EmbreeRenderParam::Changes c = _param->takeChanges();
     if (!c.any()) return;
     if (_fullCommit) c.all = true;

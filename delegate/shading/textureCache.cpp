@@ -117,22 +117,25 @@ bool TextureCache::ensureSystem(std::string* error) {
 }
 
 TextureOpenResult TextureCache::open(const std::string& path) {
-    std::lock_guard<std::mutex> lock(_mutex);
     return path.find(kUdimToken) == std::string::npos ? openFile(path) : openUdim(path);
 }
 
 TextureOpenResult TextureCache::openUdim(const std::string& pattern) {
     TextureOpenResult result;
-    if (auto it = _textures.find(pattern); it != _textures.end()) {
-        result.texture = it->second.get();
-        return result;
+    {
+        std::lock_guard lock(_mutex);
+        if (auto it = _textures.find(pattern); it != _textures.end()) {
+            result.texture = it->second.get();
+            return result;
+        }
+        if (auto f = _failures.find(pattern); f != _failures.end()) {
+            result.error = f->second;
+            return result;
+        }
     }
-    if (auto f = _failures.find(pattern); f != _failures.end()) {
-        result.error = f->second;
-        return result;
-    }
-    auto set = std::make_unique<Texture>();
-    set->udimTiles.assign(kUdimTiles, nullptr);
+    // The tiles are opened (and read) one by one without the lock; openFile() reads each file
+    // once even when another thread opens the same set at the same time.
+    std::vector<const Texture*> tiles(kUdimTiles, nullptr);
     const Texture* first = nullptr;
     size_t at = pattern.find(kUdimToken);
     for (int i = 0; i < kUdimTiles; ++i) {
@@ -142,11 +145,18 @@ TextureOpenResult TextureCache::openUdim(const std::string& pattern) {
         if (!std::filesystem::exists(tile, ec)) continue;
         TextureOpenResult r = openFile(tile);
         if (r.texture) {
-            set->udimTiles[i] = r.texture;
+            tiles[i] = r.texture;
             if (!first) first = r.texture;
         } else if (r.firstReport) {
             result.error += (result.error.empty() ? "" : "; ") + r.error;
         }
+    }
+    std::lock_guard lock(_mutex);
+    if (auto it = _textures.find(pattern); it != _textures.end()) {
+        // Another thread opened the same set meanwhile (its tiles are the same Textures).
+        result.texture = it->second.get();
+        result.firstReport = !result.error.empty();
+        return result;
     }
     if (!first) {
         std::string e = "texture '" + pattern + "': no UDIM tile 1001-1100 found";
@@ -157,32 +167,97 @@ TextureOpenResult TextureCache::openUdim(const std::string& pattern) {
         return result;
     }
     // The set is described by its first tile; it has no pixels or handle of its own.
+    auto set = std::make_unique<Texture>();
     set->path = pattern;
-    set->width = first->width;
-    set->height = first->height;
-    set->channels = first->channels;
-    set->bitsPerChannel = first->bitsPerChannel;
-    set->isFloat = first->isFloat;
-    set->colorTag = first->colorTag;
-    set->hasWrapMetadata = first->hasWrapMetadata;
-    set->metadataWrapS = first->metadataWrapS;
-    set->metadataWrapT = first->metadataWrapT;
+    set->udimTiles = std::move(tiles);
+    set->udimFirst = first;
     result.texture = set.get();
     result.firstReport = !result.error.empty();
     _textures.emplace(pattern, std::move(set));
     return result;
 }
 
+// A file read without the cache's lock: its description and, within the budget, its pixels
+// (whose bytes are already counted in _residentBytes).
+struct TextureCache::Reading {
+    bool ok = false;
+    std::string error;  ///< the reason when !ok
+    std::string note;   ///< for the log: why the pixels are not resident
+    TextureInfo info;
+    std::unique_ptr<ResidentImage> pixels;
+};
+
+TextureCache::Reading TextureCache::read(const std::string& path) {
+    Reading r;
+    try {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(path, ec)) {
+            r.error = "file not found";
+            return r;
+        }
+        // The file is opened as the texture system would open it (straight alpha; PNG decoded
+        // natively to the same pixels and metadata, without loading the backend) and its finest
+        // level read into memory; the texture system is used only when a lookup needs it
+        // (handleFor).
+        std::string e;
+        std::unique_ptr<imageio::ImageReader> reader =
+            imageio::openTexture(path, &e, _options.nativePng);
+        if (!reader) {
+            r.error = e.empty() ? std::string("cannot be read") : e;
+            return r;
+        }
+        const imageio::ImageSpec& spec = reader->spec();
+        if (spec.channels < 1 || spec.width < 1 || spec.height < 1) {
+            r.error = "image has no pixels or no channels";
+            return r;
+        }
+        TextureInfo& info = r.info;
+        info.width = spec.width;
+        info.height = spec.height;
+        info.channels = spec.channels;
+        info.bitsPerChannel = spec.bitsPerChannel;
+        info.isFloat =
+            spec.format == imageio::PixelType::Float || spec.format == imageio::PixelType::Half;
+        info.colorTag = colorTag(spec, spec.fileFormat);
+        std::string wrap = spec.string("wrapmodes");
+        if (!wrap.empty()) {
+            auto comma = wrap.find(',');
+            std::string s = wrap.substr(0, comma);
+            std::string t = comma == std::string::npos ? s : wrap.substr(comma + 1);
+            info.hasWrapMetadata =
+                fromOiioName(s, &info.metadataWrapS) && fromOiioName(t, &info.metadataWrapT);
+            if (!info.hasWrapMetadata) info.metadataWrapS = info.metadataWrapT = Wrap::Black;
+        }
+        r.ok = true;
+        r.note = makeResident(r, *reader);
+    } catch (const std::exception& x) {
+        // Never leave a Texture `loading` for good: the waiting threads get this error.
+        if (r.pixels) _residentBytes.fetch_sub(r.pixels->bytes(), std::memory_order_relaxed);
+        r = Reading();
+        r.error = std::string("cannot be read (") + x.what() + ")";
+    }
+    return r;
+}
+
 TextureOpenResult TextureCache::openFile(const std::string& path) {
     TextureOpenResult result;
-    if (auto it = _textures.find(path); it != _textures.end()) {
-        if (it->second->rereadPending.load(std::memory_order_relaxed)) reread(*it->second);
-        result.texture = it->second.get();
+    std::unique_lock lock(_mutex);
+    for (;;) {
+        auto it = _textures.find(path);
+        if (it == _textures.end()) break;
+        Texture& tex = *it->second;
+        if (tex.loading) {  // first read by another thread: wait for it, then look again
+            _loaded.wait(lock);
+            continue;
+        }
+        if (tex.current.load(std::memory_order_relaxed)->stale) reread(tex, lock);
+        result.texture = &tex;
         return result;
     }
-    auto fail = [&](std::string reason) {
-        auto f = _failures.emplace(path, "texture '" + path + "': " + std::move(reason)).first;
-        result.error = f->second;
+    auto fail = [&](const std::string& reason, bool remember) {
+        std::string e = "texture '" + path + "': " + reason;
+        if (remember) _failures.emplace(path, e);
+        result.error = std::move(e);
         result.firstReport = _reported.insert(path).second;
         return result;
     };
@@ -190,46 +265,36 @@ TextureOpenResult TextureCache::openFile(const std::string& path) {
         result.error = f->second;
         return result;
     }
-    if (path.empty()) return fail("no file authored");
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) return fail("file not found");
+    if (path.empty()) return fail("no file authored", true);
 
-    // The file is opened as the texture system would open it (straight alpha; PNG decoded
-    // natively to the same pixels and metadata, without loading the backend) and its finest
-    // level read into memory; the texture system is used only when a lookup needs it
-    // (handleFor).
-    std::string e;
-    std::unique_ptr<imageio::ImageReader> reader =
-        imageio::openTexture(path, &e, _options.nativePng);
-    if (!reader) return fail(e.empty() ? std::string("cannot be read") : e);
-    const imageio::ImageSpec& spec = reader->spec();
-    if (spec.channels < 1 || spec.width < 1 || spec.height < 1)
-        return fail("image has no pixels or no channels");
-
-    auto tex = std::make_unique<Texture>();
+    // Claim the path (others opening it wait on `loading`), read without the lock, publish.
+    Texture* tex = _textures.emplace(path, std::make_unique<Texture>()).first->second.get();
     tex->path = path;
-    tex->width = spec.width;
-    tex->height = spec.height;
-    tex->channels = spec.channels;
-    tex->bitsPerChannel = spec.bitsPerChannel;
-    tex->isFloat =
-        spec.format == imageio::PixelType::Float || spec.format == imageio::PixelType::Half;
-    tex->colorTag = colorTag(spec, spec.fileFormat);
-    std::string wrap = spec.string("wrapmodes");
-    if (!wrap.empty()) {
-        auto comma = wrap.find(',');
-        std::string s = wrap.substr(0, comma);
-        std::string t = comma == std::string::npos ? s : wrap.substr(comma + 1);
-        tex->hasWrapMetadata =
-            fromOiioName(s, &tex->metadataWrapS) && fromOiioName(t, &tex->metadataWrapT);
-        if (!tex->hasWrapMetadata) tex->metadataWrapS = tex->metadataWrapT = Wrap::Black;
+    tex->loading = true;
+    const uint64_t generation = _generation;
+    lock.unlock();
+    Reading r = read(path);
+    lock.lock();
+    tex->loading = false;
+    _loaded.notify_all();
+    if (!r.ok) {
+        _textures.erase(path);  // no one holds it: it is handed out only once published
+        // A failure seen before an invalidate() that ran meanwhile is not remembered.
+        return fail(r.error, generation == _generation);
     }
-    std::string note = makeResident(*tex, *reader);
-    if (!note.empty())
-        std::fprintf(stderr, "principled: texture '%s': %s\n", path.c_str(), note.c_str());
-    const Texture* out = tex.get();
-    _textures.emplace(path, std::move(tex));
-    result.texture = out;
+    auto version = std::make_unique<TextureVersion>();
+    version->info = r.info;
+    if (generation != _generation) {
+        // invalidate() ran while the file was read: the pixels may predate an edit.
+        version->stale = true;
+        if (r.pixels) _residentBytes.fetch_sub(r.pixels->bytes(), std::memory_order_relaxed);
+    } else {
+        version->pixels = std::move(r.pixels);
+    }
+    publish(*tex, std::move(version));
+    if (!r.note.empty())
+        std::fprintf(stderr, "principled: texture '%s': %s\n", path.c_str(), r.note.c_str());
+    result.texture = tex;
     return result;
 }
 
@@ -256,10 +321,12 @@ bool TextureCache::lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, fl
     // st (0,0) is the bottom-left texel in USD; OpenImageIO's t runs from the top row down.
     // Flipping t keeps black/clamp/repeat/mirror wrapping intact (all symmetric about 0 and 1).
     t = 1.0f - t;
-    int n = std::min(texture.channels, 4);
+    // One acquire load: the description and pixels below are of the same reading of the file.
+    const TextureVersion& version = currentVersion(texture);
+    int n = std::min(version.info.channels, 4);
     float px[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const bool point = d.x == 0.0f && d.y == 0.0f && d.z == 0.0f && d.w == 0.0f;
-    if (const ResidentImage* image = point ? residentFor(texture) : nullptr) {
+    if (const ResidentImage* image = point ? version.pixels.get() : nullptr) {
         // The same bilinear on the finest level that OpenImageIO gives a zero footprint.
         image->lookup(wrapS, wrapT, s, t, px);
         n = image->channels();
@@ -288,19 +355,23 @@ bool TextureCache::lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, fl
     return true;
 }
 
-std::string TextureCache::makeResident(Texture& texture, imageio::ImageReader& reader) {
+std::string TextureCache::makeResident(Reading& reading, imageio::ImageReader& reader) {
     const size_t bytes = ResidentImage::bytesFor(reader.spec());
     const double budget = std::max(0.0, _options.maxResidentMB) * 1048576.0;
-    const size_t used = _residentBytes.load(std::memory_order_relaxed);
-    if (double(used) + double(bytes) > budget) {
-        if (budget == 0.0) return {};  // resident pixels switched off: nothing to note
-        char note[160];
-        std::snprintf(note, sizeof note,
-                      "%.1f MB would exceed the resident budget (%.1f of %.1f MB used); read "
-                      "through OpenImageIO's tile cache",
-                      double(bytes) / 1048576.0, double(used) / 1048576.0, budget / 1048576.0);
-        return note;
-    }
+    // Reserve the bytes before decoding, so files decoded at the same time stay within budget.
+    size_t used = _residentBytes.load(std::memory_order_relaxed);
+    do {
+        if (double(used) + double(bytes) > budget) {
+            if (budget == 0.0) return {};  // resident pixels switched off: nothing to note
+            char note[160];
+            std::snprintf(note, sizeof note,
+                          "%.1f MB would exceed the resident budget (%.1f of %.1f MB used); "
+                          "read through OpenImageIO's tile cache",
+                          double(bytes) / 1048576.0, double(used) / 1048576.0,
+                          budget / 1048576.0);
+            return note;
+        }
+    } while (!_residentBytes.compare_exchange_weak(used, used + bytes, std::memory_order_relaxed));
     std::string e;
     std::unique_ptr<ResidentImage> image;
     try {
@@ -308,46 +379,84 @@ std::string TextureCache::makeResident(Texture& texture, imageio::ImageReader& r
     } catch (const std::bad_alloc&) {
         // Out of memory for the whole image: the tile cache still serves it, in bounded memory.
         e = "out of memory for " + std::to_string(bytes / 1048576) + " MB";
+    } catch (...) {
+        _residentBytes.fetch_sub(bytes, std::memory_order_relaxed);
+        throw;
     }
-    if (!image) return "pixels not held in memory (" + e + "); read through OpenImageIO";
-    _residentBytes.fetch_add(image->bytes(), std::memory_order_relaxed);
-    texture.residentPixels = std::move(image);
-    texture.resident.store(texture.residentPixels.get(), std::memory_order_release);
+    if (!image) {
+        _residentBytes.fetch_sub(bytes, std::memory_order_relaxed);
+        return "pixels not held in memory (" + e + "); read through OpenImageIO";
+    }
+    // bytesFor() and bytes() count the same; keep the reservation equal to what is held.
+    if (image->bytes() != bytes) {
+        _residentBytes.fetch_add(image->bytes(), std::memory_order_relaxed);
+        _residentBytes.fetch_sub(bytes, std::memory_order_relaxed);
+    }
+    reading.pixels = std::move(image);
     return {};
 }
 
-void TextureCache::dropResident(Texture& texture) {
-    texture.resident.store(nullptr, std::memory_order_release);
-    if (texture.residentPixels) {
-        _residentBytes.fetch_sub(texture.residentPixels->bytes(), std::memory_order_relaxed);
-        texture.residentPixels.reset();
+void TextureCache::publish(Texture& texture, std::unique_ptr<TextureVersion> version) {
+    const TextureVersion* now = version.get();
+    if (texture.owned) {
+        if (texture.owned->pixels) {
+            const size_t bytes = texture.owned->pixels->bytes();
+            _residentBytes.fetch_sub(bytes, std::memory_order_relaxed);
+            _retiredBytes.fetch_add(bytes, std::memory_order_relaxed);
+        }
+        // Lock-free readers may still hold it: freed by collectRetired() or the destructor.
+        _retired.push_back(std::move(texture.owned));
     }
+    texture.owned = std::move(version);
+    texture.current.store(now, std::memory_order_release);
 }
 
-void TextureCache::reread(Texture& texture) {
-    if (!texture.rereadPending.load(std::memory_order_relaxed)) return;  // another thread did
-    dropResident(texture);
-    std::string e;
-    std::unique_ptr<imageio::ImageReader> reader =
-        imageio::openTexture(texture.path, &e, _options.nativePng);
-    // A file that is gone or unreadable now stays non-resident: the texture system reports it
-    // as it did before resident pixels (its lookups fail and the material uses its fallback).
-    if (reader) {
-        std::string note = makeResident(texture, *reader);
-        if (!note.empty())
-            std::fprintf(stderr, "principled: texture '%s': %s\n", texture.path.c_str(),
-                         note.c_str());
+const TextureVersion* TextureCache::reread(Texture& texture, std::unique_lock<std::mutex>& lock) {
+    texture.loading = true;
+    const uint64_t generation = _generation;
+    lock.unlock();
+    Reading r = read(texture.path);
+    lock.lock();
+    texture.loading = false;
+    _loaded.notify_all();
+    auto version = std::make_unique<TextureVersion>();
+    // A file that is gone or unreadable now keeps its last description and stays non-resident:
+    // the texture system reports it as it did before resident pixels (its lookups fail and the
+    // material uses its fallback).
+    version->info = r.ok ? r.info : texture.owned->info;
+    version->pixels = std::move(r.pixels);
+    const TextureVersion* read = version.get();
+    if (generation == _generation) {
+        publish(texture, std::move(version));
+    } else {
+        // invalidate() ran while the file was read, perhaps after an edit: the texture stays
+        // stale (the next access reads again), but this reading is as recent as the call that
+        // asked for it, so it serves that call from the retired list.
+        auto stale = std::make_unique<TextureVersion>();
+        stale->info = version->info;
+        stale->stale = true;
+        if (version->pixels) {
+            const size_t bytes = version->pixels->bytes();
+            _residentBytes.fetch_sub(bytes, std::memory_order_relaxed);
+            _retiredBytes.fetch_add(bytes, std::memory_order_relaxed);
+        }
+        _retired.push_back(std::move(version));
+        publish(texture, std::move(stale));
     }
-    texture.rereadPending.store(false, std::memory_order_release);
+    if (!r.note.empty())
+        std::fprintf(stderr, "principled: texture '%s': %s\n", texture.path.c_str(),
+                     r.note.c_str());
+    return read;
 }
 
-const ResidentImage* TextureCache::residentFor(const Texture& texture) const {
-    const ResidentImage* image = texture.resident.load(std::memory_order_acquire);
-    if (image || !texture.rereadPending.load(std::memory_order_acquire)) return image;
-    std::lock_guard lock(_mutex);
+const TextureVersion& TextureCache::refreshed(const Texture& texture) const {
+    std::unique_lock lock(_mutex);
     // The cache owns every Texture it hands out; only its lazily filled parts change here.
-    const_cast<TextureCache*>(this)->reread(const_cast<Texture&>(texture));
-    return texture.resident.load(std::memory_order_acquire);
+    auto& tex = const_cast<Texture&>(texture);
+    while (tex.loading) _loaded.wait(lock);  // another thread is re-reading it
+    const TextureVersion* v = tex.current.load(std::memory_order_relaxed);
+    if (v->stale) v = const_cast<TextureCache*>(this)->reread(tex, lock);
+    return *v;
 }
 
 void* TextureCache::handleFor(const Texture& texture) const {
@@ -376,21 +485,40 @@ void* TextureCache::handleFor(const Texture& texture) const {
 
 void TextureCache::invalidate() {
     std::lock_guard<std::mutex> lock(_mutex);
+    ++_generation;  // reads in progress publish stale versions
     _failures.clear();
     _reported.clear();
     for (auto& [path, texture] : _textures) {
         if (!texture->udimTiles.empty()) continue;
-        dropResident(*texture);
-        texture->rereadPending.store(true, std::memory_order_release);
         texture->handleFailed.store(false, std::memory_order_release);
+        const TextureVersion* old = texture->owned.get();
+        if (!old || old->stale) continue;  // being read for the first time, or already stale
+        // Same description, no pixels: lookups that load it re-read the file.
+        auto stale = std::make_unique<TextureVersion>();
+        stale->info = old->info;
+        stale->stale = true;
+        publish(*texture, std::move(stale));
     }
     // Process-wide, like the texture system; nothing to drop before the backend is loaded.
     if (imageio::Backend* io = imageio::loadedBackend()) io->textureSystem().invalidateAll();
 }
 
+size_t TextureCache::collectRetired() {
+    std::vector<std::unique_ptr<TextureVersion>> retired;
+    {
+        std::lock_guard lock(_mutex);
+        retired.swap(_retired);
+    }
+    size_t freed = 0;
+    for (const auto& v : retired)
+        if (v->pixels) freed += v->pixels->bytes();
+    _retiredBytes.fetch_sub(freed, std::memory_order_relaxed);
+    return freed;  // `retired` frees them here, outside the lock
+}
+
 size_t TextureCache::memoryUsed() const {
     imageio::Backend* io = imageio::loadedBackend();
-    return residentBytes() + (io ? io->textureSystem().memoryUsed() : 0);
+    return residentBytes() + retiredBytes() + (io ? io->textureSystem().memoryUsed() : 0);
 }
 
 }  // namespace principled::shading

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <map>
@@ -24,10 +25,9 @@ namespace principled::shading {
 /// What a file's metadata states about its encoding (see TextureCache::open for the rules).
 enum class ColorTag : uint8_t { Unknown, Srgb, Linear };
 
-/// A texture file as the cache opened it. Owned by the cache; stays valid until the cache is
-/// destroyed (invalidation re-reads pixels but keeps the object, and its description).
-struct Texture {
-    std::string path;
+/// What a file states about itself, as read by open() and refreshed when the file is re-read
+/// after TextureCache::invalidate().
+struct TextureInfo {
     int width = 0;
     int height = 0;
     int channels = 0;        ///< channels in the file (lookups read at most 4)
@@ -37,17 +37,46 @@ struct Texture {
     bool hasWrapMetadata = false;           ///< the file carries "wrapmodes"
     Wrap metadataWrapS = Wrap::Black;
     Wrap metadataWrapT = Wrap::Black;
+};
+
+/// One reading of a file: its description and, when held in memory, its finest level, published
+/// together so a lookup never pairs one reading's description with another's pixels. Immutable
+/// once published. A version replaced by invalidate() or a re-read is retired, not freed: it
+/// stays valid until TextureCache::collectRetired() or the cache's destruction.
+struct TextureVersion {
+    TextureInfo info;
+    /// The finest level, serving point lookups; null when the file is served by the texture
+    /// system (over the resident budget, unreadable pixels) or while `stale`.
+    std::unique_ptr<const ResidentImage> pixels;
+    bool stale = false;  ///< invalidated: the next open() or lookup re-reads the file
+};
+
+/// A texture file as the cache opened it. Owned by the cache; the object stays valid until the
+/// cache is destroyed (invalidation re-reads the file into a new TextureVersion, same Texture).
+struct Texture {
+    std::string path;
     /// A `<UDIM>` set: tile 1001 + u + 10 v at index u + 10 v (null where the set has no
-    /// file); the fields above describe the first tile found. Empty for a plain file.
+    /// file). Empty for a plain file.
     std::vector<const Texture*> udimTiles;
 
-    /// The finest level in memory, serving point lookups; null when the file is served by the
-    /// texture system (over the resident budget, unreadable pixels, a UDIM set) or after
-    /// invalidate() until re-read. The pixels are owned by `residentPixels` (changed only under
-    /// the cache's lock).
-    std::atomic<const ResidentImage*> resident{nullptr};
-    std::unique_ptr<ResidentImage> residentPixels;
-    std::atomic<bool> rereadPending{false};  ///< invalidated: re-read on next open or lookup
+    /// The current description (a UDIM set's is its first tile's). Re-read with the pixels:
+    /// after invalidate() it still states the previous reading until the next open() or
+    /// lookup re-reads the file. The reference stays valid until TextureCache::collectRetired().
+    const TextureInfo& info() const {
+        return udimFirst ? udimFirst->info() : current.load(std::memory_order_acquire)->info;
+    }
+    /// The current resident pixels; null when served by the texture system, for a UDIM set,
+    /// or after invalidate() until re-read. Valid until TextureCache::collectRetired().
+    const ResidentImage* resident() const {
+        return udimFirst ? nullptr : current.load(std::memory_order_acquire)->pixels.get();
+    }
+
+    // State kept by the cache. `current` is read lock-free; the rest changes under its lock.
+    /// The published version (never null once open() has returned this Texture).
+    std::atomic<const TextureVersion*> current{nullptr};
+    std::unique_ptr<TextureVersion> owned;  ///< owns `current`
+    bool loading = false;                   ///< a thread is reading the file without the lock
+    const Texture* udimFirst = nullptr;     ///< a UDIM set: the tile that describes it
     /// The backend's texture handle, opened by the first lookup that needs the texture system.
     std::atomic<void*> handle{nullptr};
     std::atomic<bool> handleFailed{false};  ///< the texture system could not open the file
@@ -64,11 +93,20 @@ struct TextureOpenResult {
 
 /// Shared texture store for all materials of a render delegate.
 ///
-/// Thread safety: open() locks; sample() is lock-free in this class and may be called from any
-/// number of render threads (OpenImageIO keeps per-thread state itself), except the first lookup
-/// of a texture that needs the texture system (it opens the handle) or follows invalidate()
-/// (it re-reads the file), which take the lock once. invalidate() frees resident pixels: it
-/// must not run while lookups are in flight (call it between renders).
+/// Thread safety: every member may be called from any thread at any time, invalidate() included
+/// (collectRetired() has a precondition, below). Point lookups of resident pixels are lock-free
+/// and free of reference counting: one acquire load of Texture::current. They lock only when
+/// the texture is stale (after invalidate(): they re-read it) or needs the texture system (the
+/// first such lookup opens the handle); OpenImageIO keeps per-thread state itself.
+///
+/// Files are read and decoded without the cache's lock: the opening thread marks the Texture
+/// `loading` under the lock, reads, then publishes a new TextureVersion under the lock; others
+/// asking for the same file wait for that one read (a file is decoded once), while other files
+/// are read concurrently. invalidate() publishes stale versions and retires the old ones, whose
+/// pixels lock-free readers may still be using; collectRetired() frees them at a quiescent point
+/// (the render delegate's commitResources(): no render pass runs during a commit). This is
+/// quiescent-state-based reclamation (McKenney & Slingwine 1998, "Read-Copy Update"), with
+/// the quiescent point named by the caller instead of detected.
 class TextureCache {
   public:
     struct Options {
@@ -121,27 +159,50 @@ class TextureCache {
         return rgba;
     }
 
-    /// Forgets failures and drops cached pixels (resident ones and OpenImageIO's tiles) so
-    /// files edited on disk are read again by the next open() or lookup.
+    /// Forgets failures and drops cached pixels (OpenImageIO's tiles; resident ones are
+    /// retired) so files edited on disk are read again, with their description, by the next
+    /// open() or lookup. Safe while lookups run on other threads: a lookup already holding the
+    /// previous version finishes on it (retired, not freed), later ones read the file again.
     void invalidate();
 
-    /// Bytes of texture memory currently held: resident pixels plus OpenImageIO's tiles.
+    /// Frees the versions (pixels and descriptions) retired by invalidate() and re-reads.
+    /// Call it at a quiescent point, e.g. between render passes: no lookup may be in flight
+    /// and no TextureInfo reference or ResidentImage pointer taken before the call may be used
+    /// after it. Returns the pixel bytes freed.
+    size_t collectRetired();
+
+    /// Bytes of texture memory currently held: resident pixels (retired ones included) plus
+    /// OpenImageIO's tiles.
     size_t memoryUsed() const;
-    /// Bytes of resident pixels alone (within Options::maxResidentMB).
+    /// Bytes of current resident pixels (within Options::maxResidentMB; includes reads in
+    /// progress, which reserve their bytes first).
     size_t residentBytes() const { return _residentBytes.load(std::memory_order_relaxed); }
+    /// Bytes of retired resident pixels awaiting collectRetired() (outside the budget).
+    size_t retiredBytes() const { return _retiredBytes.load(std::memory_order_relaxed); }
 
   private:
-    TextureOpenResult openFile(const std::string& path);     ///< _mutex held
-    TextureOpenResult openUdim(const std::string& pattern);  ///< _mutex held
+    struct Reading;  ///< a file read without the lock (textureCache.cpp)
+    TextureOpenResult openFile(const std::string& path);     ///< locks; reads unlocked
+    TextureOpenResult openUdim(const std::string& pattern);  ///< locks; reads unlocked
     bool lookupFile(const Texture& texture, Wrap wrapS, Wrap wrapT, float s, float t,
                     const glm::vec4& footprint, glm::vec4* rgba) const;
-    /// Reads the file's pixels into memory if the budget allows (_mutex held). Returns a note
-    /// for the log when it does not, else empty.
-    std::string makeResident(Texture& texture, imageio::ImageReader& reader);
-    /// The resident pixels for a point lookup, re-reading them after invalidate() (locks once).
-    const ResidentImage* residentFor(const Texture& texture) const;
-    void reread(Texture& texture);        ///< after invalidate() (_mutex held)
-    void dropResident(Texture& texture);  ///< _mutex held
+    /// Opens, describes and (within the budget, reserved first) decodes a file. No lock held.
+    Reading read(const std::string& path);
+    /// Decodes the pixels if the budget allows (no lock held). Returns a note for the log when
+    /// it does not, else empty.
+    std::string makeResident(Reading& reading, imageio::ImageReader& reader);
+    /// The current version; a stale one is re-read first (locks; waits for a read in progress).
+    const TextureVersion& currentVersion(const Texture& texture) const {
+        const TextureVersion* v = texture.current.load(std::memory_order_acquire);
+        return v->stale ? refreshed(texture) : *v;
+    }
+    const TextureVersion& refreshed(const Texture& texture) const;
+    /// Re-reads a stale texture (lock held on entry and exit; released while reading) and
+    /// publishes the reading, or keeps the texture stale if invalidate() ran meanwhile.
+    /// Returns the reading either way (owned by the texture or the retired list).
+    const TextureVersion* reread(Texture& texture, std::unique_lock<std::mutex>& lock);
+    /// Makes `version` current and retires the previous one (_mutex held).
+    void publish(Texture& texture, std::unique_ptr<TextureVersion> version);
     /// The texture-system handle, opened on first use (locks once); null if it cannot be.
     void* handleFor(const Texture& texture) const;
 
@@ -153,8 +214,12 @@ class TextureCache {
     /// imageio::TextureSystem*, set by the first lookup that needs it (before any handle).
     std::atomic<void*> _system{nullptr};
     std::atomic<size_t> _residentBytes{0};
+    std::atomic<size_t> _retiredBytes{0};
     mutable std::mutex _mutex;
+    mutable std::condition_variable _loaded;  ///< a Texture's `loading` was cleared
+    uint64_t _generation = 0;                 ///< invalidate() calls so far
     std::map<std::string, std::unique_ptr<Texture>> _textures;
+    std::vector<std::unique_ptr<TextureVersion>> _retired;  ///< replaced, freed by collectRetired()
     std::map<std::string, std::string> _failures;  ///< path -> error
     std::set<std::string> _reported;
 };

@@ -68,10 +68,12 @@ UvTexture UvTexture::resolve(const MaterialNode& node, TextureCache& cache,
             (opened.texture ? "; missing tiles use the fallback" : "; using the fallback"));
     t.texture = opened.texture;
     const Texture* tex = t.texture;
-    t.wrapS = resolveWrap(tokenParam(node, "wrapS", "useMetadata"), tex && tex->hasWrapMetadata,
-                          tex ? tex->metadataWrapS : Wrap::Black, node, "wrapS", notes);
-    t.wrapT = resolveWrap(tokenParam(node, "wrapT", "useMetadata"), tex && tex->hasWrapMetadata,
-                          tex ? tex->metadataWrapT : Wrap::Black, node, "wrapT", notes);
+    // One description (open() re-read it if the file was invalidated): fields of one reading.
+    const TextureInfo info = tex ? tex->info() : TextureInfo();
+    t.wrapS = resolveWrap(tokenParam(node, "wrapS", "useMetadata"), tex && info.hasWrapMetadata,
+                          info.metadataWrapS, node, "wrapS", notes);
+    t.wrapT = resolveWrap(tokenParam(node, "wrapT", "useMetadata"), tex && info.hasWrapMetadata,
+                          info.metadataWrapT, node, "wrapT", notes);
     std::string cs = tokenParam(node, "sourceColorSpace", "auto");
     if (cs == "raw") {
         t.decodeSrgb = false;
@@ -89,10 +91,10 @@ UvTexture UvTexture::resolve(const MaterialNode& node, TextureCache& cache,
 bool autoDecodesSrgb(const Texture* tex) {
     // auto (spec 2.5): sRGB if the file says so, or if it is 8-bit with 3 or 4 channels.
     // A file that explicitly says linear stays raw, as USD's Hio does for a gamma of 1.
-    bool eightBitColour = tex && tex->bitsPerChannel == 8 && !tex->isFloat &&
-                          (tex->channels == 3 || tex->channels == 4);
-    return tex && (tex->colorTag == ColorTag::Srgb ||
-                   (tex->colorTag == ColorTag::Unknown && eightBitColour));
+    if (!tex) return false;
+    const TextureInfo info = tex->info();  // one reading's description
+    bool eightBitColour = info.bitsPerChannel == 8 && !info.isFloat && (info.channels == 3 || info.channels == 4);
+    return info.colorTag == ColorTag::Srgb || (info.colorTag == ColorTag::Unknown && eightBitColour);
 }
 
 glm::vec4 UvTexture::sample(const TextureCache& cache, glm::vec2 st,

@@ -1,15 +1,21 @@
 // End-to-end renders through the render index with an in-memory scene delegate: analytic
 // radiance, determinism across thread counts, and restarts on edits.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "delegate/hd/camera.h"
 #include "delegate/renderBuffer.h"
 #include "delegate/renderDelegate.h"
+#include "delegate/renderParam.h"
 #include "delegate/renderPass.h"
 #include "delegate/shadingNormal.h"
 #include "tests/support/testSceneDelegate.h"
@@ -312,4 +318,29 @@ TEST(Render, NormalMapUsesTheUnbentInterpolatedNormal) {
     ASSERT_GT(std::abs(viewTwice / expected - 1.0), 0.02);  // the two orders are distinguishable
     EXPECT_NEAR(mean, expected, 0.005 * expected)
         << "mapping around the bent normal would give " << viewTwice;
+}
+
+// Texture versions retired by TextureCache::invalidate() (lookups may still hold them while a
+// pass runs) are freed at the next commit, when no pass runs.
+TEST(Render, CommitFreesTexturesRetiredByInvalidate) {
+    embree::EmbreeRenderDelegate delegate;
+    auto* param = static_cast<embree::EmbreeRenderParam*>(delegate.renderParam());
+    ASSERT_NE(param->textureCache(), nullptr);
+    shading::TextureCache& cache = *param->textureCache();
+    const std::string path = ::testing::TempDir() + "principled_commit_retired_" +
+                             std::to_string(::getpid()) + ".exr";
+    {
+        auto out = OIIO::ImageOutput::create(path);
+        ASSERT_TRUE(out);
+        std::vector<float> px(4 * 4 * 3, 0.5f);
+        ASSERT_TRUE(out->open(path, OIIO::ImageSpec(4, 4, 3, OIIO::TypeDesc::FLOAT)));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+        ASSERT_TRUE(out->close());
+    }
+    ASSERT_NE(cache.open(path).texture, nullptr);
+    cache.invalidate();
+    EXPECT_EQ(cache.retiredBytes(), size_t(4) * 4 * 3 * 4);
+    delegate.commitResources(nullptr);
+    EXPECT_EQ(cache.retiredBytes(), 0u);
+    std::remove(path.c_str());
 }

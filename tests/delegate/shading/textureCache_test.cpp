@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "testImages.h"
+#include "textureCacheStress.h"
 
 using namespace principled::shading;
 using principled::shading::test::TempDir;
@@ -57,8 +58,8 @@ TEST_F(TextureCacheTest, TexelCentresReturnStoredValuesAndTIsFlipped) {
     ASSERT_TRUE(writeImage(png, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT8));
     TextureOpenResult r = cache.open(png);
     ASSERT_NE(r.texture, nullptr) << r.error;
-    EXPECT_EQ(r.texture->channels, 3);
-    EXPECT_EQ(r.texture->bitsPerChannel, 8);
+    EXPECT_EQ(r.texture->info().channels, 3);
+    EXPECT_EQ(r.texture->info().bitsPerChannel, 8);
     for (int row = 0; row < kSize; ++row)
         for (int x = 0; x < kSize; ++x) {
             glm::vec4 want = code(x, row);
@@ -107,8 +108,8 @@ TEST_F(TextureCacheTest, ChannelCountRules) {
         ASSERT_TRUE(writeImage(exr, kSize, kSize, n, pixels(n), OIIO::TypeDesc::FLOAT));
         const Texture* t = cache.open(exr).texture;
         ASSERT_NE(t, nullptr);
-        EXPECT_EQ(t->channels, n);
-        EXPECT_TRUE(t->isFloat);
+        EXPECT_EQ(t->info().channels, n);
+        EXPECT_TRUE(t->info().isFloat);
         glm::vec4 c = code(2, 1);
         glm::vec4 got = cache.sample(*t, Wrap::Black, Wrap::Black, centre(2, 1));
         switch (n) {
@@ -133,7 +134,7 @@ TEST_F(TextureCacheTest, SixteenBitIsNormalised) {
     ASSERT_TRUE(writeImage(png, kSize, kSize, 3, pixels(3), OIIO::TypeDesc::UINT16));
     const Texture* t = cache.open(png).texture;
     ASSERT_NE(t, nullptr);
-    EXPECT_EQ(t->bitsPerChannel, 16);
+    EXPECT_EQ(t->info().bitsPerChannel, 16);
     glm::vec4 want = code(1, 2);
     want.w = 1.0f;
     expectNear(cache.sample(*t, Wrap::Black, Wrap::Black, centre(1, 2)), want, 2e-5f);
@@ -223,9 +224,9 @@ TEST_F(TextureCacheTest, UsdWgTextureFileFormatsLoad) {
     for (const Case& c : cases) {
         TextureOpenResult r = cache.open(root + c.file);
         ASSERT_NE(r.texture, nullptr) << c.file << ": " << r.error;
-        EXPECT_EQ(r.texture->channels, c.channels) << c.file;
-        EXPECT_EQ(r.texture->bitsPerChannel, c.bits) << c.file;
-        EXPECT_EQ(r.texture->width, 256) << c.file;
+        EXPECT_EQ(r.texture->info().channels, c.channels) << c.file;
+        EXPECT_EQ(r.texture->info().bitsPerChannel, c.bits) << c.file;
+        EXPECT_EQ(r.texture->info().width, 256) << c.file;
         for (float s : {0.1f, 0.5f, 0.9f}) {
             glm::vec4 v = cache.sample(*r.texture, Wrap::Repeat, Wrap::Repeat, glm::vec2(s, s));
             for (int i = 0; i < 4; ++i) {
@@ -252,7 +253,7 @@ TEST_F(TextureCacheTest, UdimTilesByStAndBottomUpRows) {
     TextureOpenResult r = cache.open(dir.file("t.<UDIM>.exr"));
     ASSERT_NE(r.texture, nullptr) << r.error;
     EXPECT_TRUE(r.error.empty());
-    EXPECT_EQ(r.texture->channels, 3);
+    EXPECT_EQ(r.texture->info().channels, 3);
     ASSERT_EQ(r.texture->udimTiles.size(), 100u);
     const Texture& t = *r.texture;
     auto at = [&](float s, float tt) { return cache.sample(t, Wrap::Black, Wrap::Black, {s, tt}); };
@@ -408,10 +409,10 @@ TEST(TextureCacheResident, PointLookupsEqualTheTextureSystem) {
                 TextureOpenResult a = resident.open(path), b = oiio.open(path);
                 ASSERT_NE(a.texture, nullptr) << name << ": " << a.error;
                 ASSERT_NE(b.texture, nullptr) << name << ": " << b.error;
-                ASSERT_NE(a.texture->resident.load(), nullptr) << name;
-                ASSERT_EQ(b.texture->resident.load(), nullptr) << name;
-                EXPECT_EQ(a.texture->channels, n) << name;
-                EXPECT_EQ(a.texture->bitsPerChannel, kind.bits) << name;
+                ASSERT_NE(a.texture->resident(), nullptr) << name;
+                ASSERT_EQ(b.texture->resident(), nullptr) << name;
+                EXPECT_EQ(a.texture->info().channels, n) << name;
+                EXPECT_EQ(a.texture->info().bitsPerChannel, kind.bits) << name;
                 const std::vector<glm::vec2> st = probeSt(size.x, size.y, 600);
                 for (Wrap ws : kWraps)
                     for (Wrap wt : kWraps) {
@@ -464,8 +465,8 @@ TEST(TextureCacheResident, FilesBeyondTheBudgetUseTheTextureSystem) {
     const Texture* b = cache.open(second).texture;
     ASSERT_NE(a, nullptr);
     ASSERT_NE(b, nullptr);
-    EXPECT_NE(a->resident.load(), nullptr);
-    EXPECT_EQ(b->resident.load(), nullptr);
+    EXPECT_NE(a->resident(), nullptr);
+    EXPECT_EQ(b->resident(), nullptr);
     EXPECT_EQ(cache.residentBytes(), size_t(n) * n * 4 * sizeof(float));
     EXPECT_GE(cache.memoryUsed(), cache.residentBytes());
     // Both answer with the file's texels.
@@ -492,7 +493,7 @@ TEST(TextureCacheResident, InvalidateRereadsEditedFiles) {
     ASSERT_TRUE(fill(8, 0.25f));
     const Texture* t = cache.open(path).texture;
     ASSERT_NE(t, nullptr);
-    ASSERT_NE(t->resident.load(), nullptr);
+    ASSERT_NE(t->resident(), nullptr);
     EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.25f, 1e-6f);
     EXPECT_EQ(cache.residentBytes(), size_t(8) * 8 * 3 * 4);
 
@@ -500,17 +501,17 @@ TEST(TextureCacheResident, InvalidateRereadsEditedFiles) {
     // the new file.
     ASSERT_TRUE(fill(4, 0.75f));
     cache.invalidate();
-    EXPECT_EQ(t->resident.load(), nullptr);
+    EXPECT_EQ(t->resident(), nullptr);
     EXPECT_EQ(cache.residentBytes(), 0u);
     EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.75f, 1e-6f);
-    EXPECT_NE(t->resident.load(), nullptr);
+    EXPECT_NE(t->resident(), nullptr);
     EXPECT_EQ(cache.residentBytes(), size_t(4) * 4 * 3 * 4);
 
     // ... or the next open(), which keeps the same Texture.
     ASSERT_TRUE(fill(4, 0.5f));
     cache.invalidate();
     EXPECT_EQ(cache.open(path).texture, t);
-    EXPECT_NE(t->resident.load(), nullptr);
+    EXPECT_NE(t->resident(), nullptr);
     EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.5f, 1e-6f);
 
     // Filtered lookups (texture system) see the edit as well.
@@ -543,6 +544,146 @@ TEST(TextureCacheResident, ConcurrentLookupsAfterInvalidateRereadOnce) {
     for (auto& th : threads) th.join();
     EXPECT_EQ(wrong.load(), 0);
     EXPECT_EQ(cache.residentBytes(), size_t(kSize) * kSize * 3);
+}
+
+// A reader holding the previous pixels across invalidate() keeps reading them (retired, not
+// freed) until collectRetired(); the accounting moves them from resident to retired.
+TEST(TextureCacheResident, InvalidateRetiresPixelsUntilCollected) {
+    TempDir dir;
+    TextureCache cache;
+    std::string path = dir.file("held.exr");
+    ASSERT_TRUE(writeImage(path, 8, 8, 3, std::vector<float>(8 * 8 * 3, 0.25f),
+                           OIIO::TypeDesc::FLOAT));
+    const Texture* t = cache.open(path).texture;
+    ASSERT_NE(t, nullptr);
+    const ResidentImage* held = t->resident();
+    const TextureInfo* heldInfo = &t->info();
+    ASSERT_NE(held, nullptr);
+    const size_t bytes = held->bytes();
+    EXPECT_EQ(bytes, size_t(8) * 8 * 3 * 4);
+
+    ASSERT_TRUE(writeImage(path, 4, 4, 3, std::vector<float>(4 * 4 * 3, 0.75f),
+                           OIIO::TypeDesc::FLOAT));
+    cache.invalidate();
+    EXPECT_EQ(cache.residentBytes(), 0u);
+    EXPECT_EQ(cache.retiredBytes(), bytes);
+    EXPECT_GE(cache.memoryUsed(), bytes);
+    // The held pixels and description are those of the first reading, still readable.
+    float px[4] = {0, 0, 0, 0};
+    held->lookup(Wrap::Clamp, Wrap::Clamp, 0.5f, 0.5f, px);
+    EXPECT_EQ(px[0], 0.25f);
+    EXPECT_EQ(heldInfo->width, 8);
+    // New lookups read the edited file.
+    EXPECT_EQ(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.75f);
+    EXPECT_EQ(t->info().width, 4);
+    EXPECT_EQ(cache.residentBytes(), size_t(4) * 4 * 3 * 4);
+
+    EXPECT_EQ(cache.collectRetired(), bytes);
+    EXPECT_EQ(cache.retiredBytes(), 0u);
+    EXPECT_EQ(cache.collectRetired(), 0u);
+    EXPECT_EQ(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.75f);
+}
+
+// The description is re-read with the pixels: size, channels, precision and wrap metadata of
+// the edited file, and lookups at its texel centres.
+TEST(TextureCacheResident, RereadRefreshesTheDescription) {
+    TempDir dir;
+    TextureCache cache;
+    std::string path = dir.file("resized.exr");
+    ASSERT_TRUE(writeImage(path, 8, 8, 3, std::vector<float>(8 * 8 * 3, 0.5f),
+                           OIIO::TypeDesc::HALF));
+    const Texture* t = cache.open(path).texture;
+    ASSERT_NE(t, nullptr);
+    EXPECT_EQ(t->info().width, 8);
+    EXPECT_EQ(t->info().channels, 3);
+    EXPECT_EQ(t->info().bitsPerChannel, 16);
+    EXPECT_FALSE(t->info().hasWrapMetadata);
+
+    // 16 x 4, one float channel, texel (x, row) = x + 16 row, wrap metadata.
+    const int w = 16, h = 4;
+    std::vector<float> px;
+    for (int row = 0; row < h; ++row)
+        for (int x = 0; x < w; ++x) px.push_back(float(x + w * row));
+    ASSERT_TRUE(writeImage(path, w, h, 1, px, OIIO::TypeDesc::FLOAT,
+                           {{"wrapmodes", "periodic,mirror"}}));
+    cache.invalidate();
+    // Until re-read, the previous description stands.
+    EXPECT_EQ(t->info().width, 8);
+    ASSERT_EQ(cache.open(path).texture, t);
+    const TextureInfo& info = t->info();
+    EXPECT_EQ(info.width, w);
+    EXPECT_EQ(info.height, h);
+    EXPECT_EQ(info.channels, 1);
+    EXPECT_EQ(info.bitsPerChannel, 32);
+    EXPECT_TRUE(info.isFloat);
+    EXPECT_TRUE(info.hasWrapMetadata);
+    EXPECT_EQ(info.metadataWrapS, Wrap::Repeat);
+    EXPECT_EQ(info.metadataWrapT, Wrap::Mirror);
+    ASSERT_NE(t->resident(), nullptr);
+    EXPECT_EQ(t->resident()->width(), w);
+    EXPECT_EQ(t->resident()->channels(), 1);
+    for (int row = 0; row < h; ++row)
+        for (int x = 0; x < w; ++x) {
+            glm::vec2 st((x + 0.5f) / w, 1.0f - (row + 0.5f) / h);
+            float v = float(x + w * row);
+            expectNear(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, st), glm::vec4(v, v, v, 1.0f));
+        }
+
+    // A point lookup re-reads too (no open()): back to 3 channels, 2 x 2.
+    ASSERT_TRUE(writeImage(path, 2, 2, 3, std::vector<float>(2 * 2 * 3, 0.125f),
+                           OIIO::TypeDesc::FLOAT));
+    cache.invalidate();
+    expectNear(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}),
+               glm::vec4(0.125f, 0.125f, 0.125f, 1.0f));
+    EXPECT_EQ(t->info().width, 2);
+    EXPECT_EQ(t->info().channels, 3);
+    EXPECT_FALSE(t->info().hasWrapMetadata);
+}
+
+// Render threads keep doing point lookups while the file is rewritten (size, channels and
+// colour change) and invalidate() runs in a loop. The long run is texture_cache_stress.
+TEST(TextureCacheResident, InvalidateDuringLookups) {
+    principled::shading::test::invalidateWhileLooking(1.0, 3);
+}
+
+// Two threads opening two different large-ish files both get them, resident and correct; two
+// threads opening the same file get one Texture, decoded once (one image's bytes resident).
+TEST(TextureCacheResident, ConcurrentOpensOfDifferentFiles) {
+    TempDir dir;
+    TextureCache cache;
+    const int w = 1024, h = 1024;
+    std::string paths[2] = {dir.file("large0.exr"), dir.file("large1.exr")};
+    for (int f = 0; f < 2; ++f) {
+        std::vector<float> px;
+        px.reserve(size_t(w) * h * 3);
+        for (int row = 0; row < h; ++row)
+            for (int x = 0; x < w; ++x) {
+                px.push_back(float(x));
+                px.push_back(float(row));
+                px.push_back(float(f));
+            }
+        ASSERT_TRUE(writeImage(paths[f], w, h, 3, px, OIIO::TypeDesc::FLOAT));
+    }
+    const Texture* got[4] = {};
+    std::vector<std::thread> threads;
+    for (int i = 0; i < 4; ++i)  // threads 0, 2 open file 0; 1, 3 open file 1
+        threads.emplace_back([&, i] { got[i] = cache.open(paths[i % 2]).texture; });
+    for (auto& t : threads) t.join();
+    ASSERT_NE(got[0], nullptr);
+    ASSERT_NE(got[1], nullptr);
+    EXPECT_NE(got[0], got[1]);
+    EXPECT_EQ(got[2], got[0]);
+    EXPECT_EQ(got[3], got[1]);
+    const size_t image = size_t(w) * h * 3 * 4;
+    EXPECT_EQ(cache.residentBytes(), 2 * image);  // each file decoded once
+    for (int f = 0; f < 2; ++f) {
+        ASSERT_NE(got[f]->resident(), nullptr);
+        EXPECT_EQ(got[f]->info().width, w);
+        const int x = 100 + 300 * f, row = 700 - 200 * f;
+        glm::vec2 st((x + 0.5f) / w, 1.0f - (row + 0.5f) / h);
+        expectNear(cache.sample(*got[f], Wrap::Clamp, Wrap::Clamp, st),
+                   glm::vec4(float(x), float(row), float(f), 1.0f));
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -589,21 +730,21 @@ TEST(TextureCacheNativePng, SameTextureAsThroughOpenImageIO) {
         const Texture* b = oiio.open(path).texture;
         ASSERT_NE(a, nullptr);
         ASSERT_NE(b, nullptr);
-        EXPECT_EQ(a->width, b->width);
-        EXPECT_EQ(a->height, b->height);
-        EXPECT_EQ(a->channels, b->channels);
-        EXPECT_EQ(a->bitsPerChannel, b->bitsPerChannel);
-        EXPECT_EQ(a->isFloat, b->isFloat);
-        EXPECT_EQ(a->colorTag, b->colorTag);
-        EXPECT_EQ(a->hasWrapMetadata, b->hasWrapMetadata);
-        EXPECT_EQ(a->metadataWrapS, b->metadataWrapS);
-        EXPECT_EQ(a->metadataWrapT, b->metadataWrapT);
-        ASSERT_NE(a->resident.load(), nullptr);
-        ASSERT_NE(b->resident.load(), nullptr);
+        EXPECT_EQ(a->info().width, b->info().width);
+        EXPECT_EQ(a->info().height, b->info().height);
+        EXPECT_EQ(a->info().channels, b->info().channels);
+        EXPECT_EQ(a->info().bitsPerChannel, b->info().bitsPerChannel);
+        EXPECT_EQ(a->info().isFloat, b->info().isFloat);
+        EXPECT_EQ(a->info().colorTag, b->info().colorTag);
+        EXPECT_EQ(a->info().hasWrapMetadata, b->info().hasWrapMetadata);
+        EXPECT_EQ(a->info().metadataWrapS, b->info().metadataWrapS);
+        EXPECT_EQ(a->info().metadataWrapT, b->info().metadataWrapT);
+        ASSERT_NE(a->resident(), nullptr);
+        ASSERT_NE(b->resident(), nullptr);
         int differ = 0;
-        for (int y = 0; y < a->height; ++y)
-            for (int x = 0; x < a->width; ++x) {
-                glm::vec2 st((x + 0.5f) / a->width, 1.0f - (y + 0.5f) / a->height);
+        for (int y = 0; y < a->info().height; ++y)
+            for (int x = 0; x < a->info().width; ++x) {
+                glm::vec2 st((x + 0.5f) / a->info().width, 1.0f - (y + 0.5f) / a->info().height);
                 differ += native.sample(*a, Wrap::Black, Wrap::Black, st) !=
                           oiio.sample(*b, Wrap::Black, Wrap::Black, st);
             }

@@ -97,12 +97,12 @@ TEST_F(UvTextureTest, AutoFollowsExplicitColourMetadata) {
                           {{"oiio:ColorSpace", "linear"}}));
     UvTexture t = UvTexture::resolve(textureNode(png16), cache, &notes);
     ASSERT_NE(t.texture, nullptr);
-    EXPECT_EQ(t.texture->colorTag, ColorTag::Srgb);
+    EXPECT_EQ(t.texture->info().colorTag, ColorTag::Srgb);
     EXPECT_TRUE(t.decodeSrgb);
     EXPECT_NEAR(t.sample(cache, mid).x, srgbToLinear(0.25f), 1e-4f);
     UvTexture lin = UvTexture::resolve(textureNode(png8), cache, &notes);
     ASSERT_NE(lin.texture, nullptr);
-    EXPECT_EQ(lin.texture->colorTag, ColorTag::Linear);
+    EXPECT_EQ(lin.texture->info().colorTag, ColorTag::Linear);
     EXPECT_FALSE(lin.decodeSrgb);
     EXPECT_NEAR(lin.sample(cache, mid).x, kCode, 1e-5f);
 }
@@ -178,7 +178,7 @@ TEST_F(UvTextureTest, WrapTokensAndUseMetadata) {
     EXPECT_TRUE(notes.empty());
     UvTexture meta = UvTexture::resolve(wrapNode(tagged, "useMetadata"), cache, &notes);
     ASSERT_NE(meta.texture, nullptr);
-    EXPECT_TRUE(meta.texture->hasWrapMetadata);
+    EXPECT_TRUE(meta.texture->info().hasWrapMetadata);
     EXPECT_EQ(meta.wrapS, Wrap::Repeat);
     EXPECT_EQ(meta.wrapT, Wrap::Mirror);
     // An unknown token is noted and treated as useMetadata.

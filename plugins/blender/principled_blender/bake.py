@@ -125,6 +125,26 @@ class BakeError(RuntimeError):
     pass
 
 
+#: Group interface socket types for exposing a source socket of each type.
+_INTERFACE = {"RGBA": "NodeSocketColor", "VALUE": "NodeSocketFloat", "VECTOR": "NodeSocketVector",
+              "INT": "NodeSocketInt", "BOOLEAN": "NodeSocketBool", "SHADER": "NodeSocketShader"}
+
+
+def _copy_groups(tree, copies, depth=0):
+    """Gives every GROUP node of tree (a temporary material copy's) its own copy of its group,
+    recursively, so the bake can add outputs to them without touching the user's groups.
+    The copies are appended to `copies` (removed by the caller)."""
+    if depth > 32:
+        raise BakeError("node groups nested too deep")
+    for n in tree.nodes:
+        if n.type == "GROUP" and n.node_tree is not None:
+            c = n.node_tree.copy()
+            c.name = "principled_bake_" + n.node_tree.name
+            copies.append(c)
+            n.node_tree = c
+            _copy_groups(c, copies, depth + 1)
+
+
 def _cache_put(key, px):
     CACHE.pop(key, None)
     total = sum(v.nbytes for v in CACHE.values()) + px.nbytes
@@ -263,24 +283,48 @@ class Baker:
         return self._other[0]
 
     def _source(self, nt, node_name, socket_identifier):
-        """(source socket, True for an Emission node's own output) in the material copy."""
-        node = nt.nodes.get(node_name)
+        """(source socket in the material copy's tree, True for an Emission node's own
+        output). node_name is export.GNode.key: a node inside (nested) groups has its group
+        nodes' names in front; the groups on the way are copies (_copy_groups), and the source
+        is exposed as an extra output of each enclosing group copy up to the top level."""
+        from .export import PATH_SEP, _group_output, resolve_input
+
+        names = node_name.split(PATH_SEP)
+        tree, path = nt, []
+        for g in names[:-1]:
+            gn = tree.nodes.get(g)
+            if gn is None or gn.type != "GROUP" or gn.node_tree is None:
+                raise BakeError(f"group node {g} not found")
+            path.append(gn)
+            tree = gn.node_tree
+        node = tree.nodes.get(names[-1])
         output = socket_identifier.startswith("out:")
         ident = socket_identifier[4:] if output else socket_identifier
         sock = None if node is None else next(
             (s for s in (node.outputs if output else node.inputs) if s.identifier == ident), None)
-        if sock is None or not (output or sock.is_linked):
+        if sock is None:
             raise BakeError(f"socket {node_name}.{socket_identifier} not found")
         if output:  # an Emission shader's own output (its Color x Strength)
             if node.type != "EMISSION":
                 raise BakeError(f"output of a {node.type} node")
-            return sock, True
-        link = sock.links[0]
-        while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
-            link = link.from_node.inputs[0].links[0]
-        if link.from_socket.type == "SHADER":
-            raise BakeError("fed by a shader output")
-        return link.from_socket, False
+            src = sock
+        else:
+            src, path, _v = resolve_input(sock, path)
+            if src is None:
+                raise BakeError(f"socket {node_name}.{socket_identifier} not linked")
+            if src.type == "SHADER":
+                raise BakeError("fed by a shader output")
+        for g in reversed(path):  # innermost first: one more output on each group copy
+            t = g.node_tree
+            iface = t.outputs.new(_INTERFACE.get(src.type, "NodeSocketColor"), "principled_bake")
+            go = _group_output(t) or t.nodes.new("NodeGroupOutput")
+            target = next((x for x in go.inputs if x.identifier == iface.identifier), None)
+            outer = next((x for x in g.outputs if x.identifier == iface.identifier), None)
+            if target is None or outer is None:
+                raise BakeError(f"could not expose {node_name} through group {g.name}")
+            t.links.new(src, target)
+            src = outer
+        return src, output
 
     def _bake(self, obj, material, sources, uv_name, packed=False):
         """One Cycles bake: sources [(node name, socket identifier)] is one socket, or with
@@ -294,8 +338,11 @@ class Baker:
         mcopy = material.copy()
         mcopy.name = "principled_bake_" + material.name
         img = None
+        copies = []
         try:
             nt = mcopy.node_tree
+            if any(n.type == "GROUP" for n in nt.nodes):
+                _copy_groups(nt, copies)
             found = [self._source(nt, n, i) for n, i in sources]
             for n in [n for n in nt.nodes if n.type == "OUTPUT_MATERIAL"]:
                 nt.nodes.remove(n)
@@ -364,6 +411,8 @@ class Baker:
                 if slot.link == "OBJECT":
                     slot.material = None
             bpy.data.materials.remove(mcopy)
+            for c in reversed(copies):
+                bpy.data.node_groups.remove(c)
             if img is not None:
                 bpy.data.images.remove(img)
 

@@ -39,25 +39,193 @@ def _socket_value(sock):
         return float(v)
 
 
+# ---- node groups ---------------------------------------------------------------------------
+# The translation sees a material's graph with its node groups (nested too) and reroutes
+# dissolved: a link into a GROUP node's output continues at the matching input of the group's
+# active Group Output node inside, and a link from a Group Input node continues at the matching
+# input of the group node outside. GNode/GSocket wrap a node or socket with its group path (the
+# GROUP nodes enclosing it, outermost first); nothing in the user's data is modified or copied.
+# Bakes find the same node through GNode.key (bake.Baker exposes it on copies of the groups).
+
+#: Separates the group node names of GNode.key.
+PATH_SEP = "\x1f"
+_LUMA = (0.2126, 0.7152, 0.0722)  # Blender's colour -> float conversion (linear Rec.709)
+
+
+def _group_output(tree):
+    out = None
+    for n in tree.nodes:
+        if n.type == "GROUP_OUTPUT" and (getattr(n, "is_active_output", False) or out is None):
+            out = n
+    return out
+
+
+def resolve_input(sock, path=()):
+    """Follows the link into an input socket through reroutes and (nested) groups ->
+    (source output socket or None, its group path, the socket whose default_value applies
+    when there is no source: the outermost unlinked socket reached)."""
+    s, p = sock, tuple(path)
+    for _ in range(1000):
+        if not s.is_linked:
+            return None, p, s
+        link = s.links[0]
+        n, out = link.from_node, link.from_socket
+        if n.type == "REROUTE" and n.inputs[0].is_linked:
+            s = n.inputs[0]
+        elif n.type == "GROUP" and n.node_tree is not None:
+            go = _group_output(n.node_tree)
+            inner = None if go is None else next(
+                (x for x in go.inputs if x.identifier == out.identifier), None)
+            if inner is None:
+                return out, p, s
+            s, p = inner, p + (n,)
+        elif n.type == "GROUP_INPUT" and p:
+            outer = next((x for x in p[-1].inputs if x.identifier == out.identifier), None)
+            if outer is None:
+                return out, p, s
+            s, p = outer, p[:-1]
+        else:
+            return out, p, s
+    return None, p, s
+
+
+def _convert(value, to_type):
+    """A socket default value as a socket of type to_type reads it (Blender's implicit
+    conversions between float, vector and colour sockets)."""
+    try:
+        seq = [float(x) for x in value]
+    except TypeError:
+        seq = None
+    if to_type == "RGBA":
+        if seq is None:
+            return [float(value)] * 3 + [1.0]
+        return (seq + [1.0])[:4] if len(seq) >= 3 else seq
+    if to_type == "VECTOR":
+        return [float(value)] * 3 if seq is None else seq[:3]
+    if to_type in ("VALUE", "INT", "BOOLEAN") and seq is not None:
+        if len(seq) == 4:  # colour -> float: luminance
+            return sum(w * c for w, c in zip(_LUMA, seq))
+        return sum(seq[:3]) / 3.0
+    return value
+
+
+class GSockets:
+    """A node's inputs or outputs, each wrapped as a GSocket."""
+    __slots__ = ("_coll", "_node")
+
+    def __init__(self, coll, node):
+        self._coll, self._node = coll, node
+
+    def __getitem__(self, k):
+        return GSocket(self._coll[k], self._node)
+
+    def get(self, k, default=None):
+        s = self._coll.get(k)
+        return default if s is None else GSocket(s, self._node)
+
+    def __contains__(self, k):
+        return k in self._coll
+
+    def __iter__(self):
+        return (GSocket(s, self._node) for s in self._coll)
+
+    def __len__(self):
+        return len(self._coll)
+
+
+class GNode:
+    """A node of a material's graph with the group nodes enclosing it (path, outermost
+    first). Attributes not defined here are the node's own."""
+    __slots__ = ("node", "path")
+
+    def __init__(self, node, path=()):
+        self.node, self.path = node, tuple(path)
+
+    def __getattr__(self, k):
+        return getattr(self.node, k)
+
+    @property
+    def key(self):
+        """The node's name prefixed by its group nodes' (PATH_SEP): unique in the graph."""
+        return PATH_SEP.join([g.name for g in self.path] + [self.node.name])
+
+    @property
+    def inputs(self):
+        return GSockets(self.node.inputs, self)
+
+    @property
+    def outputs(self):
+        return GSockets(self.node.outputs, self)
+
+    def __eq__(self, o):
+        return isinstance(o, GNode) and o.node == self.node and o.path == self.path
+
+    def __hash__(self):
+        return hash((self.node.as_pointer(), tuple(g.as_pointer() for g in self.path)))
+
+
+class GLink:
+    __slots__ = ("from_socket", "from_node")
+
+    def __init__(self, sock):
+        self.from_socket, self.from_node = sock, sock.node
+
+
+class GSocket:
+    """A socket of a GNode. For an input, is_linked/links/default_value look through
+    reroutes and groups (resolve_input)."""
+    __slots__ = ("sock", "node")
+
+    def __init__(self, sock, node):
+        self.sock, self.node = sock, node
+
+    def __getattr__(self, k):
+        return getattr(self.sock, k)
+
+    def _resolved(self):
+        return resolve_input(self.sock, self.node.path)
+
+    @property
+    def is_linked(self):
+        return not self.sock.is_output and self._resolved()[0] is not None
+
+    @property
+    def links(self):
+        if self.sock.is_output:
+            return self.sock.links
+        src, path, _v = self._resolved()
+        return [] if src is None else [GLink(GSocket(src, GNode(src.node, path)))]
+
+    @property
+    def default_value(self):
+        if self.sock.is_output:
+            return self.sock.default_value
+        _src, _p, v = self._resolved()
+        if v == self.sock:
+            return self.sock.default_value
+        return _convert(v.default_value, self.sock.type)
+
+
+def gsocket(sock):
+    """sock as a GSocket (a plain Blender socket: at the top level of its tree)."""
+    return sock if isinstance(sock, GSocket) else GSocket(sock, GNode(sock.node))
+
+
+def node_key(node):
+    """A (G)node's key in a material graph (GNode.key; a plain node's name)."""
+    return node.key if isinstance(node, GNode) else node.name
+
+
 def _linked_socket(sock):
-    """The output socket feeding sock (reroutes skipped), or None."""
-    if not sock.is_linked:
-        return None
-    link = sock.links[0]
-    while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
-        link = link.from_node.inputs[0].links[0]
-    return link.from_socket
+    """The output socket feeding sock through reroutes and groups (a GSocket), or None."""
+    links = gsocket(sock).links
+    return links[0].from_socket if links else None
 
 
 def _linked_node(sock):
-    if not sock.is_linked:
-        return None
-    link = sock.links[0]
-    node = link.from_node
-    # Skip reroutes.
-    while node.type == "REROUTE" and node.inputs[0].is_linked:
-        node = node.inputs[0].links[0].from_node
-    return node
+    """The node (a GNode) feeding sock through reroutes and groups, or None."""
+    s = _linked_socket(sock)
+    return None if s is None else s.node
 
 
 #: Nodes whose output depends on the view or the light path: a bake evaluates them for a view
@@ -83,9 +251,9 @@ def upstream_types(sock, limit=500):
             n = link.from_node
             if n.type == "NEW_GEOMETRY" and link.from_socket.name == "Incoming":
                 out.add("GEOMETRY_INCOMING")
-            if n.name in seen:
+            if node_key(n) in seen:
                 continue
-            seen.add(n.name)
+            seen.add(node_key(n))
             out.add(n.type)
             trees = [n.node_tree] if n.type == "GROUP" and n.node_tree is not None else []
             while trees:  # everything inside (nested) groups counts
@@ -1115,7 +1283,7 @@ class SceneExport:
                 mesh_key = _bake.mesh_fingerprint(md, mw)
                 results, pending = {}, []
                 for sock, scalar, transform in requests:
-                    rk = (sock.node.name, socket_key(sock), transform)
+                    rk = (node_key(sock.node), socket_key(sock), transform)
                     if rk in results:
                         continue
                     if uv is None:
@@ -1180,7 +1348,7 @@ class SceneExport:
             failures = []
 
             def bake(sock, scalar=False, transform=None):
-                r = results.get((sock.node.name, socket_key(sock), transform))
+                r = results.get((node_key(sock.node), socket_key(sock), transform))
                 if isinstance(r, tuple):
                     return r
                 src = _linked_node(sock)

@@ -536,12 +536,13 @@ def bsdf_node_params(node, material_name, warnings, bake=None, links=None):
     With `bake` (final renders, see _base_material_params) a linked Color becomes
     links['diffuseColor'] and a linked Glossy/Glass Roughness links['roughness']."""
     t = node.type
-    if t not in ("BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS"):
+    if t not in ("BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "BSDF_TRANSLUCENT", "BSDF_VELVET",
+                 "BSDF_ANISOTROPIC", "BSDF_REFRACTION"):
         return None
     for sock in node.inputs:
-        if sock.is_linked and sock.name != "Weight":
+        if sock.is_linked and sock.name not in ("Weight", "Normal", "Tangent"):
             usd = {"Color": "diffuseColor", "Roughness": "roughness"}.get(sock.name)
-            if t == "BSDF_DIFFUSE" and usd == "roughness":
+            if t in ("BSDF_DIFFUSE", "BSDF_TRANSLUCENT", "BSDF_VELVET") and usd == "roughness":
                 usd = None
             if usd is not None and bake is not None and links is not None:
                 r = bake(sock, scalar=usd != "diffuseColor")
@@ -550,8 +551,52 @@ def bsdf_node_params(node, material_name, warnings, bake=None, links=None):
                     continue
             warnings.append(f"material '{material_name}': {node.name} input '{sock.name}' is "
                             "linked; using the socket value")
+    for sock in ("Normal", "Tangent"):
+        if sock in node.inputs and node.inputs[sock].is_linked:
+            warnings.append(f"material '{material_name}': {node.name} input '{sock}' is "
+                            "linked; ignored")
     color = [float(c) for c in node.inputs["Color"].default_value[:3]]
+    where = f"material '{material_name}': {node.name}"
+    if t == "BSDF_TRANSLUCENT":
+        # Diffuse transmission (Lambert on the far side). Disney's diffTrans lobe is not in
+        # principled's BSDF; nearest: a rough transmission lobe without refraction or Fresnel
+        # reflection (specTrans 1, ior 1, roughness 1) tinted by Color.
+        warnings.append(f"{where}: Translucent BSDF rendered as rough transmission (ior 1, "
+                        "roughness 1): an approximation of diffuse transmission")
+        return {"diffuseColor": color, "roughness": 1.0, "metallic": 0.0, "specTrans": 1.0,
+                "ior": 1.0, "specular": 0.0}
+    if t == "BSDF_VELVET":
+        # Cycles' Velvet (Ashikhmin) is a grazing-angle sheen without a base lobe; Disney's
+        # sheen needs a base: a diffuse of Color (roughness 1: Burley's retro-reflection) with
+        # full sheen tinted by Color.
+        warnings.append(f"{where}: Velvet BSDF rendered as a diffuse of its Color with Disney "
+                        "sheen 1 (Sigma not translated)")
+        return {"diffuseColor": color, "roughness": 1.0, "specular": 0.0, "metallic": 0.0,
+                "sheen": 1.0, "sheenTint": 1.0}
     rough = float(node.inputs["Roughness"].default_value)
+    if t == "BSDF_ANISOTROPIC":
+        # Cycles 3.4: alpha_x/alpha_y = (1 + a)^2 for anisotropy a >= 0 (r^2 (1 + a), r^2/(1 + a));
+        # Disney: alpha_x/alpha_y = 1/(1 - 0.9 d), same geometric mean r^2. Matching the ratio:
+        # d = (1 - 1/(1 + |a|)^2)/0.9. a < 0 stretches along the bitangent and Rotation turns
+        # the tangent: neither is translated (the delegate's tangent frame is its own).
+        an = float(node.inputs["Anisotropy"].default_value)
+        d = min(1.0, max(0.0, (1.0 - 1.0 / (1.0 + abs(an)) ** 2) / 0.9))
+        if an < 0.0 or abs(float(node.inputs["Rotation"].default_value)) > 1e-6 or \
+                node.inputs["Anisotropy"].is_linked or node.inputs["Rotation"].is_linked:
+            warnings.append(f"{where}: anisotropy direction (negative Anisotropy, Rotation, "
+                            "links) not translated")
+        warnings.append(f"{where}: Anisotropic BSDF rendered as a metallic Disney BSDF with "
+                        f"anisotropic {d:.3g}")
+        return {"diffuseColor": color, "roughness": rough, "metallic": 1.0, "specular": 0.5,
+                "anisotropic": d}
+    if t == "BSDF_REFRACTION":
+        # Refraction only (no reflected part). Disney's transmission keeps its dielectric
+        # Fresnel reflection: specTrans 1, ior, specular 0 for the (absent) base layer.
+        warnings.append(f"{where}: Refraction BSDF rendered as Disney transmission (which "
+                        "also reflects by its Fresnel term)")
+        ior = max(1.0, float(node.inputs["IOR"].default_value))
+        return {"diffuseColor": color, "roughness": rough, "metallic": 0.0, "specTrans": 1.0,
+                "ior": ior, "specular": 0.0}
     if t == "BSDF_DIFFUSE":
         if rough > 0.0:
             warnings.append(f"material '{material_name}': Diffuse BSDF roughness (Oren-Nayar) "
@@ -661,7 +706,8 @@ MIX_DEFAULTS = {"diffuseColor": [0.0, 0.0, 0.0], "metallic": 0.0, "roughness": 0
 
 #: Shader nodes _bsdf_params translates (MIX_SHADER: when both its shaders are supported).
 SHADER_KINDS = ("BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "EMISSION",
-                "SUBSURFACE_SCATTERING", "MIX_SHADER", "BSDF_TRANSPARENT")
+                "SUBSURFACE_SCATTERING", "MIX_SHADER", "BSDF_TRANSPARENT", "ADD_SHADER",
+                "BSDF_TRANSLUCENT", "BSDF_VELVET", "BSDF_ANISOTROPIC", "BSDF_REFRACTION")
 
 
 def supported_shader(node, depth=0):
@@ -670,6 +716,10 @@ def supported_shader(node, depth=0):
         return False
     if node.type == "BSDF_TRANSPARENT":
         return depth > 0  # only as one side of a Mix Shader
+    if node.type == "ADD_SHADER":  # an unlinked side adds nothing
+        sides = [_linked_node(node.inputs[i]) for i in (0, 1)]
+        sides = [x for x in sides if x is not None]
+        return bool(sides) and all(supported_shader(x, depth + 1) for x in sides)
     if node.type != "MIX_SHADER":
         return True
     return all(supported_shader(_linked_node(node.inputs[i]), depth + 1) for i in (1, 2))
@@ -686,6 +736,8 @@ def _bsdf_params(node, material, textures, warnings, links, bake=None, bake_imag
         return emission_params(node, material.name, warnings, bake, links)
     if t == "MIX_SHADER":
         return mix_shader_params(node, material, textures, warnings, links, bake, bake_images)
+    if t == "ADD_SHADER":
+        return add_shader_params(node, material, textures, warnings, links, bake, bake_images)
     if t == "BSDF_TRANSPARENT":  # as a Mix Shader side: no surface (the other side's inputs)
         return {"opacity": 0.0}
     if t == "SUBSURFACE_SCATTERING":
@@ -816,6 +868,87 @@ def mix_shader_params(node, material, textures, warnings, links, bake=None, bake
     warnings.append(f"{where}: Mix Shader of '{a.name}' and '{b.name}' ({fac_text}) rendered "
                     "as one BSDF of blended inputs, an approximation of Cycles' mix of the two "
                     "BSDFs")
+    return out
+
+
+#: Inputs an Add Shader sums (light reflected or emitted adds up); the others are averaged.
+ADD_SUMMED = ("diffuseColor", "emissiveColor")
+
+
+def add_shader_params(node, material, textures, warnings, links, bake=None, bake_images=False):
+    """An Add Shader of two shaders _bsdf_params translates -> one Disney BSDF. Cycles sums the
+    two closures (energy may exceed 1). Approximation (warned): an Emission side adds its
+    emissiveColor to the other shader unchanged (exact); otherwise diffuseColor is the sum of
+    both sides' (clamped to 1) and emissiveColor the sum, every other input the average of
+    the two (a Mix Shader at Fac 0.5), a Transparent side's opacity 0 included. A texture on one
+    side is kept as scale * texel + bias; textured on both sides: the first side's (warned). An
+    unlinked side adds nothing: the other shader alone (exact)."""
+    a, b = _linked_node(node.inputs[0]), _linked_node(node.inputs[1])
+    if a is None or b is None:
+        one = a if b is None else b
+        return None if one is None else \
+            _bsdf_params(one, material, textures, warnings, links, bake, bake_images)
+    where = f"material '{material.name}'"
+    la, lb = {}, {}
+    pa = _bsdf_params(a, material, textures, warnings, la, bake, bake_images)
+    pb = _bsdf_params(b, material, textures, warnings, lb, bake, bake_images)
+    if pa is None or pb is None:
+        return None
+    for x, px, lx, y, py, ly in ((a, pa, la, b, pb, lb), (b, pb, lb, a, pa, la)):
+        if x.type != "EMISSION" or y.type == "EMISSION":
+            continue
+        out = dict(py)
+        links.update(ly)
+        ey = py.get("emissiveColor", [0.0, 0.0, 0.0])
+        out["emissiveColor"] = _lin(1.0, ey, 1.0, px["emissiveColor"])
+        if "emissiveColor" in lx:
+            if "emissiveColor" in ly:
+                warnings.append(f"{where}: Add Shader: emission textured on both sides; using "
+                                f"the texture of '{y.name}'")
+            else:
+                file, channel, extra, wrap = lx["emissiveColor"]
+                s0, b0 = _affine(extra)
+                links["emissiveColor"] = (file, channel, ("affine", s0, _lin(1.0, b0, 1.0, ey)),
+                                          wrap)
+        elif "emissiveColor" in ly:
+            file, channel, extra, wrap = ly["emissiveColor"]
+            s0, b0 = _affine(extra)
+            links["emissiveColor"] = (file, channel,
+                                      ("affine", s0, _lin(1.0, b0, 1.0, px["emissiveColor"])),
+                                      wrap)
+        return out
+    if a.type == "BSDF_TRANSPARENT":
+        pa, la = dict(pb, opacity=0.0), {k: v for k, v in lb.items() if k != "opacity"}
+    elif b.type == "BSDF_TRANSPARENT":
+        pb, lb = dict(pa, opacity=0.0), {k: v for k, v in la.items() if k != "opacity"}
+    out = {}
+    for k in list(dict.fromkeys(list(pa) + list(pb))):
+        va, vb = pa.get(k, MIX_DEFAULTS.get(k)), pb.get(k, MIX_DEFAULTS.get(k))
+        if va is None or vb is None:
+            out[k] = va if vb is None else vb
+        elif k in ADD_SUMMED:
+            v = _lin(1.0, va, 1.0, vb)
+            out[k] = [min(1.0, c) for c in v] if k == "diffuseColor" else v
+        else:
+            out[k] = _lin(0.5, va, 0.5, vb)
+    for k in list(dict.fromkeys(list(la) + list(lb))):
+        if la.get(k) is not None and la.get(k) is lb.get(k):
+            links[k] = la[k]
+            continue
+        if k in la and k in lb:
+            warnings.append(f"{where}: Add Shader input '{k}' textured on both sides; using the "
+                            f"texture of '{a.name}'")
+        if k == "normal":
+            links[k] = la[k] if k in la else lb[k]
+            continue
+        (file, channel, extra, wrap), other = (la[k], pb) if k in la else (lb[k], pa)
+        s0, b0 = _affine(extra)
+        ov = other.get(k, MIX_DEFAULTS.get(k, 0.0))
+        w = 1.0 if k in ADD_SUMMED else 0.5
+        links[k] = (file, channel, ("affine", _lin(w, s0), _lin(w, b0, w, ov)), wrap)
+    warnings.append(f"{where}: Add Shader of '{a.name}' and '{b.name}' rendered as one BSDF "
+                    "(colours summed, other inputs averaged), an approximation of Cycles' sum "
+                    "of the two BSDFs")
     return out
 
 

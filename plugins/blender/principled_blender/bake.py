@@ -213,7 +213,7 @@ class Baker:
                 out[i] = BakeError(OFF_THREAD)
             else:
                 todo.append((i, key))
-        scalars = [t for t in todo if sockets[t[0]][2] and not sockets[t[0]][1].startswith("out:")]
+        scalars = [t for t in todo if sockets[t[0]][2] and ":" not in sockets[t[0]][1]]
         groups = [scalars[k:k + 3] for k in range(0, len(scalars), 3)]
         groups += [[t] for t in todo if t not in scalars]
         for group in groups:
@@ -299,7 +299,8 @@ class Baker:
             tree = gn.node_tree
         node = tree.nodes.get(names[-1])
         output = socket_identifier.startswith("out:")
-        ident = socket_identifier[4:] if output else socket_identifier
+        ident = socket_identifier.split(":", 1)[1] if ":" in socket_identifier else \
+            socket_identifier
         sock = None if node is None else next(
             (s for s in (node.outputs if output else node.inputs) if s.identifier == ident), None)
         if sock is None:
@@ -348,7 +349,14 @@ class Baker:
                 nt.nodes.remove(n)
             out = nt.nodes.new("ShaderNodeOutputMaterial")
             out.target = "ALL"
-            if found[0][1]:
+            normal = sources[0][1].startswith("normal:")
+            if normal:
+                # A normal source (Bump, ...): Cycles' NORMAL bake of a Diffuse BSDF with that
+                # Normal writes the perturbed normal in the UV map's tangent space, 0.5 + 0.5 n.
+                dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
+                nt.links.new(found[0][0], dif.inputs["Normal"])
+                nt.links.new(dif.outputs[0], out.inputs["Surface"])
+            elif found[0][1]:
                 nt.links.new(found[0][0], out.inputs["Surface"])
             else:
                 em = nt.nodes.new("ShaderNodeEmission")
@@ -393,7 +401,10 @@ class Baker:
             with bpy.context.temp_override(scene=sc, view_layer=vl, active_object=tobj,
                                            object=tobj, selected_objects=[tobj],
                                            selected_editable_objects=[tobj]):
-                r = bpy.ops.object.bake(type="EMIT", margin=MARGIN, use_clear=True,
+                extra = dict(normal_space="TANGENT", normal_r="POS_X", normal_g="POS_Y",
+                             normal_b="POS_Z") if normal else {}
+                r = bpy.ops.object.bake(type="NORMAL" if normal else "EMIT", margin=MARGIN,
+                                        use_clear=True, **extra,
                                         uv_layer=uv_name or "", target="IMAGE_TEXTURES",
                                         save_mode="INTERNAL", use_selected_to_active=False)
             if "FINISHED" not in r:

@@ -1033,8 +1033,18 @@ def _principled_params(bsdf, material, textures, warnings, links, bake=None, bak
                 warnings.append(f"material '{material.name}': Normal Map without an Image "
                                 "Texture; ignored")
         else:
-            warnings.append(f"material '{material.name}': Normal linked to '{nnode.type}' "
-                            "(only a tangent-space Normal Map node is translated); ignored")
+            baked = None
+            if bake is not None:
+                # Bump (or any other normal source): Cycles bakes the perturbed shading normal
+                # into a tangent-space normal map (bake.Baker, type NORMAL), used as a Normal
+                # Map image of strength 1.
+                baked = bake(I["Normal"], transform="normal")
+            if baked is not None:
+                links["normal"] = (baked[0], "rgb", 1.0, "clamp")
+            else:
+                warnings.append(f"material '{material.name}': Normal linked to '{nnode.type}' "
+                                "(only a tangent-space Normal Map node is translated without "
+                                "baking); ignored")
     if bsdf.distribution == "MULTI_GGX":
         warnings.append(f"material '{material.name}': Multiscatter GGX rendered as GGX")
     return inputs
@@ -1434,8 +1444,9 @@ class SceneExport:
                     results[rk] = None
                     pending.append((rk, sock, scalar, transform, vd))
                 try:
-                    baked = baker.bake_many(orig, mat, [(rk[0], rk[1], scalar) for
-                                                        rk, _s, scalar, _t, _v in pending],
+                    baked = baker.bake_many(orig, mat, [(rk[0], ("normal:" if t == "normal"
+                                                                 else "") + rk[1], scalar) for
+                                                        rk, _s, scalar, t, _v in pending],
                                             mesh_key, uv.name if uv is not None else "")
                 except Exception as e:  # no Cycles (add-on disabled), ...
                     baked = [e] * len(pending)

@@ -7,6 +7,9 @@ UVs: a temporary copy of the object in a temporary scene gets a temporary copy o
 whose output is an Emission shader of that socket's source, and `bpy.ops.object.bake(type=
 'EMIT')` writes it into a float, non-colour image. The user's object, mesh and material are
 never modified: everything the bake needs is a copy, removed afterwards (also on errors).
+A socket inside node groups (export.GNode.key) is exposed through copies of its groups; a
+Principled Normal fed by a Bump node (or any source but a Normal Map) is a NORMAL bake in the
+UV map's tangent space ('normal:' + identifier).
 
 The pixels (linear, rows bottom to top) are cached for the Blender session under a key of the
 material's node tree, the object's evaluated mesh (points, UVs, matrix), the socket and the

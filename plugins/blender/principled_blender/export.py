@@ -689,9 +689,9 @@ def _base_material_params(material, textures, bake=None, bake_images=False):
     if inputs is not None:
         return inputs, links, warnings
     c = list(material.diffuse_color)[:3]
-    warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
-                    "output (nor a Diffuse, Glossy or Glass BSDF, nor a Mix Shader of two of "
-                    "them with a constant Fac); using its viewport display color")
+    warnings.append(f"material '{material.name}': the output's shader "
+                    f"('{node.type if node is not None else 'none'}') is not translated (nor "
+                    "are Mix/Add Shaders of it); using its viewport display color")
     return {"diffuseColor": c, "roughness": float(material.roughness),
             "metallic": float(material.metallic)}, links, warnings
 

@@ -7,6 +7,9 @@ UVs: a temporary copy of the object in a temporary scene gets a temporary copy o
 whose output is an Emission shader of that socket's source, and `bpy.ops.object.bake(type=
 'EMIT')` writes it into a float, non-colour image. The user's object, mesh and material are
 never modified: everything the bake needs is a copy, removed afterwards (also on errors).
+A socket inside node groups (export.GNode.key) is exposed through copies of its groups; a
+Principled Normal fed by a Bump node (or any source but a Normal Map) is a NORMAL bake in the
+UV map's tangent space ('normal:' + identifier).
 
 The pixels (linear, rows bottom to top) are cached for the Blender session under a key of the
 material's node tree, the object's evaluated mesh (points, UVs, matrix), the socket and the
@@ -125,6 +128,26 @@ class BakeError(RuntimeError):
     pass
 
 
+#: Group interface socket types for exposing a source socket of each type.
+_INTERFACE = {"RGBA": "NodeSocketColor", "VALUE": "NodeSocketFloat", "VECTOR": "NodeSocketVector",
+              "INT": "NodeSocketInt", "BOOLEAN": "NodeSocketBool", "SHADER": "NodeSocketShader"}
+
+
+def _copy_groups(tree, copies, depth=0):
+    """Gives every GROUP node of tree (a temporary material copy's) its own copy of its group,
+    recursively, so the bake can add outputs to them without touching the user's groups.
+    The copies are appended to `copies` (removed by the caller)."""
+    if depth > 32:
+        raise BakeError("node groups nested too deep")
+    for n in tree.nodes:
+        if n.type == "GROUP" and n.node_tree is not None:
+            c = n.node_tree.copy()
+            c.name = "principled_bake_" + n.node_tree.name
+            copies.append(c)
+            n.node_tree = c
+            _copy_groups(c, copies, depth + 1)
+
+
 def _cache_put(key, px):
     CACHE.pop(key, None)
     total = sum(v.nbytes for v in CACHE.values()) + px.nbytes
@@ -193,7 +216,7 @@ class Baker:
                 out[i] = BakeError(OFF_THREAD)
             else:
                 todo.append((i, key))
-        scalars = [t for t in todo if sockets[t[0]][2] and not sockets[t[0]][1].startswith("out:")]
+        scalars = [t for t in todo if sockets[t[0]][2] and ":" not in sockets[t[0]][1]]
         groups = [scalars[k:k + 3] for k in range(0, len(scalars), 3)]
         groups += [[t] for t in todo if t not in scalars]
         for group in groups:
@@ -263,24 +286,49 @@ class Baker:
         return self._other[0]
 
     def _source(self, nt, node_name, socket_identifier):
-        """(source socket, True for an Emission node's own output) in the material copy."""
-        node = nt.nodes.get(node_name)
+        """(source socket in the material copy's tree, True for an Emission node's own
+        output). node_name is export.GNode.key: a node inside (nested) groups has its group
+        nodes' names in front; the groups on the way are copies (_copy_groups), and the source
+        is exposed as an extra output of each enclosing group copy up to the top level."""
+        from .export import PATH_SEP, _group_output, resolve_input
+
+        names = node_name.split(PATH_SEP)
+        tree, path = nt, []
+        for g in names[:-1]:
+            gn = tree.nodes.get(g)
+            if gn is None or gn.type != "GROUP" or gn.node_tree is None:
+                raise BakeError(f"group node {g} not found")
+            path.append(gn)
+            tree = gn.node_tree
+        node = tree.nodes.get(names[-1])
         output = socket_identifier.startswith("out:")
-        ident = socket_identifier[4:] if output else socket_identifier
+        ident = socket_identifier.split(":", 1)[1] if ":" in socket_identifier else \
+            socket_identifier
         sock = None if node is None else next(
             (s for s in (node.outputs if output else node.inputs) if s.identifier == ident), None)
-        if sock is None or not (output or sock.is_linked):
+        if sock is None:
             raise BakeError(f"socket {node_name}.{socket_identifier} not found")
         if output:  # an Emission shader's own output (its Color x Strength)
             if node.type != "EMISSION":
                 raise BakeError(f"output of a {node.type} node")
-            return sock, True
-        link = sock.links[0]
-        while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
-            link = link.from_node.inputs[0].links[0]
-        if link.from_socket.type == "SHADER":
-            raise BakeError("fed by a shader output")
-        return link.from_socket, False
+            src = sock
+        else:
+            src, path, _v = resolve_input(sock, path)
+            if src is None:
+                raise BakeError(f"socket {node_name}.{socket_identifier} not linked")
+            if src.type == "SHADER":
+                raise BakeError("fed by a shader output")
+        for g in reversed(path):  # innermost first: one more output on each group copy
+            t = g.node_tree
+            iface = t.outputs.new(_INTERFACE.get(src.type, "NodeSocketColor"), "principled_bake")
+            go = _group_output(t) or t.nodes.new("NodeGroupOutput")
+            target = next((x for x in go.inputs if x.identifier == iface.identifier), None)
+            outer = next((x for x in g.outputs if x.identifier == iface.identifier), None)
+            if target is None or outer is None:
+                raise BakeError(f"could not expose {node_name} through group {g.name}")
+            t.links.new(src, target)
+            src = outer
+        return src, output
 
     def _bake(self, obj, material, sources, uv_name, packed=False):
         """One Cycles bake: sources [(node name, socket identifier)] is one socket, or with
@@ -294,14 +342,24 @@ class Baker:
         mcopy = material.copy()
         mcopy.name = "principled_bake_" + material.name
         img = None
+        copies = []
         try:
             nt = mcopy.node_tree
+            if any(n.type == "GROUP" for n in nt.nodes):
+                _copy_groups(nt, copies)
             found = [self._source(nt, n, i) for n, i in sources]
             for n in [n for n in nt.nodes if n.type == "OUTPUT_MATERIAL"]:
                 nt.nodes.remove(n)
             out = nt.nodes.new("ShaderNodeOutputMaterial")
             out.target = "ALL"
-            if found[0][1]:
+            normal = sources[0][1].startswith("normal:")
+            if normal:
+                # A normal source (Bump, ...): Cycles' NORMAL bake of a Diffuse BSDF with that
+                # Normal writes the perturbed normal in the UV map's tangent space, 0.5 + 0.5 n.
+                dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
+                nt.links.new(found[0][0], dif.inputs["Normal"])
+                nt.links.new(dif.outputs[0], out.inputs["Surface"])
+            elif found[0][1]:
                 nt.links.new(found[0][0], out.inputs["Surface"])
             else:
                 em = nt.nodes.new("ShaderNodeEmission")
@@ -346,7 +404,10 @@ class Baker:
             with bpy.context.temp_override(scene=sc, view_layer=vl, active_object=tobj,
                                            object=tobj, selected_objects=[tobj],
                                            selected_editable_objects=[tobj]):
-                r = bpy.ops.object.bake(type="EMIT", margin=MARGIN, use_clear=True,
+                extra = dict(normal_space="TANGENT", normal_r="POS_X", normal_g="POS_Y",
+                             normal_b="POS_Z") if normal else {}
+                r = bpy.ops.object.bake(type="NORMAL" if normal else "EMIT", margin=MARGIN,
+                                        use_clear=True, **extra,
                                         uv_layer=uv_name or "", target="IMAGE_TEXTURES",
                                         save_mode="INTERNAL", use_selected_to_active=False)
             if "FINISHED" not in r:
@@ -364,6 +425,8 @@ class Baker:
                 if slot.link == "OBJECT":
                     slot.material = None
             bpy.data.materials.remove(mcopy)
+            for c in reversed(copies):
+                bpy.data.node_groups.remove(c)
             if img is not None:
                 bpy.data.images.remove(img)
 

@@ -39,25 +39,193 @@ def _socket_value(sock):
         return float(v)
 
 
+# ---- node groups ---------------------------------------------------------------------------
+# The translation sees a material's graph with its node groups (nested too) and reroutes
+# dissolved: a link into a GROUP node's output continues at the matching input of the group's
+# active Group Output node inside, and a link from a Group Input node continues at the matching
+# input of the group node outside. GNode/GSocket wrap a node or socket with its group path (the
+# GROUP nodes enclosing it, outermost first); nothing in the user's data is modified or copied.
+# Bakes find the same node through GNode.key (bake.Baker exposes it on copies of the groups).
+
+#: Separates the group node names of GNode.key.
+PATH_SEP = "\x1f"
+_LUMA = (0.2126, 0.7152, 0.0722)  # Blender's colour -> float conversion (linear Rec.709)
+
+
+def _group_output(tree):
+    out = None
+    for n in tree.nodes:
+        if n.type == "GROUP_OUTPUT" and (getattr(n, "is_active_output", False) or out is None):
+            out = n
+    return out
+
+
+def resolve_input(sock, path=()):
+    """Follows the link into an input socket through reroutes and (nested) groups ->
+    (source output socket or None, its group path, the socket whose default_value applies
+    when there is no source: the outermost unlinked socket reached)."""
+    s, p = sock, tuple(path)
+    for _ in range(1000):
+        if not s.is_linked:
+            return None, p, s
+        link = s.links[0]
+        n, out = link.from_node, link.from_socket
+        if n.type == "REROUTE" and n.inputs[0].is_linked:
+            s = n.inputs[0]
+        elif n.type == "GROUP" and n.node_tree is not None:
+            go = _group_output(n.node_tree)
+            inner = None if go is None else next(
+                (x for x in go.inputs if x.identifier == out.identifier), None)
+            if inner is None:
+                return out, p, s
+            s, p = inner, p + (n,)
+        elif n.type == "GROUP_INPUT" and p:
+            outer = next((x for x in p[-1].inputs if x.identifier == out.identifier), None)
+            if outer is None:
+                return out, p, s
+            s, p = outer, p[:-1]
+        else:
+            return out, p, s
+    return None, p, s
+
+
+def _convert(value, to_type):
+    """A socket default value as a socket of type to_type reads it (Blender's implicit
+    conversions between float, vector and colour sockets)."""
+    try:
+        seq = [float(x) for x in value]
+    except TypeError:
+        seq = None
+    if to_type == "RGBA":
+        if seq is None:
+            return [float(value)] * 3 + [1.0]
+        return (seq + [1.0])[:4] if len(seq) >= 3 else seq
+    if to_type == "VECTOR":
+        return [float(value)] * 3 if seq is None else seq[:3]
+    if to_type in ("VALUE", "INT", "BOOLEAN") and seq is not None:
+        if len(seq) == 4:  # colour -> float: luminance
+            return sum(w * c for w, c in zip(_LUMA, seq))
+        return sum(seq[:3]) / 3.0
+    return value
+
+
+class GSockets:
+    """A node's inputs or outputs, each wrapped as a GSocket."""
+    __slots__ = ("_coll", "_node")
+
+    def __init__(self, coll, node):
+        self._coll, self._node = coll, node
+
+    def __getitem__(self, k):
+        return GSocket(self._coll[k], self._node)
+
+    def get(self, k, default=None):
+        s = self._coll.get(k)
+        return default if s is None else GSocket(s, self._node)
+
+    def __contains__(self, k):
+        return k in self._coll
+
+    def __iter__(self):
+        return (GSocket(s, self._node) for s in self._coll)
+
+    def __len__(self):
+        return len(self._coll)
+
+
+class GNode:
+    """A node of a material's graph with the group nodes enclosing it (path, outermost
+    first). Attributes not defined here are the node's own."""
+    __slots__ = ("node", "path")
+
+    def __init__(self, node, path=()):
+        self.node, self.path = node, tuple(path)
+
+    def __getattr__(self, k):
+        return getattr(self.node, k)
+
+    @property
+    def key(self):
+        """The node's name prefixed by its group nodes' (PATH_SEP): unique in the graph."""
+        return PATH_SEP.join([g.name for g in self.path] + [self.node.name])
+
+    @property
+    def inputs(self):
+        return GSockets(self.node.inputs, self)
+
+    @property
+    def outputs(self):
+        return GSockets(self.node.outputs, self)
+
+    def __eq__(self, o):
+        return isinstance(o, GNode) and o.node == self.node and o.path == self.path
+
+    def __hash__(self):
+        return hash((self.node.as_pointer(), tuple(g.as_pointer() for g in self.path)))
+
+
+class GLink:
+    __slots__ = ("from_socket", "from_node")
+
+    def __init__(self, sock):
+        self.from_socket, self.from_node = sock, sock.node
+
+
+class GSocket:
+    """A socket of a GNode. For an input, is_linked/links/default_value look through
+    reroutes and groups (resolve_input)."""
+    __slots__ = ("sock", "node")
+
+    def __init__(self, sock, node):
+        self.sock, self.node = sock, node
+
+    def __getattr__(self, k):
+        return getattr(self.sock, k)
+
+    def _resolved(self):
+        return resolve_input(self.sock, self.node.path)
+
+    @property
+    def is_linked(self):
+        return not self.sock.is_output and self._resolved()[0] is not None
+
+    @property
+    def links(self):
+        if self.sock.is_output:
+            return self.sock.links
+        src, path, _v = self._resolved()
+        return [] if src is None else [GLink(GSocket(src, GNode(src.node, path)))]
+
+    @property
+    def default_value(self):
+        if self.sock.is_output:
+            return self.sock.default_value
+        _src, _p, v = self._resolved()
+        if v == self.sock:
+            return self.sock.default_value
+        return _convert(v.default_value, self.sock.type)
+
+
+def gsocket(sock):
+    """sock as a GSocket (a plain Blender socket: at the top level of its tree)."""
+    return sock if isinstance(sock, GSocket) else GSocket(sock, GNode(sock.node))
+
+
+def node_key(node):
+    """A (G)node's key in a material graph (GNode.key; a plain node's name)."""
+    return node.key if isinstance(node, GNode) else node.name
+
+
 def _linked_socket(sock):
-    """The output socket feeding sock (reroutes skipped), or None."""
-    if not sock.is_linked:
-        return None
-    link = sock.links[0]
-    while link.from_node.type == "REROUTE" and link.from_node.inputs[0].is_linked:
-        link = link.from_node.inputs[0].links[0]
-    return link.from_socket
+    """The output socket feeding sock through reroutes and groups (a GSocket), or None."""
+    links = gsocket(sock).links
+    return links[0].from_socket if links else None
 
 
 def _linked_node(sock):
-    if not sock.is_linked:
-        return None
-    link = sock.links[0]
-    node = link.from_node
-    # Skip reroutes.
-    while node.type == "REROUTE" and node.inputs[0].is_linked:
-        node = node.inputs[0].links[0].from_node
-    return node
+    """The node (a GNode) feeding sock through reroutes and groups, or None."""
+    s = _linked_socket(sock)
+    return None if s is None else s.node
 
 
 #: Nodes whose output depends on the view or the light path: a bake evaluates them for a view
@@ -83,9 +251,9 @@ def upstream_types(sock, limit=500):
             n = link.from_node
             if n.type == "NEW_GEOMETRY" and link.from_socket.name == "Incoming":
                 out.add("GEOMETRY_INCOMING")
-            if n.name in seen:
+            if node_key(n) in seen:
                 continue
-            seen.add(n.name)
+            seen.add(node_key(n))
             out.add(n.type)
             trees = [n.node_tree] if n.type == "GROUP" and n.node_tree is not None else []
             while trees:  # everything inside (nested) groups counts
@@ -368,12 +536,13 @@ def bsdf_node_params(node, material_name, warnings, bake=None, links=None):
     With `bake` (final renders, see _base_material_params) a linked Color becomes
     links['diffuseColor'] and a linked Glossy/Glass Roughness links['roughness']."""
     t = node.type
-    if t not in ("BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS"):
+    if t not in ("BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "BSDF_TRANSLUCENT", "BSDF_VELVET",
+                 "BSDF_ANISOTROPIC", "BSDF_REFRACTION"):
         return None
     for sock in node.inputs:
-        if sock.is_linked and sock.name != "Weight":
+        if sock.is_linked and sock.name not in ("Weight", "Normal", "Tangent"):
             usd = {"Color": "diffuseColor", "Roughness": "roughness"}.get(sock.name)
-            if t == "BSDF_DIFFUSE" and usd == "roughness":
+            if t in ("BSDF_DIFFUSE", "BSDF_TRANSLUCENT", "BSDF_VELVET") and usd == "roughness":
                 usd = None
             if usd is not None and bake is not None and links is not None:
                 r = bake(sock, scalar=usd != "diffuseColor")
@@ -382,8 +551,52 @@ def bsdf_node_params(node, material_name, warnings, bake=None, links=None):
                     continue
             warnings.append(f"material '{material_name}': {node.name} input '{sock.name}' is "
                             "linked; using the socket value")
+    for sock in ("Normal", "Tangent"):
+        if sock in node.inputs and node.inputs[sock].is_linked:
+            warnings.append(f"material '{material_name}': {node.name} input '{sock}' is "
+                            "linked; ignored")
     color = [float(c) for c in node.inputs["Color"].default_value[:3]]
+    where = f"material '{material_name}': {node.name}"
+    if t == "BSDF_TRANSLUCENT":
+        # Diffuse transmission (Lambert on the far side). Disney's diffTrans lobe is not in
+        # principled's BSDF; nearest: a rough transmission lobe without refraction or Fresnel
+        # reflection (specTrans 1, ior 1, roughness 1) tinted by Color.
+        warnings.append(f"{where}: Translucent BSDF rendered as rough transmission (ior 1, "
+                        "roughness 1): an approximation of diffuse transmission")
+        return {"diffuseColor": color, "roughness": 1.0, "metallic": 0.0, "specTrans": 1.0,
+                "ior": 1.0, "specular": 0.0}
+    if t == "BSDF_VELVET":
+        # Cycles' Velvet (Ashikhmin) is a grazing-angle sheen without a base lobe; Disney's
+        # sheen needs a base: a diffuse of Color (roughness 1: Burley's retro-reflection) with
+        # full sheen tinted by Color.
+        warnings.append(f"{where}: Velvet BSDF rendered as a diffuse of its Color with Disney "
+                        "sheen 1 (Sigma not translated)")
+        return {"diffuseColor": color, "roughness": 1.0, "specular": 0.0, "metallic": 0.0,
+                "sheen": 1.0, "sheenTint": 1.0}
     rough = float(node.inputs["Roughness"].default_value)
+    if t == "BSDF_ANISOTROPIC":
+        # Cycles 3.4: alpha_x/alpha_y = (1 + a)^2 for anisotropy a >= 0 (r^2 (1 + a), r^2/(1 + a));
+        # Disney: alpha_x/alpha_y = 1/(1 - 0.9 d), same geometric mean r^2. Matching the ratio:
+        # d = (1 - 1/(1 + |a|)^2)/0.9. a < 0 stretches along the bitangent and Rotation turns
+        # the tangent: neither is translated (the delegate's tangent frame is its own).
+        an = float(node.inputs["Anisotropy"].default_value)
+        d = min(1.0, max(0.0, (1.0 - 1.0 / (1.0 + abs(an)) ** 2) / 0.9))
+        if an < 0.0 or abs(float(node.inputs["Rotation"].default_value)) > 1e-6 or \
+                node.inputs["Anisotropy"].is_linked or node.inputs["Rotation"].is_linked:
+            warnings.append(f"{where}: anisotropy direction (negative Anisotropy, Rotation, "
+                            "links) not translated")
+        warnings.append(f"{where}: Anisotropic BSDF rendered as a metallic Disney BSDF with "
+                        f"anisotropic {d:.3g}")
+        return {"diffuseColor": color, "roughness": rough, "metallic": 1.0, "specular": 0.5,
+                "anisotropic": d}
+    if t == "BSDF_REFRACTION":
+        # Refraction only (no reflected part). Disney's transmission keeps its dielectric
+        # Fresnel reflection: specTrans 1, ior, specular 0 for the (absent) base layer.
+        warnings.append(f"{where}: Refraction BSDF rendered as Disney transmission (which "
+                        "also reflects by its Fresnel term)")
+        ior = max(1.0, float(node.inputs["IOR"].default_value))
+        return {"diffuseColor": color, "roughness": rough, "metallic": 0.0, "specTrans": 1.0,
+                "ior": ior, "specular": 0.0}
     if t == "BSDF_DIFFUSE":
         if rough > 0.0:
             warnings.append(f"material '{material_name}': Diffuse BSDF roughness (Oren-Nayar) "
@@ -476,9 +689,9 @@ def _base_material_params(material, textures, bake=None, bake_images=False):
     if inputs is not None:
         return inputs, links, warnings
     c = list(material.diffuse_color)[:3]
-    warnings.append(f"material '{material.name}': no Principled BSDF or Emission on the "
-                    "output (nor a Diffuse, Glossy or Glass BSDF, nor a Mix Shader of two of "
-                    "them with a constant Fac); using its viewport display color")
+    warnings.append(f"material '{material.name}': the output's shader "
+                    f"('{node.type if node is not None else 'none'}') is not translated (nor "
+                    "are Mix/Add Shaders of it); using its viewport display color")
     return {"diffuseColor": c, "roughness": float(material.roughness),
             "metallic": float(material.metallic)}, links, warnings
 
@@ -493,7 +706,8 @@ MIX_DEFAULTS = {"diffuseColor": [0.0, 0.0, 0.0], "metallic": 0.0, "roughness": 0
 
 #: Shader nodes _bsdf_params translates (MIX_SHADER: when both its shaders are supported).
 SHADER_KINDS = ("BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "EMISSION",
-                "SUBSURFACE_SCATTERING", "MIX_SHADER", "BSDF_TRANSPARENT")
+                "SUBSURFACE_SCATTERING", "MIX_SHADER", "BSDF_TRANSPARENT", "ADD_SHADER",
+                "BSDF_TRANSLUCENT", "BSDF_VELVET", "BSDF_ANISOTROPIC", "BSDF_REFRACTION")
 
 
 def supported_shader(node, depth=0):
@@ -502,6 +716,10 @@ def supported_shader(node, depth=0):
         return False
     if node.type == "BSDF_TRANSPARENT":
         return depth > 0  # only as one side of a Mix Shader
+    if node.type == "ADD_SHADER":  # an unlinked side adds nothing
+        sides = [_linked_node(node.inputs[i]) for i in (0, 1)]
+        sides = [x for x in sides if x is not None]
+        return bool(sides) and all(supported_shader(x, depth + 1) for x in sides)
     if node.type != "MIX_SHADER":
         return True
     return all(supported_shader(_linked_node(node.inputs[i]), depth + 1) for i in (1, 2))
@@ -518,6 +736,8 @@ def _bsdf_params(node, material, textures, warnings, links, bake=None, bake_imag
         return emission_params(node, material.name, warnings, bake, links)
     if t == "MIX_SHADER":
         return mix_shader_params(node, material, textures, warnings, links, bake, bake_images)
+    if t == "ADD_SHADER":
+        return add_shader_params(node, material, textures, warnings, links, bake, bake_images)
     if t == "BSDF_TRANSPARENT":  # as a Mix Shader side: no surface (the other side's inputs)
         return {"opacity": 0.0}
     if t == "SUBSURFACE_SCATTERING":
@@ -651,6 +871,87 @@ def mix_shader_params(node, material, textures, warnings, links, bake=None, bake
     return out
 
 
+#: Inputs an Add Shader sums (light reflected or emitted adds up); the others are averaged.
+ADD_SUMMED = ("diffuseColor", "emissiveColor")
+
+
+def add_shader_params(node, material, textures, warnings, links, bake=None, bake_images=False):
+    """An Add Shader of two shaders _bsdf_params translates -> one Disney BSDF. Cycles sums the
+    two closures (energy may exceed 1). Approximation (warned): an Emission side adds its
+    emissiveColor to the other shader unchanged (exact); otherwise diffuseColor is the sum of
+    both sides' (clamped to 1) and emissiveColor the sum, every other input the average of
+    the two (a Mix Shader at Fac 0.5), a Transparent side's opacity 0 included. A texture on one
+    side is kept as scale * texel + bias; textured on both sides: the first side's (warned). An
+    unlinked side adds nothing: the other shader alone (exact)."""
+    a, b = _linked_node(node.inputs[0]), _linked_node(node.inputs[1])
+    if a is None or b is None:
+        one = a if b is None else b
+        return None if one is None else \
+            _bsdf_params(one, material, textures, warnings, links, bake, bake_images)
+    where = f"material '{material.name}'"
+    la, lb = {}, {}
+    pa = _bsdf_params(a, material, textures, warnings, la, bake, bake_images)
+    pb = _bsdf_params(b, material, textures, warnings, lb, bake, bake_images)
+    if pa is None or pb is None:
+        return None
+    for x, px, lx, y, py, ly in ((a, pa, la, b, pb, lb), (b, pb, lb, a, pa, la)):
+        if x.type != "EMISSION" or y.type == "EMISSION":
+            continue
+        out = dict(py)
+        links.update(ly)
+        ey = py.get("emissiveColor", [0.0, 0.0, 0.0])
+        out["emissiveColor"] = _lin(1.0, ey, 1.0, px["emissiveColor"])
+        if "emissiveColor" in lx:
+            if "emissiveColor" in ly:
+                warnings.append(f"{where}: Add Shader: emission textured on both sides; using "
+                                f"the texture of '{y.name}'")
+            else:
+                file, channel, extra, wrap = lx["emissiveColor"]
+                s0, b0 = _affine(extra)
+                links["emissiveColor"] = (file, channel, ("affine", s0, _lin(1.0, b0, 1.0, ey)),
+                                          wrap)
+        elif "emissiveColor" in ly:
+            file, channel, extra, wrap = ly["emissiveColor"]
+            s0, b0 = _affine(extra)
+            links["emissiveColor"] = (file, channel,
+                                      ("affine", s0, _lin(1.0, b0, 1.0, px["emissiveColor"])),
+                                      wrap)
+        return out
+    if a.type == "BSDF_TRANSPARENT":
+        pa, la = dict(pb, opacity=0.0), {k: v for k, v in lb.items() if k != "opacity"}
+    elif b.type == "BSDF_TRANSPARENT":
+        pb, lb = dict(pa, opacity=0.0), {k: v for k, v in la.items() if k != "opacity"}
+    out = {}
+    for k in list(dict.fromkeys(list(pa) + list(pb))):
+        va, vb = pa.get(k, MIX_DEFAULTS.get(k)), pb.get(k, MIX_DEFAULTS.get(k))
+        if va is None or vb is None:
+            out[k] = va if vb is None else vb
+        elif k in ADD_SUMMED:
+            v = _lin(1.0, va, 1.0, vb)
+            out[k] = [min(1.0, c) for c in v] if k == "diffuseColor" else v
+        else:
+            out[k] = _lin(0.5, va, 0.5, vb)
+    for k in list(dict.fromkeys(list(la) + list(lb))):
+        if la.get(k) is not None and la.get(k) is lb.get(k):
+            links[k] = la[k]
+            continue
+        if k in la and k in lb:
+            warnings.append(f"{where}: Add Shader input '{k}' textured on both sides; using the "
+                            f"texture of '{a.name}'")
+        if k == "normal":
+            links[k] = la[k] if k in la else lb[k]
+            continue
+        (file, channel, extra, wrap), other = (la[k], pb) if k in la else (lb[k], pa)
+        s0, b0 = _affine(extra)
+        ov = other.get(k, MIX_DEFAULTS.get(k, 0.0))
+        w = 1.0 if k in ADD_SUMMED else 0.5
+        links[k] = (file, channel, ("affine", _lin(w, s0), _lin(w, b0, w, ov)), wrap)
+    warnings.append(f"{where}: Add Shader of '{a.name}' and '{b.name}' rendered as one BSDF "
+                    "(colours summed, other inputs averaged), an approximation of Cycles' sum "
+                    "of the two BSDFs")
+    return out
+
+
 def _principled_params(bsdf, material, textures, warnings, links, bake=None, bake_images=False):
     """_base_material_params' Principled BSDF translation (inputs; textures into links)."""
     inputs = {}
@@ -732,8 +1033,18 @@ def _principled_params(bsdf, material, textures, warnings, links, bake=None, bak
                 warnings.append(f"material '{material.name}': Normal Map without an Image "
                                 "Texture; ignored")
         else:
-            warnings.append(f"material '{material.name}': Normal linked to '{nnode.type}' "
-                            "(only a tangent-space Normal Map node is translated); ignored")
+            baked = None
+            if bake is not None:
+                # Bump (or any other normal source): Cycles bakes the perturbed shading normal
+                # into a tangent-space normal map (bake.Baker, type NORMAL), used as a Normal
+                # Map image of strength 1.
+                baked = bake(I["Normal"], transform="normal")
+            if baked is not None:
+                links["normal"] = (baked[0], "rgb", 1.0, "clamp")
+            else:
+                warnings.append(f"material '{material.name}': Normal linked to '{nnode.type}' "
+                                "(only a tangent-space Normal Map node is translated without "
+                                "baking); ignored")
     if bsdf.distribution == "MULTI_GGX":
         warnings.append(f"material '{material.name}': Multiscatter GGX rendered as GGX")
     return inputs
@@ -1115,7 +1426,7 @@ class SceneExport:
                 mesh_key = _bake.mesh_fingerprint(md, mw)
                 results, pending = {}, []
                 for sock, scalar, transform in requests:
-                    rk = (sock.node.name, socket_key(sock), transform)
+                    rk = (node_key(sock.node), socket_key(sock), transform)
                     if rk in results:
                         continue
                     if uv is None:
@@ -1133,8 +1444,9 @@ class SceneExport:
                     results[rk] = None
                     pending.append((rk, sock, scalar, transform, vd))
                 try:
-                    baked = baker.bake_many(orig, mat, [(rk[0], rk[1], scalar) for
-                                                        rk, _s, scalar, _t, _v in pending],
+                    baked = baker.bake_many(orig, mat, [(rk[0], ("normal:" if t == "normal"
+                                                                 else "") + rk[1], scalar) for
+                                                        rk, _s, scalar, t, _v in pending],
                                             mesh_key, uv.name if uv is not None else "")
                 except Exception as e:  # no Cycles (add-on disabled), ...
                     baked = [e] * len(pending)
@@ -1180,7 +1492,7 @@ class SceneExport:
             failures = []
 
             def bake(sock, scalar=False, transform=None):
-                r = results.get((sock.node.name, socket_key(sock), transform))
+                r = results.get((node_key(sock.node), socket_key(sock), transform))
                 if isinstance(r, tuple):
                     return r
                 src = _linked_node(sock)

@@ -64,7 +64,18 @@ struct Hit {
     float u = 0.0f, v = 0.0f;  ///< barycentrics of corners 1 and 2
 };
 
+// Whether Embree accepts the ray: origin and direction components within its FLT_LARGE
+// (1.844e18; its RayK::valid() asserts on larger ones), distances not NaN. A scene with points
+// near 1e30 puts camera or bounce rays out there; such rays miss everything instead.
+bool embreeRayValid(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) {
+    constexpr float kLarge = 1.844e18f;
+    const glm::vec3 ao = glm::abs(o), ad = glm::abs(d);
+    return ao.x <= kLarge && ao.y <= kLarge && ao.z <= kLarge && ad.x <= kLarge && ad.y <= kLarge &&
+           ad.z <= kLarge && tnear >= 0.0f && tnear <= tfar;
+}
+
 bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
+    if (!embreeRayValid(ray.origin, ray.direction, ray.tnear, ray.tfar)) return false;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
@@ -151,6 +162,7 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
 
 bool occluded(const SceneSnapshot& scene, const glm::vec3& origin, const glm::vec3& dir,
               float tfar) {
+    if (!embreeRayValid(origin, dir, 0.0f, tfar)) return true;  // no light through a broken ray
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay r;
@@ -256,6 +268,7 @@ float presenceAt(const SceneSnapshot& scene, const Hit& hit) {
 float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const glm::vec3& dir,
                     float tfar) {
     if (!scene.anyPartlyPresent) return occluded(scene, origin, dir, tfar) ? 0.0f : 1.0f;
+    if (!embreeRayValid(origin, dir, 0.0f, tfar)) return 0.0f;
     const bool bounded = tfar < kInf;
     const glm::vec3 end = origin + (bounded ? tfar : 0.0f) * dir;
     Ray r;

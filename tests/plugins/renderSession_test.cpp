@@ -162,6 +162,31 @@ def Mesh "Hidden" {
     EXPECT_FLOAT_EQ(c[3], 0.0f);
 }
 
+TEST(RenderSession, PointsNearFloatMaxDoNotCrashTheRayCaster) {
+    // One vertex at -1e30 (found by fuzzing the usd-wg corpus): the default framing puts the
+    // camera beyond Embree's coordinate range (1.8e18), whose ray check aborted the process.
+    // Such rays now miss; the image stays finite.
+    for (const char* where : {"(-0.5, 0.5, -1e30)", "(1e30, 1e30, 1e30)"}) {
+        host::SessionOptions o;
+        o.width = o.height = 16;
+        o.samplesPerPixel = 2;
+        std::string usda = std::string(R"(#usda 1.0
+def Mesh "M" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [3, 3]
+    int[] faceVertexIndices = [0, 1, 2, 1, 3, 2]
+    point3f[] points = [(-0.5, -0.5, 0), (0.5, -0.5, 0), )") + where + R"(, (0.5, 0.5, 0)]
+}
+def Sphere "S" { double radius = 0.5 }
+)";
+        auto s = host::RenderSession::openString(usda, "far.usda", o);
+        while (!s->step()) {
+        }
+        const float* c = s->color();
+        for (int i = 0; i < 16 * 16 * 4; ++i) ASSERT_TRUE(std::isfinite(c[i])) << where << " at " << i;
+    }
+}
+
 TEST(RenderSession, LobeAovsSumToColorAndIdsAreNeverAveraged) {
     host::SessionOptions o;
     o.width = 48;

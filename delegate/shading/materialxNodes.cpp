@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The MaterialX part of MaterialProgram::Compiler: Standard Surface lowered onto the principled
 // inputs, and the MaterialX texture nodes lowered onto the texture, primvar and arithmetic ops.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -29,6 +30,7 @@ namespace program {
 int materialxComponents(const std::string& id) {
     if (startsWith(id, "ND_normalmap")) return 3;
     std::string type = id.substr(id.rfind('_') + 1);
+    if (type.size() > 2 && type.compare(type.size() - 2, 2, "FA") == 0) type.resize(type.size() - 2);
     if (type == "float" || type == "integer" || type == "boolean") return 1;
     if (type == "vector2") return 2;
     if (type == "color3" || type == "vector3") return 3;
@@ -96,12 +98,62 @@ std::optional<int16_t> MaterialProgram::Compiler::compileMaterialXNode(const Mat
         return compileGeomprop(node, Token(index > 0 ? "st" + std::to_string(index) : "st"),
                                components);
     }
+    if (auto reg = compileMaterialXArithmetic(node, components, handled); *handled) return reg;
+    *handled = true;
     if (startsWith(id, "ND_geompropvalue_")) {
         std::string name;
         if (auto it = node.parameters.find(Token("geomprop")); it != node.parameters.end())
             name = getString(it->second).value_or("");
         if (name.empty()) note(node, "no geomprop; using the default");
         return compileGeomprop(node, Token(name), components);
+    }
+    *handled = false;
+    return std::nullopt;
+}
+
+std::optional<int16_t> MaterialProgram::Compiler::compileMaterialXArithmetic(const MaterialNode& node,
+                                                                             int components,
+                                                                             bool* handled) {
+    // MaterialX 1.38 standard library (stdlib_defs.mtlx): the node's inputs and defaults. The
+    // "FA" variants take a float second input, which the ops broadcast.
+    const std::string& id = node.identifier.str();
+    const std::string op = id.substr(3, id.find('_', 3) - 3);  // ND_<op>_<type>
+    *handled = true;
+    const auto n = uint8_t(components);
+    auto in = [&](const char* name, float fallback) {
+        return inputOperand(node, name, glm::vec4(fallback), n);
+    };
+    auto result = [](const std::optional<Operand>& o) -> std::optional<int16_t> {
+        if (!o) return std::nullopt;
+        return o->reg;
+    };
+    auto scalar = [&](float v) { return constant(glm::vec4(v), n); };
+    if (op == "constant") return result(in("value", 0.0f));
+    if (op == "dot") return result(in("in", 0.0f));  // MaterialX "dot": a pass-through
+    if (op == "multiply") {  // in1 * in2
+        auto a = in("in1", 0.0f), b = in("in2", 1.0f);
+        if (!a || !b) return std::nullopt;
+        return result(mulAdd(*a, *b, std::nullopt, n));
+    }
+    if (op == "add" || op == "subtract") {  // in1 + in2, in1 - in2
+        auto a = in("in1", 0.0f), b = in("in2", 0.0f), sign = scalar(op == "add" ? 1.0f : -1.0f);
+        if (!a || !b || !sign) return std::nullopt;
+        return result(mulAdd(*b, *sign, a, n));
+    }
+    if (op == "invert") {  // amount - in
+        auto x = in("in", 0.0f), amount = in("amount", 1.0f), minus = scalar(-1.0f);
+        if (!x || !amount || !minus) return std::nullopt;
+        return result(mulAdd(*x, *minus, amount, n));
+    }
+    if (op == "mix") {  // bg + (fg - bg) * mix
+        auto fg = in("fg", 0.0f), bg = in("bg", 0.0f), minus = scalar(-1.0f);
+        // ND_mix_<type> blends by a float; ND_mix_<type>_<type> per component.
+        const bool perComponent = std::count(id.begin(), id.end(), '_') >= 3;
+        auto t = inputOperand(node, "mix", glm::vec4(0.0f), perComponent ? n : uint8_t(1));
+        if (!fg || !bg || !minus || !t) return std::nullopt;
+        auto diff = mulAdd(*bg, *minus, fg, n);
+        if (!diff) return std::nullopt;
+        return result(mulAdd(*diff, *t, bg, n));
     }
     *handled = false;
     return std::nullopt;

@@ -83,6 +83,10 @@ class MaterialProgram::Compiler {
 
     // MaterialX nodes (materialxNodes.cpp).
     std::optional<int16_t> compileMaterialXNode(const hd::MaterialNode& node, bool* handled);
+    /// MaterialX constant, dot (pass-through), add, subtract, multiply, mix and invert nodes of
+    /// any numeric type, on the MulAdd op; std::nullopt with *handled false for other ids.
+    std::optional<int16_t> compileMaterialXArithmetic(const hd::MaterialNode& node, int components,
+                                                      bool* handled);
     std::optional<int16_t> compileImage(const hd::MaterialNode& node, bool tiled);
     std::optional<int16_t> compileGeomprop(const hd::MaterialNode& node, const hd::Token& name,
                                            int components);

@@ -385,7 +385,7 @@ TEST_F(MaterialProgramTest, PrimvarReaderFeedsAColourAndNaNNeverLeaves) {
 
 TEST_F(MaterialProgramTest, BadNetworksGiveNotesNotCrashes) {
     Net n;
-    n.add("/M/Weird", "ND_multiply_color3")
+    n.add("/M/Weird", "ND_noise2d_color3")
         .add("/M/A", "UsdTransform2d")
         .add("/M/B", "UsdTransform2d")
         .connect("/M/A", "in", "/M/B", "result")
@@ -406,7 +406,7 @@ TEST_F(MaterialProgramTest, BadNetworksGiveNotesNotCrashes) {
     expectFinite(m);
     EXPECT_FLOAT_EQ(m.params.baseColor.x, 0.18f);
     EXPECT_TRUE(m.specularWorkflow);
-    EXPECT_TRUE(anyNoteHas(notes, "node 'ND_multiply_color3' not supported"));
+    EXPECT_TRUE(anyNoteHas(notes, "node 'ND_noise2d_color3' not supported"));
     EXPECT_TRUE(anyNoteHas(notes, "cycle"));
     EXPECT_TRUE(anyNoteHas(notes, "rgba_bogus"));
     EXPECT_TRUE(anyNoteHas(notes, "/M/Nowhere"));
@@ -737,10 +737,39 @@ TEST_F(MaterialProgramTest, MaterialXNormalMapAndOpacity) {
     EXPECT_TRUE(notes.empty()) << notes.front();
 }
 
+TEST_F(MaterialProgramTest, MaterialXArithmeticNodes) {
+    // base_color = mix(fg = tint * 2 (multiply_color3FA), bg = 1 - (0, 0, 1) (invert),
+    // mix = 0.25); roughness = constant 0.3 + 0.1 (add); metalness = 0.9 - 0.4 (subtract).
+    Net n = standardSurface();
+    n.add("/M/Tint", "ND_geompropvalue_color3", {{Token("geomprop"), Value(std::string("tint"))}})
+        .add("/M/Twice", "ND_multiply_color3FA", {{Token("in2"), Value(2.0f)}})
+        .connect("/M/Twice", "in1", "/M/Tint", "out")
+        .add("/M/Inv", "ND_invert_color3", {{Token("in"), Value(glm::vec3(0.0f, 0.0f, 1.0f))}})
+        .add("/M/Mix", "ND_mix_color3", {{Token("mix"), Value(0.25f)}})
+        .connect("/M/Mix", "fg", "/M/Twice", "out")
+        .connect("/M/Mix", "bg", "/M/Inv", "out")
+        .surfaceFrom("base_color", "/M/Mix", "out")
+        .add("/M/C", "ND_constant_float", {{Token("value"), Value(0.3f)}})
+        .add("/M/Add", "ND_add_float", {{Token("in2"), Value(0.1f)}})
+        .connect("/M/Add", "in1", "/M/C", "out")
+        .surfaceFrom("specular_roughness", "/M/Add", "out")
+        .add("/M/Sub", "ND_subtract_float", {{Token("in1"), Value(0.9f)}, {Token("in2"), Value(0.4f)}})
+        .surfaceFrom("metalness", "/M/Sub", "out");
+    MaterialProgram p = compile(n);
+    EXPECT_FALSE(p.isConstant());
+    ctx.values["tint"] = glm::vec4(0.1f, 0.2f, 0.3f, 0.0f);
+    ShadedMaterial m = p.evaluate(ctx);
+    // Standard Surface: base (1, the 1.0.1 default) * base_color.
+    expectNear(m.params.baseColor, glm::vec3(1.0f, 1.0f, 0.0f) + (glm::vec3(0.2f, 0.4f, 0.6f) - glm::vec3(1.0f, 1.0f, 0.0f)) * 0.25f);
+    EXPECT_NEAR(m.params.roughness, 0.4f, 1e-6f);
+    EXPECT_NEAR(m.params.metallic, 0.5f, 1e-6f);
+    EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
 TEST_F(MaterialProgramTest, MaterialXUnsupportedNodeNotesAndKeepsTheConstant) {
     Net n = standardSurface();
     n.node("/M/Surface").where = "look.usda:12:9";
-    n.add("/M/Mul", "ND_multiply_color3")
+    n.add("/M/Mul", "ND_noise2d_color3")
         .surface("base_color", Value(glm::vec3(0.2f, 0.3f, 0.4f)))
         .surfaceFrom("base_color", "/M/Mul", "out");
     n.node("/M/Mul").where = "look.usda:20:5";
@@ -749,7 +778,7 @@ TEST_F(MaterialProgramTest, MaterialXUnsupportedNodeNotesAndKeepsTheConstant) {
     expectNear(p.evaluate(ctx).params.baseColor, glm::vec3(0.2f, 0.3f, 0.4f), 1e-6f);
     ASSERT_EQ(notes.size(), 1u);
     EXPECT_EQ(notes[0],
-              "look.usda:20:5: /M/Mul: node 'ND_multiply_color3' not supported; inputs it feeds "
+              "look.usda:20:5: /M/Mul: node 'ND_noise2d_color3' not supported; inputs it feeds "
               "use their authored value or default");
     // A missing image file gives the node's default, with a note naming the node.
     notes.clear();

@@ -230,6 +230,47 @@ TEST(Integrator, SmoothGlassInAWhiteFurnaceIsOne) {
     EXPECT_NEAR(st.mean, 1.0, 0.01);
 }
 
+namespace {
+
+struct StrategyRun {
+    Stats stats;
+    double noise = 0.0;  // per-pixel variance of the red channel, from two seeds
+};
+
+// The same scene under NEE + MIS ("11"), NEE alone ("10") and BSDF sampling alone ("01"),
+// 32 x 32, two seeds each.
+std::map<std::string, StrategyRun> renderStrategies(const std::string& scene, int spp, int maxDepth = 3) {
+    std::map<std::string, StrategyRun> out;
+    for (auto [nee, mis] : {std::pair{"1", "1"}, {"1", "0"}, {"0", "1"}}) {
+        host::SessionOptions o;
+        o.width = o.height = 32;
+        o.samplesPerPixel = spp;
+        o.maxDepth = maxDepth;
+        o.settings = {{"nee", nee}, {"mis", mis}};
+        auto a = run(scene, o);
+        o.seed = 1;
+        auto b = run(scene, o);
+        StrategyRun& r = out[std::string(nee) + mis];
+        r.stats = hitStats(*a);
+        double sq = 0.0;
+        for (int i = 0; i < o.width * o.height; ++i) {
+            double d = double(a->color()[4 * i]) - b->color()[4 * i];
+            sq += d * d;
+        }
+        r.noise = sq / (2.0 * o.width * o.height);
+    }
+    return out;
+}
+
+::testing::AssertionResult sameMean(const StrategyRun& a, const StrategyRun& b) {
+    double tol = 4.0 * std::hypot(a.stats.stderr_, b.stats.stderr_) + 2e-3 * std::abs(b.stats.mean);
+    if (std::abs(a.stats.mean - b.stats.mean) < tol) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << a.stats.mean << " +- " << a.stats.stderr_ << " vs "
+                                         << b.stats.mean << " +- " << b.stats.stderr_;
+}
+
+}  // namespace
+
 TEST(Integrator, LampInsideFrostedGlassIsFoundByNextEventEstimation) {
     // A sphere light inside a rough glass ball: only the transmission lobe reaches it. Next-event
     // estimation through the surface, MIS against the transmitted BSDF samples, and BSDF sampling
@@ -260,38 +301,13 @@ def Camera "Cam"
     uniform token[] xformOpOrder = ["xformOp:translate"]
 }
 )";
-    std::map<std::string, Stats> byStrategy;
-    std::map<std::string, double> noise;  // per-pixel variance of the red channel, from two seeds
-    for (auto [nee, mis] : {std::pair{"1", "1"}, {"1", "0"}, {"0", "1"}}) {
-        host::SessionOptions o;
-        o.width = o.height = 32;
-        o.samplesPerPixel = 128;
-        o.maxDepth = 6;
-        o.settings = {{"nee", nee}, {"mis", mis}};
-        auto a = run(scene, o);
-        o.seed = 1;
-        auto b = run(scene, o);
-        const std::string key = std::string(nee) + mis;
-        byStrategy[key] = hitStats(*a);
-        double sq = 0.0;
-        for (int i = 0; i < o.width * o.height; ++i) {
-            double d = double(a->color()[4 * i]) - b->color()[4 * i];
-            sq += d * d;
-        }
-        noise[key] = sq / (2.0 * o.width * o.height);
-    }
-    const Stats &both = byStrategy["11"], &neeOnly = byStrategy["10"], &bsdfOnly = byStrategy["01"];
-    ASSERT_GT(both.mean, 0.01);
-    auto close = [](const Stats& a, const Stats& b) {
-        return std::abs(a.mean - b.mean) < 4.0 * std::hypot(a.stderr_, b.stderr_) + 1e-3 * a.mean;
-    };
-    EXPECT_TRUE(close(both, bsdfOnly)) << both.mean << " +- " << both.stderr_ << " vs " << bsdfOnly.mean
-                                       << " +- " << bsdfOnly.stderr_;
-    EXPECT_TRUE(close(neeOnly, bsdfOnly)) << neeOnly.mean << " +- " << neeOnly.stderr_ << " vs "
-                                          << bsdfOnly.mean << " +- " << bsdfOnly.stderr_;
+    auto r = renderStrategies(scene, 128, 6);
+    ASSERT_GT(r["11"].stats.mean, 0.01);
+    EXPECT_TRUE(sameMean(r["11"], r["01"]));
+    EXPECT_TRUE(sameMean(r["10"], r["01"]));
     // With the small lamp found by light sampling the pixels are far less noisy (measured:
     // about 1/1000 of nee=0's variance; before sampling through the surface, about the same).
-    EXPECT_LT(noise["11"], 0.05 * noise["01"]) << noise["11"] << " vs " << noise["01"];
+    EXPECT_LT(r["11"].noise, 0.05 * r["01"].noise) << r["11"].noise << " vs " << r["01"].noise;
 }
 
 namespace {
@@ -343,42 +359,6 @@ std::string emitter(const std::string& name, const std::string& emissive) {
            "/S.outputs:surface>\n        def Shader \"S\"\n        {\n            uniform token info:id = "
            "\"UsdPreviewSurface\"\n            color3f inputs:diffuseColor = (0, 0, 0)\n            "
            "float inputs:specular = 0\n" + emissive + "            token outputs:surface\n        }\n    }\n";
-}
-
-struct StrategyRun {
-    Stats stats;
-    double noise = 0.0;  // per-pixel variance of the red channel, from two seeds
-};
-
-// The same scene under NEE + MIS ("11"), NEE alone ("10") and BSDF sampling alone ("01").
-std::map<std::string, StrategyRun> renderStrategies(const std::string& scene, int spp) {
-    std::map<std::string, StrategyRun> out;
-    for (auto [nee, mis] : {std::pair{"1", "1"}, {"1", "0"}, {"0", "1"}}) {
-        host::SessionOptions o;
-        o.width = o.height = 32;
-        o.samplesPerPixel = spp;
-        o.maxDepth = 3;
-        o.settings = {{"nee", nee}, {"mis", mis}};
-        auto a = run(scene, o);
-        o.seed = 1;
-        auto b = run(scene, o);
-        StrategyRun& r = out[std::string(nee) + mis];
-        r.stats = hitStats(*a);
-        double sq = 0.0;
-        for (int i = 0; i < o.width * o.height; ++i) {
-            double d = double(a->color()[4 * i]) - b->color()[4 * i];
-            sq += d * d;
-        }
-        r.noise = sq / (2.0 * o.width * o.height);
-    }
-    return out;
-}
-
-::testing::AssertionResult sameMean(const StrategyRun& a, const StrategyRun& b) {
-    double tol = 4.0 * std::hypot(a.stats.stderr_, b.stats.stderr_) + 2e-3 * std::abs(b.stats.mean);
-    if (std::abs(a.stats.mean - b.stats.mean) < tol) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << a.stats.mean << " +- " << a.stats.stderr_ << " vs "
-                                         << b.stats.mean << " +- " << b.stats.stderr_;
 }
 
 }  // namespace

@@ -423,7 +423,8 @@ void MaterialProgram::Compiler::compileSurface(const MaterialNode& surface) {
         return false;
     };
     std::set<std::string> names;
-    for (const auto& [k, v] : surface.parameters) names.insert(k.str());
+    for (const auto& [k, v] : surface.parameters)
+        if (k.str().rfind("colorSpace:", 0) != 0) names.insert(k.str());  // an input's metadata
     for (const auto& [k, v] : surface.inputConnections) names.insert(k.str());
     for (const std::string& n : names)
         if (!known(n)) unknown += (unknown.empty() ? "" : ", ") + n;

@@ -76,8 +76,11 @@ std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::inputOperand(
     glm::vec4 v = fallback;
     if (auto it = node.parameters.find(Token(input)); it != node.parameters.end())
         if (auto n = numeric(it->second))
-            v = n->second == 1 && count > 1 ? glm::vec4(glm::vec3(n->first.x), fallback.w)
-                                            : n->first;
+            // A float for a wider input is spread (MaterialX's FA forms): over all four for a
+            // color4/vector4, over xyz otherwise (w unused).
+            v = n->second == 1 && count > 1
+                    ? (count == 4 ? glm::vec4(n->first.x) : glm::vec4(glm::vec3(n->first.x), fallback.w))
+                    : n->first;
     return constant(v, count);
 }
 
@@ -117,6 +120,8 @@ std::optional<int16_t> MaterialProgram::Compiler::compileMaterialXArithmetic(con
     // MaterialX 1.38 standard library (stdlib_defs.mtlx): the node's inputs and defaults. The
     // "FA" variants take a float second input, which the ops broadcast.
     const std::string& id = node.identifier.str();
+    *handled = false;
+    if (id.size() < 4 || !startsWith(id, "ND_")) return std::nullopt;  // not a MaterialX node id
     const std::string op = id.substr(3, id.find('_', 3) - 3);  // ND_<op>_<type>
     *handled = true;
     const auto n = uint8_t(components);

@@ -614,7 +614,8 @@ TEST_F(MaterialProgramTest, StandardSurfaceConstantsMapOntoDisney) {
     EXPECT_FLOAT_EQ(m.params.metallic, 1.0f);
     EXPECT_FLOAT_EQ(m.params.roughness, 0.3f);
     EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);        // specular 1, IOR 1.5
-    EXPECT_NEAR(m.params.clearcoatGloss, 0.9f, 1e-6f);  // coat_roughness 0.1
+    // coat_roughness 0.1: the GGX alpha 0.01 in Disney's clearcoat range, (0.1 - 0.01) / 0.099.
+    EXPECT_NEAR(m.params.clearcoatGloss, 0.09f / 0.099f, 1e-6f);
     ASSERT_EQ(notes.size(), 1u);
     EXPECT_NE(notes[0].find("inputs not used: coat_color"), std::string::npos) << notes[0];
 }
@@ -735,6 +736,29 @@ TEST_F(MaterialProgramTest, MaterialXNormalMapAndOpacity) {
     EXPECT_NEAR(p.evaluate(ctx).opacity, 0.9f, 1e-5f);
     EXPECT_NEAR(p.presence(ctx), 0.9f, 1e-5f);
     EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
+TEST_F(MaterialProgramTest, ShaderIdsThatAreNotMaterialXNodesAreNotedNotFatal) {
+    // A shader with no info:id (or a short one) feeding the surface: a note, the constant.
+    for (const char* id : {"", "ab", "ND_"}) {
+        notes.clear();
+        Net n;
+        n.node("/M/Surface").identifier = Token("UsdPreviewSurface");
+        n.add("/M/Odd", id)
+            .surface("diffuseColor", Value(glm::vec3(0.2f, 0.3f, 0.4f)))
+            .surfaceFrom("diffuseColor", "/M/Odd", "out");
+        MaterialProgram p = compile(n);
+        expectNear(p.evaluate(ctx).params.baseColor, glm::vec3(0.2f, 0.3f, 0.4f), 1e-6f);
+        EXPECT_TRUE(anyNoteHas(notes, "not supported")) << "id '" << id << "'";
+    }
+}
+
+TEST_F(MaterialProgramTest, ColorSpaceMetadataIsNotAnUnusedInput) {
+    Net n;
+    n.node("/M/Surface").identifier = Token("UsdPreviewSurface");
+    n.surface("diffuseColor", Value(glm::vec3(0.5f))).surface("colorSpace:diffuseColor", Value(std::string("lin_rec709")));
+    compile(n);
+    EXPECT_FALSE(anyNoteHas(notes, "colorSpace")) << notes.front();
 }
 
 TEST_F(MaterialProgramTest, MaterialXArithmeticNodes) {

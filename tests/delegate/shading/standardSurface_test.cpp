@@ -26,7 +26,7 @@ TEST(StandardSurface, DefaultsAreVersion101AndGiveAGreyDielectric) {
     EXPECT_FLOAT_EQ(m.params.metallic, 0.0f);
     EXPECT_FLOAT_EQ(m.params.roughness, 0.2f);
     EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);        // IOR 1.5: F0 0.04 = 0.08 * 0.5
-    EXPECT_NEAR(m.params.clearcoatGloss, 0.9f, 1e-6f);  // coat_roughness 0.1
+    EXPECT_NEAR(m.params.clearcoatGloss, 0.09f / 0.099f, 1e-6f);  // coat_roughness 0.1: alpha 0.01
     EXPECT_FLOAT_EQ(m.params.sheen, 0.0f);
     EXPECT_FLOAT_EQ(m.params.sheenTint, 0.0f);
     EXPECT_FLOAT_EQ(m.params.specularTint, 0.0f);
@@ -73,6 +73,13 @@ TEST(StandardSurface, SpecularFromIorAndWeight) {
     EXPECT_FLOAT_EQ(shade(s).params.specular, 1.0f);
 }
 
+TEST(StandardSurface, RoughCoatsClampAtTheRoughestClearcoat) {
+    StandardSurfaceParams s;
+    s.coat = 1.0f;
+    s.coatRoughness = 0.6f;  // alpha 0.36, beyond the clearcoat's 0.1
+    EXPECT_NEAR(shade(s).params.clearcoatGloss, 0.0f, 1e-6f);
+}
+
 TEST(StandardSurface, LayersEmissionOpacityAndThinWalls) {
     StandardSurfaceParams s;
     s.coat = 0.7f;
@@ -86,7 +93,8 @@ TEST(StandardSurface, LayersEmissionOpacityAndThinWalls) {
     ASSERT_TRUE(s.set("thin_walled", glm::vec4(1.0f), 1));
     ShadedMaterial m = shade(s);
     EXPECT_FLOAT_EQ(m.params.clearcoat, 0.7f);
-    EXPECT_NEAR(m.params.clearcoatGloss, 0.75f, 1e-6f);
+    // GGX alpha 0.25^2 = 0.0625 = mix(0.1, 0.001, gloss) (Burley 2012, §B.2).
+    EXPECT_NEAR(m.params.clearcoatGloss, (0.1f - 0.0625f) / 0.099f, 1e-6f);
     EXPECT_FLOAT_EQ(m.params.sheen, 0.5f);
     EXPECT_FLOAT_EQ(m.params.specTrans, 0.9f);
     EXPECT_FLOAT_EQ(m.params.subsurface, 0.4f);

@@ -296,6 +296,13 @@ float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const g
 
 Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings)
     : _scene(scene), _settings(settings) {
+    for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+        const LightRecord::Kind k = scene.lights[i].kind;
+        if (isAreaLight(scene.lights[i]))
+            _areaLights.push_back(i);
+        else if (k == LightRecord::Kind::Dome || k == LightRecord::Kind::Distant)
+            _environmentLights.push_back(i);
+    }
     _constantBsdfs.reserve(scene.materials.size());
     for (const MaterialRecord& m : scene.materials) {
         if (m.program)
@@ -313,7 +320,8 @@ bool Integrator::texturedEmission(const LightRecord& light, LightSample* ls) con
     const MaterialRecord& m = _scene.materials[size_t(light.meshMaterial)];
     if (!m.program) return false;
     SurfacePoint point(*light.mesh, unsigned(ls->meshTriangle), ls->bary.x, ls->bary.y);
-    const glm::vec3 e = m.program->evaluate(point).emission;
+    // Emission x presence: a partly present emitter is hit (and emits) only that often.
+    const glm::vec3 e = m.program->evaluate(point).emission * m.program->presence(point);
     if (!finite(e) || maxComponent(e) <= 0.0f) return false;
     ls->Li = e;
     return true;
@@ -357,16 +365,17 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             credit(c);
         };
         float tHit = found ? hit.t : kInf;
-        for (const LightRecord& light : lights) {
-            if (!isAreaLight(light) || (depth == 0 && !(light.visibleToCamera && _settings.lightsVisible))) continue;
+        for (uint32_t li : _areaLights) {  // not every light: a scene may hold thousands of mesh lights
+            const LightRecord& light = lights[li];
+            if (depth == 0 && !(light.visibleToCamera && _settings.lightsVisible)) continue;
             glm::vec3 Le;
             float pdf;
             if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf))
                 addEmitter(Le, pdf * light.pickProbability);
         }
         if (!found) {
-            for (const LightRecord& light : lights) {
-                if (isAreaLight(light)) continue;
+            for (uint32_t li : _environmentLights) {
+                const LightRecord& light = lights[li];
                 if (depth == 0 && (light.kind == LightRecord::Kind::Distant || !_settings.domeVisible)) continue;
                 glm::vec3 Le;
                 float pdf;

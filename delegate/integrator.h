@@ -88,6 +88,9 @@ private:
     /// Per material: the BSDF of a material without a program (no textures), built once per
     /// pass instead of once per hit; empty for textured materials.
     std::vector<std::optional<bsdf::Bsdf>> _constantBsdfs;
+    /// Indices into the scene's lights: those a ray can hit (sphere, rect, disk, cylinder) and
+    /// those an escaping ray sees (dome, distant); mesh lights are hit as geometry.
+    std::vector<uint32_t> _areaLights, _environmentLights;
 };
 
 }  // namespace principled::embree

@@ -123,9 +123,10 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
                 continue;
             }
             MaterialRecord& slot = _snapshot.materials[size_t(it->second)];
-            // Mesh lights come from constant emission: redo them only if it is or was there.
+            // Mesh lights come from emission (constant or textured): redo them only if it is or
+            // was there.
             auto emits = [](const MaterialRecord& r) {
-                return !r.program && r.constant.emission != glm::vec3(0.0f);
+                return r.mayEmit || r.constant.emission != glm::vec3(0.0f);
             };
             if (emits(slot) || emits(m->record())) meshLights = true;
             slot = m->record();
@@ -178,8 +179,9 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.instanceLights[g.instance] = {first, g.count};
         }
         _snapshot.usingDefaultLight = false;
-        // Emissive geometry lights the scene even when none of it could be made a light.
-        if (_snapshot.lights.empty() && !_anyEmitter && intSetting("defaultLighting", 1) != 0) {
+        // Emissive geometry lights the scene (even when none of it could be made a light); a
+        // textured emitter black wherever it was probed does not.
+        if (_sceneLights.empty() && !_anyEmitter && intSetting("defaultLighting", 1) != 0) {
             // A scene without lights would render black; light it like an overcast sky
             // (a white dome of radiance 1) and say so in the stats.
             LightRecord dome;
@@ -220,8 +222,11 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
 }
 
 bool EmbreeRenderDelegate::mayEmit(const GeometryRecord* r) const {
-    // Whether this prim has a mesh light or any material it uses may emit.
+    // Whether this prim has mesh lights (its own, or its placed copies') or any material it
+    // uses may emit.
     if (r->emissiveLight >= 0) return true;
+    for (const MeshLightGroup& g : _meshLightGroups)
+        if (g.record == r) return true;
     if (r->kind != GeometryRecord::Kind::Triangles) return false;
     auto emits = [&](int mi) {
         if (mi < 0 || mi >= int(_snapshot.materials.size())) return false;
@@ -268,7 +273,6 @@ void EmbreeRenderDelegate::buildMeshLights() {
         for (int mi : r->triangleMaterial)
             if (emits(mi)) materials.push_back(mi);
         if (materials.empty()) continue;
-        _anyEmitter = true;
         std::sort(materials.begin(), materials.end());
         materials.erase(std::unique(materials.begin(), materials.end()), materials.end());
         if (!ids) {
@@ -324,8 +328,13 @@ void EmbreeRenderDelegate::addMeshLights(GeometryRecord* r, const std::vector<in
         l.solidAngleSampling = intSetting("lightSolidAngle", 1) != 0;
         l.meshMaterial = mi;
         l.texturedEmission = m.program != nullptr && m.mayEmit;
-        l.radiance = l.texturedEmission ? meanEmission(*r, m, *tris) : m.constant.emission;
+        // What reaches a point is emission x presence (a partly present emitter is hit, and
+        // emits, only that often); textured lights apply their presence per sample.
+        bool emitsSomewhere = true;
+        l.radiance = l.texturedEmission ? meanEmission(*r, m, *tris, &emitsSomewhere)
+                                        : m.constant.emission * m.constant.presence();
         if (!l.texturedEmission && l.radiance == glm::vec3(0.0f)) continue;
+        _anyEmitter |= emitsSomewhere;
         l.area = float(area);
         l.mesh = r;
         // Bounding sphere of the emitting triangles (vertex mean, farthest vertex): solid-angle
@@ -346,19 +355,36 @@ void EmbreeRenderDelegate::addMeshLights(GeometryRecord* r, const std::vector<in
 }
 
 glm::vec3 EmbreeRenderDelegate::meanEmission(const GeometryRecord& r, const MaterialRecord& m,
-                                             const std::vector<uint32_t>& triangles) const {
-    // The textured emission at the centroids of up to 256 triangles spread over the light,
-    // averaged: only the light-picking probabilities depend on it, never the estimate's mean.
+                                             const std::vector<uint32_t>& triangles, bool* emits) const {
+    // The textured emission x presence at 256 points spread over the light's triangles (several
+    // per triangle when there are few: a textured quad is probed across its texture), averaged.
+    // Only the light-picking probabilities depend on it, never the estimate's mean.
     constexpr size_t kProbes = 256;
     const size_t n = triangles.size(), step = std::max<size_t>(1, n / kProbes);
+    const size_t perTriangle = std::max<size_t>(1, kProbes / n);
     glm::dvec3 sum(0.0);
     size_t count = 0;
-    for (size_t i = 0; i < n; i += step, ++count) {
-        SurfacePoint centroid(r, triangles[i], 1.0f / 3.0f, 1.0f / 3.0f);
-        glm::vec3 e = m.program->evaluate(centroid).emission;
-        if (std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z)) sum += glm::dvec3(e);
+    for (size_t i = 0; i < n; i += step) {
+        for (size_t k = 0; k < perTriangle; ++k, ++count) {
+            // A stratified point of the triangle: Hammersley (k / N, radical inverse of k) mapped
+            // by u = 1 - sqrt(a), v = b sqrt(a) (Pharr et al. 2023, §6.5.4: uniform on a triangle).
+            float a = (float(k) + 0.5f) / float(perTriangle);
+            uint32_t bits = uint32_t(k);
+            bits = (bits << 16) | (bits >> 16);
+            bits = ((bits & 0x55555555u) << 1) | ((bits & 0xAAAAAAAAu) >> 1);
+            bits = ((bits & 0x33333333u) << 2) | ((bits & 0xCCCCCCCCu) >> 2);
+            bits = ((bits & 0x0F0F0F0Fu) << 4) | ((bits & 0xF0F0F0F0u) >> 4);
+            bits = ((bits & 0x00FF00FFu) << 8) | ((bits & 0xFF00FF00u) >> 8);
+            float b = perTriangle > 1 ? float(bits) * 0x1p-32f : 0.5f;
+            float sa = std::sqrt(perTriangle > 1 ? a : 1.0f / 3.0f);
+            float u = perTriangle > 1 ? b * sa : 1.0f / 3.0f, v = perTriangle > 1 ? (1.0f - b) * sa : 1.0f / 3.0f;
+            SurfacePoint point(r, triangles[i], u, v);
+            glm::vec3 e = m.program->evaluate(point).emission * m.program->presence(point);
+            if (std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z)) sum += glm::dvec3(e);
+        }
     }
     glm::vec3 mean = count ? glm::vec3(sum / double(count)) : glm::vec3(0.0f);
+    *emits = std::max({mean.x, mean.y, mean.z}) > 0.0f;
     // Never zero: a texture black at every probe may still emit elsewhere.
     return glm::max(mean, glm::vec3(1e-3f));
 }

@@ -90,8 +90,9 @@ private:
     void addMeshLights(GeometryRecord* r, const std::vector<int>& materials, const glm::mat4& objectToWorld,
                        unsigned instance);
     /// Estimated mean of a textured emission over a mesh light's triangles (for light picking).
+    /// *emits: some probe emitted (a texture black everywhere probed does not light the scene).
     glm::vec3 meanEmission(const GeometryRecord& r, const MaterialRecord& m,
-                           const std::vector<uint32_t>& triangles) const;
+                           const std::vector<uint32_t>& triangles, bool* emits) const;
     void computeLightPower();
     float sceneRadius() const;
     bool mayEmit(const GeometryRecord* r) const;

@@ -157,8 +157,9 @@ struct LightRecord {
     /// left, sits at the light's (+X, +Y) corner.
     std::shared_ptr<const EnvironmentMap> rectTexture;
     float pickProbability = 1.0f;  ///< chance next-event estimation picks this light
-    // Mesh lights (emissive geometry with a constant emission): the triangles that emit, with
-    // a CDF over their world-space areas. Emission is two-sided, as it is shaded.
+    // Mesh lights (emissive geometry, one light per emitting material of a prim or of a placed
+    // copy): the triangles that emit, with a CDF over their world-space areas. Emission is
+    // two-sided, as it is shaded.
     const GeometryRecord* mesh = nullptr;
     std::shared_ptr<const std::vector<uint32_t>> meshTriangles;
     std::shared_ptr<const std::vector<float>> meshAreaCdf;  ///< meshTriangles.size() + 1

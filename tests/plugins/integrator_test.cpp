@@ -430,6 +430,64 @@ TEST(Integrator, TexturedEmissionIsSampledAsALight) {
     EXPECT_LT(r["11"].noise, 0.25 * r["01"].noise) << r["11"].noise << " vs " << r["01"].noise;
 }
 
+TEST(Integrator, PartlyPresentEmittersAreSampledByTheirPresence) {
+    // An emitter of opacity 0.25 is hit (and emits) a quarter of the time: light sampling must
+    // deliver emission x presence, as BSDF sampling does (it delivered 1 / 0.25 too much), for a
+    // constant and for a textured (primvar) emission.
+    for (const char* emissive : {"            color3f inputs:emissiveColor = (8, 8, 8)\n",
+                                 "            color3f inputs:emissiveColor.connect = </Looks/Dim/Glow.outputs:result>\n"}) {
+        std::string looks = emitter("Dim", std::string(emissive) + "            float inputs:opacity = 0.25\n");
+        looks.insert(looks.find("        def Shader \"S\""),
+                     "        def Shader \"Glow\"\n        {\n            uniform token info:id = \"UsdPrimvarReader_float3\"\n"
+                     "            string inputs:varname = \"glow\"\n            float3 outputs:result\n        }\n");
+        const std::string scene = panelOverFloor(R"(
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 2, 3, 1]
+    point3f[] points = [(-0.3, -0.3, 1), (0.3, -0.3, 1), (-0.3, 0.3, 1), (0.3, 0.3, 1)]
+    color3f[] primvars:glow = [(8, 8, 8)] (interpolation = "constant")
+    rel material:binding = </Looks/Dim>)",
+                                                 looks);
+        auto r = renderStrategies(scene, 64);
+        ASSERT_GT(r["01"].stats.mean, 0.001) << emissive;
+        EXPECT_TRUE(sameMean(r["11"], r["01"])) << emissive;
+        EXPECT_TRUE(sameMean(r["10"], r["01"])) << emissive;
+    }
+}
+
+TEST(Integrator, AnEmissionTextureBlackEverywhereDoesNotLightTheScene) {
+    // A connected emission that is zero wherever probed: the scene counts as unlit and gets the
+    // default dome (it rendered black without it).
+    const std::string scene = panelOverFloor(R"(
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 2, 3, 1]
+    point3f[] points = [(-0.3, -0.3, 1), (0.3, -0.3, 1), (-0.3, 0.3, 1), (0.3, 0.3, 1)]
+    color3f[] primvars:glow = [(0, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, 0)] (interpolation = "vertex")
+    rel material:binding = </Looks/Screen>)",
+                                             R"(    def Material "Screen"
+    {
+        token outputs:surface.connect = </Looks/Screen/S.outputs:surface>
+        def Shader "Glow"
+        {
+            uniform token info:id = "UsdPrimvarReader_float3"
+            string inputs:varname = "glow"
+            float3 outputs:result
+        }
+        def Shader "S"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:emissiveColor.connect = </Looks/Screen/Glow.outputs:result>
+            token outputs:surface
+        }
+    }
+)");
+    host::SessionOptions o;
+    o.width = o.height = 8;
+    o.samplesPerPixel = 4;
+    auto s = run(scene, o);
+    EXPECT_EQ(s->stats()["defaultLight"], 1.0);
+    EXPECT_GT(hitStats(*s).mean, 0.1);
+}
+
 TEST(Integrator, InstancedEmittersAreLights) {
     // The only light comes from instanced emitters: two instanceable copies of a panel and two
     // PointInstancer copies of another. Each placed copy is a light (before, instanced emitters

@@ -745,7 +745,7 @@ def _base_material_params(material, textures, bake=None, bake_images=False):
     if material is None:
         return {"diffuseColor": [0.8, 0.8, 0.8], "roughness": 0.5}, links, warnings
     node = shading_node(material)
-    if node is not None and node.type in ("EMISSION", "BACKGROUND"):
+    if node is not None and node.type in EMITTERS:
         return emission_params(node, material.name, warnings, bake, links), links, warnings
     inputs = None
     if supported_shader(node):
@@ -773,6 +773,10 @@ SHADER_KINDS = ("BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", 
                 "SUBSURFACE_SCATTERING", "MIX_SHADER", "BSDF_TRANSPARENT", "ADD_SHADER",
                 "BSDF_TRANSLUCENT", "BSDF_VELVET", "BSDF_ANISOTROPIC", "BSDF_REFRACTION",
                 "BACKGROUND")
+
+#: Shaders translated as emitters (emission_params): a Background shader on a surface emits in
+#: Cycles like an Emission shader.
+EMITTERS = ("EMISSION", "BACKGROUND")
 
 #: A Mix Shader side with nothing linked: Cycles adds no closure there, its share is black.
 NO_SHADER = {"diffuseColor": [0.0, 0.0, 0.0], "specular": 0.0, "metallic": 0.0,
@@ -805,7 +809,7 @@ def _bsdf_params(node, material, textures, warnings, links, bake=None, bake_imag
     t = node.type
     if t == "BSDF_PRINCIPLED":
         return _principled_params(node, material, textures, warnings, links, bake, bake_images)
-    if t in ("EMISSION", "BACKGROUND"):
+    if t in EMITTERS:
         return emission_params(node, material.name, warnings, bake, links)
     if t == "MIX_SHADER":
         return mix_shader_params(node, material, textures, warnings, links, bake, bake_images)
@@ -1045,7 +1049,7 @@ def add_shader_params(node, material, textures, warnings, links, bake=None, bake
     if pa is None or pb is None:
         return None
     for x, px, lx, y, py, ly in ((a, pa, la, b, pb, lb), (b, pb, lb, a, pa, la)):
-        if x.type not in ("EMISSION", "BACKGROUND") or y.type in ("EMISSION", "BACKGROUND"):
+        if x.type not in EMITTERS or y.type in EMITTERS:
             continue
         out = dict(py)
         links.update(ly)

@@ -309,7 +309,7 @@ class Baker:
         if sock is None:
             raise BakeError(f"socket {node_name}.{socket_identifier} not found")
         if output:  # an Emission shader's own output (its Color x Strength)
-            if node.type != "EMISSION":
+            if node.type not in ("EMISSION", "BACKGROUND"):  # a Background on a surface emits
                 raise BakeError(f"output of a {node.type} node")
             src = sock
         else:

@@ -234,6 +234,61 @@ VIEW_DEPENDENT = {"FRESNEL", "LAYER_WEIGHT", "LIGHT_PATH", "CAMERA", "AMBIENT_OC
                   "GEOMETRY_INCOMING"}
 
 
+def fresnel_dielectric(cos_i, eta):
+    """Unpolarised dielectric Fresnel reflectance for a ray at cos_i to the normal entering a
+    medium of relative index eta (1 on total internal reflection), as Cycles' Fresnel node."""
+    c = abs(cos_i)
+    g = eta * eta - 1.0 + c * c
+    if g <= 0.0:
+        return 1.0
+    g = math.sqrt(g)
+    a = (g - c) / (g + c)
+    b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0)
+    return 0.5 * a * a * (1.0 + b * b)
+
+
+def _facing_power(blend):
+    """Cycles' Layer Weight Facing: 1 - |cos|^p with p = 2 b below b = 0.5, 0.5/(1 - b) above."""
+    b = min(max(blend, 0.0), 0.99999)
+    return 2.0 * b if b < 0.5 else 0.5 / (1.0 - b)
+
+
+def view_fac(fac, where, warnings):
+    """A Mix Shader Fac fed (through reroutes and groups) by a Fresnel node or a Layer Weight
+    output -> (kind, parameter, mean): kind 'fresnel' with the relative index eta (Fresnel:
+    its IOR; Layer Weight Fresnel with Blend b: eta = 1/(1 - b)) or 'facing' with the power p
+    (1 - |cos|^p); mean = the cosine-weighted hemispherical average 2 * integral of f(mu) mu
+    dmu, i.e. the factor's mean over the projected area of a sphere seen from any direction.
+    A linked IOR/Blend uses its socket value (warned). None for any other source."""
+    s = _linked_socket(fac)
+    if s is None:
+        return None
+    n = s.node
+    if n.type == "FRESNEL":
+        name, kind = "IOR", "fresnel"
+    elif n.type == "LAYER_WEIGHT":
+        name, kind = "Blend", ("fresnel" if s.name == "Fresnel" else "facing")
+    else:
+        return None
+    v = float(n.inputs[name].default_value)
+    if n.inputs[name].is_linked:
+        warnings.append(f"{where}: {n.name} input '{name}' is linked; using its socket value "
+                        f"{v:.3g}")
+    if n.type == "FRESNEL":
+        param = max(v, 1e-5)
+    elif kind == "fresnel":
+        param = 1.0 / max(1.0 - v, 1e-5)
+    else:
+        param = _facing_power(v)
+    steps = 256
+    total = 0.0
+    for i in range(steps):  # midpoint rule in mu = cos(theta)
+        mu = (i + 0.5) / steps
+        f = fresnel_dielectric(mu, param) if kind == "fresnel" else 1.0 - mu ** param
+        total += 2.0 * f * mu / steps
+    return kind, param, min(1.0, max(0.0, total))
+
+
 def socket_key(sock):
     """A socket's key in a node: its identifier ('out:' + it for an output)."""
     return ("out:" if sock.is_output else "") + sock.identifier
@@ -505,7 +560,9 @@ def emission_params(node, material_name, warnings, bake=None, links=None):
     """An Emission shader alone on the output: Cycles renders a pure emitter (radiance colour x
     strength, both sides) that reflects nothing. principled: emissiveColor, black diffuse,
     specular 0, roughness 1 (Disney keeps a faint grazing Schlick lobe at specular 0). A linked
-    Color is baked (`bake`, see _base_material_params) into links['emissiveColor']."""
+    Color is baked (`bake`, see _base_material_params) into links['emissiveColor']. A Background
+    shader on a surface is the same: Cycles 3.4 renders its closure there as emission (checked
+    against Cycles: tests/blender/test_mixes.py)."""
     strength = float(node.inputs["Strength"].default_value)
     linked = [n for n in ("Color", "Strength") if node.inputs[n].is_linked]
     if linked and bake is not None and links is not None:
@@ -641,6 +698,13 @@ def material_params(material, textures, bake=None, bake_images=False):
                             texture_wrap(src))
         inputs["opacity"] = 1.0
         return inputs, links, warnings
+    vf = view_fac(fac, f"material '{material.name}'", warnings)
+    if vf is not None:  # by view angle: its mean over the visible hemisphere (view_fac)
+        f = vf[2]
+        warnings.append(f"material '{material.name}': transparent Mix Shader Fac from "
+                        f"{src.name} (view-dependent) replaced by its hemispherical mean {f:.3g}")
+        inputs["opacity"] = inputs.get("opacity", 1.0) * (f if transparent_first else 1.0 - f)
+        return inputs, links, warnings
     if bake is not None:
         t = bake(fac, scalar=True)
         if t is not None:
@@ -681,7 +745,7 @@ def _base_material_params(material, textures, bake=None, bake_images=False):
     if material is None:
         return {"diffuseColor": [0.8, 0.8, 0.8], "roughness": 0.5}, links, warnings
     node = shading_node(material)
-    if node is not None and node.type == "EMISSION":
+    if node is not None and node.type in EMITTERS:
         return emission_params(node, material.name, warnings, bake, links), links, warnings
     inputs = None
     if supported_shader(node):
@@ -707,7 +771,16 @@ MIX_DEFAULTS = {"diffuseColor": [0.0, 0.0, 0.0], "metallic": 0.0, "roughness": 0
 #: Shader nodes _bsdf_params translates (MIX_SHADER: when both its shaders are supported).
 SHADER_KINDS = ("BSDF_PRINCIPLED", "BSDF_DIFFUSE", "BSDF_GLOSSY", "BSDF_GLASS", "EMISSION",
                 "SUBSURFACE_SCATTERING", "MIX_SHADER", "BSDF_TRANSPARENT", "ADD_SHADER",
-                "BSDF_TRANSLUCENT", "BSDF_VELVET", "BSDF_ANISOTROPIC", "BSDF_REFRACTION")
+                "BSDF_TRANSLUCENT", "BSDF_VELVET", "BSDF_ANISOTROPIC", "BSDF_REFRACTION",
+                "BACKGROUND")
+
+#: Shaders translated as emitters (emission_params): a Background shader on a surface emits in
+#: Cycles like an Emission shader.
+EMITTERS = ("EMISSION", "BACKGROUND")
+
+#: A Mix Shader side with nothing linked: Cycles adds no closure there, its share is black.
+NO_SHADER = {"diffuseColor": [0.0, 0.0, 0.0], "specular": 0.0, "metallic": 0.0,
+             "roughness": 1.0, "emissiveColor": [0.0, 0.0, 0.0]}
 
 
 def supported_shader(node, depth=0):
@@ -722,7 +795,11 @@ def supported_shader(node, depth=0):
         return bool(sides) and all(supported_shader(x, depth + 1) for x in sides)
     if node.type != "MIX_SHADER":
         return True
-    return all(supported_shader(_linked_node(node.inputs[i]), depth + 1) for i in (1, 2))
+    sides = [_linked_node(node.inputs[i]) for i in (1, 2)]
+    if sides[0] is None and sides[1] is None:
+        return False
+    # an unlinked side is no closure (black): NO_SHADER
+    return all(x is None or supported_shader(x, depth + 1) for x in sides)
 
 
 def _bsdf_params(node, material, textures, warnings, links, bake=None, bake_images=False):
@@ -732,7 +809,7 @@ def _bsdf_params(node, material, textures, warnings, links, bake=None, bake_imag
     t = node.type
     if t == "BSDF_PRINCIPLED":
         return _principled_params(node, material, textures, warnings, links, bake, bake_images)
-    if t == "EMISSION":
+    if t in EMITTERS:
         return emission_params(node, material.name, warnings, bake, links)
     if t == "MIX_SHADER":
         return mix_shader_params(node, material, textures, warnings, links, bake, bake_images)
@@ -790,28 +867,48 @@ def mix_shader_params(node, material, textures, warnings, links, bake=None, bake
     then use the Fac's socket value as above (warned). Without `bake`: the socket value."""
     fac = node.inputs[0]
     a, b = _linked_node(node.inputs[1]), _linked_node(node.inputs[2])
-    if not (supported_shader(a, 1) and supported_shader(b, 1)):
+    if a is None and b is None:
+        return None
+    if not all(x is None or supported_shader(x, 1) for x in (a, b)):
         return None
     where = f"material '{material.name}'"
     fac_tex = None
-    if fac.is_linked:
+    vf = view_fac(fac, where, warnings) if fac.is_linked else None
+    f = min(1.0, max(0.0, float(fac.default_value)))
+    if vf is not None:
+        f = vf[2]
+    elif fac.is_linked:
         src = _linked_node(fac)
         if bake is not None:
             fac_tex = bake(fac, scalar=True)
         if fac_tex is None:
             warnings.append(f"{where}: Mix Shader Fac linked to '{src.type}' (not baked); "
                             "using its socket value")
-    f = min(1.0, max(0.0, float(fac.default_value)))
     la, lb = {}, {}
-    pa = _bsdf_params(a, material, textures, warnings, la, bake, bake_images)
-    pb = _bsdf_params(b, material, textures, warnings, lb, bake, bake_images)
+    # An unlinked side is no closure at all: Cycles renders its share black.
+    pa = dict(NO_SHADER) if a is None else \
+        _bsdf_params(a, material, textures, warnings, la, bake, bake_images)
+    pb = dict(NO_SHADER) if b is None else \
+        _bsdf_params(b, material, textures, warnings, lb, bake, bake_images)
+    na = "(nothing)" if a is None else a.name
+    nb = "(nothing)" if b is None else b.name
+    if vf is not None:
+        coat = fresnel_coat(a, b, pa, pb, la, lb, vf, where, warnings)
+        if coat is not None:
+            out, coat_links = coat
+            links.update(coat_links)
+            return out
+        src = _linked_socket(fac)
+        warnings.append(f"{where}: Mix Shader of '{na}' and '{nb}': view-dependent Fac "
+                        f"({src.node.name} {src.name}) replaced by its mean over the visible "
+                        f"hemisphere, {f:.3g}")
     wa, wb = 1.0 - f, f
     # A Transparent BSDF side has no surface: its other inputs are the other side's, so only
     # the opacity blends (the cut-out mix, nested anywhere).
-    if a.type == "BSDF_TRANSPARENT":
+    if a is not None and a.type == "BSDF_TRANSPARENT":
         pa = dict(pb, opacity=0.0)
         la = {k: v for k, v in lb.items() if k != "opacity"}
-    elif b.type == "BSDF_TRANSPARENT":
+    elif b is not None and b.type == "BSDF_TRANSPARENT":
         pb = dict(pa, opacity=0.0)
         lb = {k: v for k, v in la.items() if k != "opacity"}
     out = {}
@@ -865,10 +962,67 @@ def mix_shader_params(node, material, textures, warnings, links, bake=None, bake
         ov = other.get(k, MIX_DEFAULTS.get(k, 0.0))
         links[k] = (file, channel, ("affine", _lin(w, s0), _lin(w, b0, wo, ov)), wrap)
     fac_text = "baked Fac" if fac_tex is not None else f"Fac {f:.3g}"
-    warnings.append(f"{where}: Mix Shader of '{a.name}' and '{b.name}' ({fac_text}) rendered "
+    warnings.append(f"{where}: Mix Shader of '{na}' and '{nb}' ({fac_text}) rendered "
                     "as one BSDF of blended inputs, an approximation of Cycles' mix of the two "
                     "BSDFs")
     return out
+
+
+#: Shader nodes that make a Mix Shader side "diffuse-like" for fresnel_coat (a base layer).
+COAT_BASES = ("BSDF_DIFFUSE", "BSDF_PRINCIPLED", "SUBSURFACE_SCATTERING", "MIX_SHADER",
+              "ADD_SHADER", "BSDF_VELVET", "BSDF_TRANSLUCENT")
+
+
+def fresnel_coat(a, b, pa, pb, la, lb, vf, where, warnings):
+    """Mix(A = a base layer, B = Glossy BSDF, Fac = Fresnel(eta) or Layer Weight Fresnel) -- the
+    classic varnish -- as one dielectric Disney BSDF: Cycles renders (1 - F) A + F Glossy with
+    F the exact dielectric Fresnel of the view angle, Disney a base plus a specular lobe whose
+    Fresnel (with specularFresnel = dielectric, the add-on's default) is that same curve for
+    F0 = 0.08 specular = ((eta - 1)/(eta + 1))^2. Rules (warned):
+    - base colour, textures, metallic (< 0.5) etc. from A; diffuseColor x (1 - mean F): the
+      base's share Cycles keeps on average;
+    - specular: F0 of eta, times the Glossy colour's luminance (a coloured gloss is not
+      translated further), over A's own specular F0a: F0 = F0c + (1 - F0c) F0a;
+    - roughness: the Glossy's, blended with A's by the two lobes' F0 when A has a specular lobe.
+    Returns (inputs, links) or None when the pattern does not apply (then the caller uses the
+    mean Fac)."""
+    kind, eta, mean = vf
+    if kind != "fresnel" or a is None or b is None or b.type != "BSDF_GLOSSY" or \
+            a.type not in COAT_BASES:
+        return None
+    if pa.get("metallic", 0.0) >= 0.5 or pa.get("specTrans", 0.0) >= 0.5 or \
+            pa.get("opacity", 1.0) < 1.0 or any(k in la for k in ("metallic", "specular",
+                                                                   "specTrans", "opacity")):
+        return None
+    out = dict(pa)
+    links = {k: v for k, v in la.items() if k != "roughness"}
+    gc = pb.get("diffuseColor", [1.0, 1.0, 1.0])
+    lum = 0.2126 * gc[0] + 0.7152 * gc[1] + 0.0722 * gc[2]
+    if "diffuseColor" in lb:
+        warnings.append(f"{where}: {b.name} Color is textured; the coat uses its socket value")
+    if max(gc) - min(gc) > 0.02:
+        warnings.append(f"{where}: {b.name} colour not grey; the coat keeps its luminance only")
+    f0c = min(1.0, ((eta - 1.0) / (eta + 1.0)) ** 2 * lum)
+    f0a = 0.08 * pa.get("specular", 0.5) * (1.0 - pa.get("metallic", 0.0))
+    f0 = f0c + (1.0 - f0c) * f0a
+    rg, ra = pb.get("roughness", 0.5), pa.get("roughness", 0.5)
+    out["specular"] = min(1.0, f0 / 0.08)
+    out["specularTint"] = 0.0
+    out["roughness"] = rg if f0 <= 0.0 else (f0c * rg + (1.0 - f0c) * f0a * ra) / f0
+    if "roughness" in lb:
+        links["roughness"] = lb["roughness"]
+    keep = 1.0 - mean  # the base's average share in Cycles' mix
+    out["diffuseColor"] = _lin(keep, out.get("diffuseColor", [0.8, 0.8, 0.8]))
+    if "diffuseColor" in links:
+        file, channel, extra, wrap = links["diffuseColor"]
+        s0, b0 = _affine(extra)
+        links["diffuseColor"] = (file, channel, ("affine", _lin(keep, s0), _lin(keep, b0)), wrap)
+    if f0 / 0.08 > 1.0:
+        warnings.append(f"{where}: coat F0 {f0:.3g} above Disney's specular 1 (0.08); clamped")
+    warnings.append(f"{where}: Mix Shader of '{a.name}' and '{b.name}' by a Fresnel Fac (ior "
+                    f"{eta:.3g}) rendered as one dielectric BSDF (specular {out['specular']:.3g},"
+                    f" roughness {out['roughness']:.3g}), an approximation of Cycles' layered mix")
+    return out, links
 
 
 #: Inputs an Add Shader sums (light reflected or emitted adds up); the others are averaged.
@@ -895,7 +1049,7 @@ def add_shader_params(node, material, textures, warnings, links, bake=None, bake
     if pa is None or pb is None:
         return None
     for x, px, lx, y, py, ly in ((a, pa, la, b, pb, lb), (b, pb, lb, a, pa, la)):
-        if x.type != "EMISSION" or y.type == "EMISSION":
+        if x.type not in EMITTERS or y.type in EMITTERS:
             continue
         out = dict(py)
         links.update(ly)

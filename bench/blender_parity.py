@@ -590,6 +590,85 @@ def s_lamps_in_view(sc):
     return {"box": (30, 70, 98, 120)}  # the floor (no lamp in it)
 
 
+# ---- light transport of emitters and lamps behind rough glass ------------------------------
+def s_lamp_in_rough_glass(sc):
+    """A point lamp (r 0.1) inside a warm-tinted rough glass sphere (Principled Base Color
+    (0.9, 0.75, 0.6), Transmission 1, Roughness 0.4, IOR 1.45) over a floor: every light path
+    leaves through the rough interface (next-event estimation through rough transmission)."""
+    camera(sc, (0, -6, 3), (0, 0, 0.8))
+    plane(mat=material("Floor", (0.7, 0.7, 0.7), 0.6))
+    # PARITY_GLASS_ROUGHNESS (diagnosis): another roughness for the glass.
+    rough = float(os.environ.get("PARITY_GLASS_ROUGHNESS", "0.4"))
+    sphere(1.0, (0, 0, 1.0), material("Frosted", (0.9, 0.75, 0.6), rough, Transmission=1.0,
+                                      IOR=1.45))
+    light(sc, "POINT", loc=(0, 0, 1.0), energy=20.0, shadow_soft_size=0.1)
+    return {"box": (20, 80, 108, 120)}  # the floor around the sphere's foot
+
+
+def emission_image():
+    """8 x 8 sRGB PNG, left half warm (255, 160, 80), right half blue (40, 80, 255)."""
+    path = os.path.join(OUT, "emission2.png")
+    img = np.zeros((8, 8, 3), np.uint8)
+    img[:, :4] = (255, 160, 80)
+    img[:, 4:] = (40, 80, 255)
+    write_png(path, img)
+    return bpy.data.images.load(path)
+
+
+def s_emission_texture(sc):
+    """A 2 m upright plane whose Principled Emission is an Image Texture (two colours, EXTEND),
+    strength 4, the only light, over a diffuse floor: textured emission sampled by NEE."""
+    camera(sc, (0, -6, 4), (0, 0, 0.5))
+    plane(mat=material("Floor", (0.8, 0.8, 0.8), 0.9))
+    m = material("Screen", (0, 0, 0), 0.5, specular=0.0, Emission_Strength=4.0)
+    tex = image_texture_node(m, emission_image(), socket="Emission")
+    tex.extension = "EXTEND"
+    plane(2.0, (0, 1.0, 1.2), m, rot=(math.radians(90), 0, 0))
+    return {"box": (20, 70, 108, 110)}  # the lit floor in front of the screen
+
+
+def emission_material(name, rgb, strength):
+    return material(name, (0, 0, 0), 0.5, specular=0.0, Emission=(*rgb, 1.0),
+                    Emission_Strength=strength)
+
+
+def s_emission_two_slots(sc):
+    """One cube with two material slots, both emissive (warm on x < 0, blue on x > 0): the only
+    light, over a floor with a grey sphere."""
+    camera(sc)
+    plane(mat=material("Floor", (0.8, 0.8, 0.8), 0.8))
+    c = cube(0.8, (0.6, 0.6, 0.4), emission_material("Warm", (1.0, 0.5, 0.2), 6.0))
+    c.data.materials.append(emission_material("Cold", (0.2, 0.4, 1.0), 6.0))
+    for p in c.data.polygons:
+        p.material_index = 1 if p.center.x > 0.0 else 0
+    sphere(0.6, (-0.8, -0.3, 0.6), material("Ball", (0.8, 0.8, 0.8), 0.5))
+    return {"box": (20, 50, 64, 100)}
+
+
+def s_emission_instanced(sc):
+    """An emissive sphere (r 0.25) in a collection seen only through four collection-instance
+    empties: the instanced copies are the only light (no world light, no lamp)."""
+    camera(sc)
+    plane(mat=material("Floor", (0.8, 0.8, 0.8), 0.8))
+    coll = bpy.data.collections.new("Bulbs")
+    sc.collection.children.link(coll)
+    bulb = sphere(0.25, (0, 0, 0), emission_material("Bulb", (1.0, 0.8, 0.5), 10.0), seg=32,
+                  rings=16)
+    for c in list(bulb.users_collection):
+        c.objects.unlink(bulb)
+    coll.objects.link(bulb)
+    sc.collection.children.unlink(coll)  # only its instances are rendered
+    for i, (x, y, z) in enumerate(((-1.5, 0.5, 0.6), (1.5, 0.5, 0.6), (-0.5, 1.5, 1.0),
+                                   (0.6, -0.8, 0.4))):
+        e = bpy.data.objects.new(f"BulbInst{i}", None)
+        e.instance_type = "COLLECTION"
+        e.instance_collection = coll
+        e.location = (x, y, z)
+        sc.collection.objects.link(e)
+    cube(0.7, (0, 0.2, 0.35), material("Box", (0.8, 0.8, 0.8), 0.5))
+    return {"box": (30, 60, 98, 110)}
+
+
 SCENES = [
     ("glass", s_glass), ("checker_point", s_checker), ("checker_mapping", s_checker_mapping),
     ("area_square", s_area_square),
@@ -601,6 +680,8 @@ SCENES = [
     ("alpha_texture", s_alpha_texture), ("mix_transparent", s_mix_transparent),
     ("subsurf_custom", s_subsurf_custom), ("area_in_room", s_area_in_room),
     ("lamps_in_view", s_lamps_in_view),
+    ("lamp_in_rough_glass", s_lamp_in_rough_glass), ("emission_texture", s_emission_texture),
+    ("emission_two_slots", s_emission_two_slots), ("emission_instanced", s_emission_instanced),
 ]
 
 
@@ -726,6 +807,9 @@ def main():
             "noise_rel_mean": abs(rel((c0 @ LUM).mean(), (c1 @ LUM).mean())) / math.sqrt(2),
             "rmse": float(np.sqrt(np.mean((cy - pr) ** 2))),
             "rmse_noise": float(math.sqrt(sc_n ** 2 + sp_n ** 2)),
+            # Per-pixel noise of one render at SPP samples (std across the two seeds, RGB RMS).
+            "std_cycles": float(np.sqrt(np.mean((c0 - c1) ** 2) / 2)),
+            "std_ours": float(np.sqrt(np.mean((p0 - p1) ** 2) / 2)),
             "lit_cycles": float(lc[lit].mean()), "lit_ours": float(lp[lit].mean()),
             "rel_lit": rel(lp[lit].mean(), lc[lit].mean()),
             "box_cycles": float(lc[box].mean()), "box_ours": float(lp[box].mean()),
@@ -740,7 +824,8 @@ def main():
               f"{row['cycles_mean'][2]:.4f}  ours {row['ours_mean'][0]:.4f} "
               f"{row['ours_mean'][1]:.4f} {row['ours_mean'][2]:.4f}  rel {row['rel_mean']:+.2%} "
               f"(noise {row['noise_rel_mean']:.2%})  rmse {row['rmse']:.4f} "
-              f"(noise {row['rmse_noise']:.4f})  lit {row['rel_lit']:+.2%}  box {row['rel_box']:+.2%}",
+              f"(noise {row['rmse_noise']:.4f})  lit {row['rel_lit']:+.2%}  box {row['rel_box']:+.2%}  "
+              f"std cycles {row['std_cycles']:.4f} ours {row['std_ours']:.4f}",
               flush=True)
     prev = {}
     jpath = os.path.join(OUT, "parity.json")
@@ -751,14 +836,15 @@ def main():
     allrows = [prev[n] for n, _ in SCENES if n in prev]
     json.dump(allrows, open(jpath, "w"), indent=1)
     with open(os.path.join(OUT, "parity.md"), "w") as f:
-        f.write("| scene | Cycles mean RGB | principled mean RGB | rel. diff (lum.) | noise | RMSE | RMSE noise | lit region | box |\n")
-        f.write("|---|---|---|---|---|---|---|---|---|\n")
+        f.write("| scene | Cycles mean RGB | principled mean RGB | rel. diff (lum.) | noise | RMSE | RMSE noise | lit region | box | std Cycles | std principled |\n")
+        f.write("|---|---|---|---|---|---|---|---|---|---|---|\n")
         for r in allrows:
             c, o = r["cycles_mean"], r["ours_mean"]
             f.write(f"| {r['scene']} | {c[0]:.4f} {c[1]:.4f} {c[2]:.4f} | {o[0]:.4f} {o[1]:.4f} "
                     f"{o[2]:.4f} | {r['rel_mean']:+.2%} | {r['noise_rel_mean']:.2%} | "
                     f"{r['rmse']:.4f} | {r['rmse_noise']:.4f} | {r['rel_lit']:+.2%} | "
-                    f"{r['rel_box']:+.2%} |\n")
+                    f"{r['rel_box']:+.2%} | {r.get('std_cycles', float('nan')):.4f} | "
+                    f"{r.get('std_ours', float('nan')):.4f} |\n")
     print("parity: wrote", jpath)
 
 

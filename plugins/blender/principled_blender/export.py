@@ -668,6 +668,30 @@ def bsdf_node_params(node, material_name, warnings, bake=None, links=None):
 
 
 def material_params(material, textures, bake=None, bake_images=False):
+    """_material_params, then the transmission tint of Cycles' glass (glass_tint)."""
+    inputs, links, warnings = _material_params(material, textures, bake, bake_images)
+    glass_tint(inputs, links)
+    return inputs, links, warnings
+
+
+def glass_tint(inputs, links):
+    """Cycles 3.4 tints refraction by the Base Color (Glass BSDF: Color) at every crossing of a
+    glass surface: light leaving a lamp inside tinted glass is Base Color x, light through a
+    closed glass object Base Color^2 x. Disney's specTrans lobe tints by sqrt(diffuseColor) per
+    crossing (diffuseColor for the two crossings of a closed object). For a fully transmissive
+    dielectric (specTrans 1, metallic 0, constant colour; its diffuse and sheen lobes have weight
+    0) the add-on therefore exports diffuseColor = Base Color^2, which gives Cycles' tint at each
+    crossing. Partial transmission and textured colours keep the Disney tint."""
+    if any(k in links for k in ("diffuseColor", "specTrans", "metallic")):
+        return
+    if inputs.get("specTrans", 0.0) < 1.0 or inputs.get("metallic", 0.0) > 0.0:
+        return
+    dc = inputs.get("diffuseColor")
+    if isinstance(dc, list) and len(dc) == 3:
+        inputs["diffuseColor"] = [max(0.0, float(c)) ** 2 for c in dc]
+
+
+def _material_params(material, textures, bake=None, bake_images=False):
     """_base_material_params, then a Mix Shader with a Transparent BSDF on the output
     (transparent_mix) multiplies the opacity by its Fac (or 1 - Fac): a constant, or an Image
     Texture's Alpha/Color output linked as the opacity texture (inverted with scale -1, bias 1

@@ -181,6 +181,32 @@ def test_params():
           f"{inputs['emissiveColor']}")
 
 
+def test_muted():
+    """A muted link is ignored and a muted node passes its input through, as in Cycles."""
+    m = bpy.data.materials.new("Muted")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]  # the one on the output
+    b.inputs["Base Color"].default_value = (0.3, 0.3, 0.3, 1.0)
+    rgb = nt.nodes.new("ShaderNodeRGB")
+    rgb.outputs[0].default_value = (0.9, 0.1, 0.1, 1.0)
+    link = nt.links.new(rgb.outputs[0], b.inputs["Base Color"])
+    link.is_muted = True
+    inputs, _l, _w = export.material_params(m, None)
+    check(np.allclose(inputs["diffuseColor"], (0.3, 0.3, 0.3)),
+          f"muted link: the socket value {np.round(inputs['diffuseColor'], 3)}")
+    link.is_muted = False
+    gamma = nt.nodes.new("ShaderNodeGamma")  # Color in, Color out: muted, it passes Color
+    gamma.inputs["Gamma"].default_value = 4.0
+    nt.links.new(rgb.outputs[0], gamma.inputs["Color"])
+    nt.links.new(gamma.outputs[0], b.inputs["Base Color"])
+    gamma.mute = True
+    inputs, _l, _w = export.material_params(m, None)
+    check(np.allclose(inputs["diffuseColor"], (0.9, 0.1, 0.1)),
+          f"muted Gamma node: its input passes through {np.round(inputs['diffuseColor'], 3)}")
+    bpy.data.materials.remove(m)
+
+
 def test_vs_cycles():
     scene, mats = build()
     trees, data = all_trees(), data_state()
@@ -247,4 +273,4 @@ def test_bump():
           f"{d_old / ref:.1%} (> 3x)")
 
 
-tr.run_main(test_params, test_vs_cycles, test_bump)
+tr.run_main(test_params, test_muted, test_vs_cycles, test_bump)

@@ -47,6 +47,9 @@ def _socket_value(sock):
 # GROUP nodes enclosing it, outermost first); nothing in the user's data is modified or copied.
 # Bakes find the same node through GNode.key (bake.Baker exposes it on copies of the groups).
 
+#: Nodes whose output is a constant (their output socket's default value): read, not baked.
+CONSTANT_NODES = ("RGB", "VALUE")
+
 #: Separates the group node names of GNode.key.
 PATH_SEP = "\x1f"
 _LUMA = (0.2126, 0.7152, 0.0722)  # Blender's colour -> float conversion (linear Rec.709)
@@ -69,7 +72,16 @@ def resolve_input(sock, path=()):
         if not s.is_linked:
             return None, p, s
         link = s.links[0]
+        if link.is_muted:  # Cycles ignores a muted link: the socket's own value applies
+            return None, p, s
         n, out = link.from_node, link.from_socket
+        if n.mute:
+            # A muted node passes an input straight through (its internal links), else nothing.
+            through = next((x for x in n.internal_links if x.to_socket.identifier == out.identifier), None)
+            if through is None:
+                return None, p, s
+            s = through.from_socket
+            continue
         if n.type == "REROUTE" and n.inputs[0].is_linked:
             s = n.inputs[0]
         elif n.type == "GROUP" and n.node_tree is not None:
@@ -200,7 +212,9 @@ class GSocket:
     def default_value(self):
         if self.sock.is_output:
             return self.sock.default_value
-        _src, _p, v = self._resolved()
+        src, _p, v = self._resolved()
+        if src is not None and src.node.type in CONSTANT_NODES:  # an RGB or Value node: its value
+            return _convert(src.default_value, self.sock.type)
         if v == self.sock:
             return self.sock.default_value
         return _convert(v.default_value, self.sock.type)
@@ -1148,7 +1162,7 @@ def _principled_params(bsdf, material, textures, warnings, links, bake=None, bak
     def texture(sock, scalar, transform=None):
         """(file, channel, wrap) of an input fed by an Image Texture, or baked, or None."""
         node = _linked_node(sock)
-        if node is None:
+        if node is None or node.type in CONSTANT_NODES:  # constants fold into the value
             return None
         if node.type == "TEX_IMAGE" and node.image is not None and not \
                 (bake is not None and bake_images):

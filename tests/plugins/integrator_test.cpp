@@ -361,6 +361,28 @@ std::string emitter(const std::string& name, const std::string& emissive) {
            "float inputs:specular = 0\n" + emissive + "            token outputs:surface\n        }\n    }\n";
 }
 
+// A 0.6 x 0.6 panel 1 above the floor, facing down, with the per-vertex primvar "glow" (four
+// colours, as USDA text) and bound to material `material`: the body panelOverFloor() takes.
+std::string glowPanel(const std::string& glow, const std::string& material) {
+    return R"(
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 2, 3, 1]
+    point3f[] points = [(-0.3, -0.3, 1), (0.3, -0.3, 1), (-0.3, 0.3, 1), (0.3, 0.3, 1)]
+    color3f[] primvars:glow = )" + glow + R"( (interpolation = "vertex")
+    rel material:binding = </Looks/)" + material + ">";
+}
+
+// Material `name` emitting its "glow" primvar (a material program: UsdPrimvarReader_float3 into
+// emissiveColor), black otherwise; `extra` adds surface inputs (USDA lines).
+std::string glowMaterial(const std::string& name, const std::string& extra = "") {
+    std::string m = emitter(name, "            color3f inputs:emissiveColor.connect = </Looks/" + name +
+                                      "/Glow.outputs:result>\n" + extra);
+    m.insert(m.find("        def Shader \"S\""),
+             "        def Shader \"Glow\"\n        {\n            uniform token info:id = \"UsdPrimvarReader_float3\"\n"
+             "            string inputs:varname = \"glow\"\n            float3 outputs:result\n        }\n");
+    return m;
+}
+
 }  // namespace
 
 TEST(Integrator, EveryEmittingMaterialOfAMeshIsALight) {
@@ -398,31 +420,8 @@ TEST(Integrator, TexturedEmissionIsSampledAsALight) {
     // The panel's emission comes from a primvar (a material program, not a constant): light
     // sampling evaluates it at each sampled point. Strategies agree, and light sampling is far
     // less noisy than BSDF sampling (before, a textured emitter was found by BSDF sampling only).
-    const std::string scene = panelOverFloor(R"(
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 2, 3, 1]
-    point3f[] points = [(-0.3, -0.3, 1), (0.3, -0.3, 1), (-0.3, 0.3, 1), (0.3, 0.3, 1)]
-    color3f[] primvars:glow = [(20, 2, 0), (0, 2, 20), (20, 20, 20), (0, 0, 0)] (interpolation = "vertex")
-    rel material:binding = </Looks/Screen>)",
-        R"(    def Material "Screen"
-    {
-        token outputs:surface.connect = </Looks/Screen/S.outputs:surface>
-        def Shader "Glow"
-        {
-            uniform token info:id = "UsdPrimvarReader_float3"
-            string inputs:varname = "glow"
-            float3 outputs:result
-        }
-        def Shader "S"
-        {
-            uniform token info:id = "UsdPreviewSurface"
-            color3f inputs:diffuseColor = (0, 0, 0)
-            float inputs:specular = 0
-            color3f inputs:emissiveColor.connect = </Looks/Screen/Glow.outputs:result>
-            token outputs:surface
-        }
-    }
-)");
+    const std::string scene = panelOverFloor(
+        glowPanel("[(20, 2, 0), (0, 2, 20), (20, 20, 20), (0, 0, 0)]", "Screen"), glowMaterial("Screen"));
     auto r = renderStrategies(scene, 64);
     ASSERT_GT(r["01"].stats.mean, 0.01);
     EXPECT_TRUE(sameMean(r["11"], r["01"]));
@@ -434,52 +433,23 @@ TEST(Integrator, PartlyPresentEmittersAreSampledByTheirPresence) {
     // An emitter of opacity 0.25 is hit (and emits) a quarter of the time: light sampling must
     // deliver emission x presence, as BSDF sampling does (it delivered 1 / 0.25 too much), for a
     // constant and for a textured (primvar) emission.
-    for (const char* emissive : {"            color3f inputs:emissiveColor = (8, 8, 8)\n",
-                                 "            color3f inputs:emissiveColor.connect = </Looks/Dim/Glow.outputs:result>\n"}) {
-        std::string looks = emitter("Dim", std::string(emissive) + "            float inputs:opacity = 0.25\n");
-        looks.insert(looks.find("        def Shader \"S\""),
-                     "        def Shader \"Glow\"\n        {\n            uniform token info:id = \"UsdPrimvarReader_float3\"\n"
-                     "            string inputs:varname = \"glow\"\n            float3 outputs:result\n        }\n");
-        const std::string scene = panelOverFloor(R"(
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 2, 3, 1]
-    point3f[] points = [(-0.3, -0.3, 1), (0.3, -0.3, 1), (-0.3, 0.3, 1), (0.3, 0.3, 1)]
-    color3f[] primvars:glow = [(8, 8, 8)] (interpolation = "constant")
-    rel material:binding = </Looks/Dim>)",
-                                                 looks);
+    const std::string opacity = "            float inputs:opacity = 0.25\n";
+    for (bool textured : {false, true}) {
+        const std::string looks = textured ? glowMaterial("Dim", opacity)
+                                           : emitter("Dim", "            color3f inputs:emissiveColor = (8, 8, 8)\n" + opacity);
+        const std::string scene = panelOverFloor(glowPanel("[(8, 8, 8), (8, 8, 8), (8, 8, 8), (8, 8, 8)]", "Dim"), looks);
         auto r = renderStrategies(scene, 64);
-        ASSERT_GT(r["01"].stats.mean, 0.001) << emissive;
-        EXPECT_TRUE(sameMean(r["11"], r["01"])) << emissive;
-        EXPECT_TRUE(sameMean(r["10"], r["01"])) << emissive;
+        ASSERT_GT(r["01"].stats.mean, 0.001) << "textured " << textured;
+        EXPECT_TRUE(sameMean(r["11"], r["01"])) << "textured " << textured;
+        EXPECT_TRUE(sameMean(r["10"], r["01"])) << "textured " << textured;
     }
 }
 
 TEST(Integrator, AnEmissionTextureBlackEverywhereDoesNotLightTheScene) {
     // A connected emission that is zero wherever probed: the scene counts as unlit and gets the
     // default dome (it rendered black without it).
-    const std::string scene = panelOverFloor(R"(
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 2, 3, 1]
-    point3f[] points = [(-0.3, -0.3, 1), (0.3, -0.3, 1), (-0.3, 0.3, 1), (0.3, 0.3, 1)]
-    color3f[] primvars:glow = [(0, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, 0)] (interpolation = "vertex")
-    rel material:binding = </Looks/Screen>)",
-                                             R"(    def Material "Screen"
-    {
-        token outputs:surface.connect = </Looks/Screen/S.outputs:surface>
-        def Shader "Glow"
-        {
-            uniform token info:id = "UsdPrimvarReader_float3"
-            string inputs:varname = "glow"
-            float3 outputs:result
-        }
-        def Shader "S"
-        {
-            uniform token info:id = "UsdPreviewSurface"
-            color3f inputs:emissiveColor.connect = </Looks/Screen/Glow.outputs:result>
-            token outputs:surface
-        }
-    }
-)");
+    const std::string scene =
+        panelOverFloor(glowPanel("[(0, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, 0)]", "Screen"), glowMaterial("Screen"));
     host::SessionOptions o;
     o.width = o.height = 8;
     o.samplesPerPixel = 4;

@@ -23,7 +23,6 @@ Mix Shader of two BSDFs with a constant Fac (export.mix_shader_params): blended 
 against Cycles for Diffuse/Diffuse and Principled (baked base colour)/Diffuse.
 Exit code 0 = pass.
 """
-import math
 import os
 import sys
 
@@ -40,27 +39,8 @@ SAMPLES = 64
 
 
 def scene_setup():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = SAMPLES
-    scene.principled.max_depth = 1
-    scene.principled.bake_resolution = 256
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
-    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
-    bpy.context.active_object.data.energy = math.pi
-    bpy.context.active_object.data.angle = 0.0
-    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
-    cam = bpy.context.active_object
-    cam.data.type = "ORTHO"
-    cam.data.ortho_scale = 5.0  # 20 px per unit: each plane is 40 x 40 px
-    scene.camera = cam
-    return scene
+    # 20 px per unit: each plane is 40 x 40 px
+    return tr.overhead_sun_scene(W, H, SAMPLES, 5.0)
 
 
 def plane(x, name):

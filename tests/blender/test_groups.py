@@ -19,7 +19,6 @@ Normal <- Bump <- Wave under a tilted sun: the baked tangent-space normal map ag
 (the materials' and the groups') and bpy.data (node groups included) unchanged by the render.
 Exit code 0 = pass.
 """
-import math
 import os
 import sys
 
@@ -37,27 +36,8 @@ COLS = {"left": np.s_[5:45, 7:47], "middle": np.s_[5:45, 55:95], "right": np.s_[
 
 
 def scene_setup():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = SAMPLES
-    scene.principled.max_depth = 1
-    scene.principled.bake_resolution = 256
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
-    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
-    bpy.context.active_object.data.energy = math.pi
-    bpy.context.active_object.data.angle = 0.0
-    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
-    cam = bpy.context.active_object
-    cam.data.type = "ORTHO"
-    cam.data.ortho_scale = 7.5  # 20 px per unit: each plane is 40 x 40 px
-    scene.camera = cam
-    return scene
+    # 20 px per unit: each plane is 40 x 40 px
+    return tr.overhead_sun_scene(W, H, SAMPLES, 7.5)
 
 
 def plane(x, name):

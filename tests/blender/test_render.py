@@ -89,6 +89,33 @@ def run_main(*steps):
     os._exit(1 if failures else 0)
 
 
+def overhead_sun_scene(width, height, samples, ortho_scale, max_depth=1, bake_resolution=256):
+    """An empty PRINCIPLED scene (factory settings) of width x height at `samples`, black world,
+    a delta sun of strength pi straight down (a Lambert plane's radiance is its albedo) and an
+    orthographic camera 5 above the origin looking down, ortho_scale wide. Returns the scene."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "PRINCIPLED"
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    scene.principled.samples = samples
+    scene.principled.max_depth = max_depth
+    scene.principled.bake_resolution = bake_resolution
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = False
+    world.color = (0, 0, 0)
+    scene.world = world
+    bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
+    bpy.context.active_object.data.energy = math.pi
+    bpy.context.active_object.data.angle = 0.0
+    bpy.ops.object.camera_add(location=(0, 0, 5), rotation=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = ortho_scale
+    scene.camera = cam
+    return scene
+
+
 def render_combined(scene):
     """The add-on's Combined pass of a final render of `scene` (top row first, RGBA)."""
     captured = {}

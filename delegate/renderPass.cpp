@@ -269,7 +269,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         glm::vec2 j = sampler.next2D();  // box filter: uniform in the pixel
                         // The lens point takes a Sobol group of its own, only when there is a lens
                         // (pinhole images keep their sample dimensions).
-                        glm::vec2 lens = thinLens ? bsdf::squareToConcentricDisk(sampler.next2D()) : glm::vec2(0.0f);
+                        glm::vec2 lens = thinLens ? cam->apertureSample(sampler.next2D()) : glm::vec2(0.0f);
                         Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y, lensRadius, lens);
                         PathSample ps = integrator.trace(r, sampler);
                         tileRays += ps.rays;

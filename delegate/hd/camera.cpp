@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bsdf/warp.h"
 #include "delegate/hd/sceneDelegate.h"
 
 namespace principled::hd {
@@ -23,6 +24,9 @@ void Camera::sync(SceneDelegate* delegate, RenderParam*, DirtyBits* dirtyBits) {
         _fStop = param("fStop", 0.0f);
         _focusDistance = param("focusDistance", 0.0f);
         _metersPerUnit = param("metersPerUnit", 0.01f);
+        // Not UsdGeomCamera attributes: principled's own, for polygonal bokeh (Blender's blades).
+        setAperture(int(std::lround(std::clamp(param("principled:apertureBlades", 0.0f), 0.0f, 64.0f))),
+                    param("principled:apertureRotation", 0.0f));
         Value clip = delegate->getCameraParamValue(id(), Token("clippingRange"));
         if (auto* c = getIf<glm::vec2>(clip)) _clipping = *c;
         auto proj = getString(delegate->getCameraParamValue(id(), Token("projection")));
@@ -51,6 +55,27 @@ float Camera::lensRadius() const {
     if (!(r > 0.0f)) return 0.0f;
     // A near-zero fStop: keep the lens within 1000 focus distances (finite ray origins).
     return std::min(r, 1000.0f * _focusDistance);
+}
+
+void Camera::setAperture(int blades, float rotationDegrees) {
+    _blades = blades >= 3 && blades <= 64 ? blades : 0;
+    _bladeRotation = std::isfinite(rotationDegrees) ? rotationDegrees * 0.017453292519943295f : 0.0f;
+}
+
+glm::vec2 Camera::apertureSample(glm::vec2 u) const {
+    if (_blades < 3) return bsdf::squareToConcentricDisk(u);
+    // A regular n-gon as n triangles (centre, corner k, corner k + 1) of equal area: u.x picks
+    // the triangle and is reused within it; a point uniform in that triangle is
+    // sqrt(a) ((1 - b) c_k + b c_k+1) (Pharr et al. 2023, §6.5.4, with one corner at the centre).
+    // Corners at rotation + pi/n + 2 pi k/n, where Cycles puts its blades' corners.
+    const float n = float(_blades);
+    const float x = std::min(u.x * n, n - 1e-4f);
+    const float k = std::floor(x);
+    const float a = std::sqrt(std::clamp(x - k, 0.0f, 1.0f));
+    const float step = 6.283185307179586f / n;
+    const float t0 = _bladeRotation + 0.5f * step + k * step, t1 = t0 + step;
+    const glm::vec2 c0(std::cos(t0), std::sin(t0)), c1(std::cos(t1), std::sin(t1));
+    return a * ((1.0f - u.y) * c0 + u.y * c1);
 }
 
 glm::vec4 Camera::screenWindow(double imageAspect) const {

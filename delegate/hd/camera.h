@@ -36,6 +36,11 @@ public:
     /// <= 0 (the schema fallback would put the focus plane at the lens), orthographic, or any
     /// value is not finite.
     float lensRadius() const;
+    /// A point of the aperture (the unit disk, or with `principled:apertureBlades` n >= 3 the
+    /// regular n-gon inscribed in it, turned by `principled:apertureRotation` degrees: polygonal
+    /// bokeh as Cycles' blades), uniform in area, from two uniform numbers. Scaled by lensRadius().
+    glm::vec2 apertureSample(glm::vec2 u) const;
+    int apertureBlades() const { return _blades; }
 
     /// The image-plane window at distance 1 (perspective) or in scene units (orthographic)
     /// for an image of the given aspect ratio: {xmin, xmax, ymin, ymax}. The aperture is fitted
@@ -51,11 +56,15 @@ public:
         _focusDistance = focusDistance;
         _metersPerUnit = metersPerUnit;
     }
+    /// Sets the aperture shape directly: blades < 3 is round; rotation in degrees.
+    void setAperture(int blades, float rotationDegrees);
 
 private:
     glm::dmat4 _transform{1.0};
     Projection _projection = Projection::Perspective;
     // USD fallbacks (usdGeom schema), converted to scene units (tenths): 50 mm, 20.955 mm, 15.2908 mm.
+    int _blades = 0;              ///< aperture polygon corners (< 3: round)
+    float _bladeRotation = 0.0f;  ///< radians
     float _focalLength = 5.0f;
     float _hAperture = 2.0955f;
     float _vAperture = 1.52908f;

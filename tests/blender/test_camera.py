@@ -88,6 +88,15 @@ def all_tests():
     check(d < 0.01 and blur > 0.05,
           f"f/0.5 focused at 1 m: principled vs Cycles edge profile RMS {d:.4f} (< 0.01); "
           f"vs no depth of field {blur:.4f} (> 0.05)")
+    # Three blades: a triangular aperture (Cycles' corners at rotation + pi/3 + 2 pi k/3); its edge
+    # spread differs from the round one's, and must match Cycles' on both sides of the edge.
+    cam.data.dof.aperture_blades = 3
+    cam.data.dof.aperture_rotation = 0.3
+    tri, tri_cycles = render(scene, "PRINCIPLED"), render(scene, "CYCLES")
+    check(rms(tri, tri_cycles) < 0.01 and rms(tri, ours) > 2 * rms(tri, tri_cycles),
+          f"3 blades: principled vs Cycles RMS {rms(tri, tri_cycles):.4f} (< 0.01); "
+          f"vs the round aperture {rms(tri, ours):.4f}")
+    cam.data.dof.aperture_blades = 0
     focus = bpy.data.objects.new("Focus", None)
     scene.collection.objects.link(focus)
     focus.location = (3.0, 1.0, -4.0)

@@ -1455,9 +1455,11 @@ def camera_params(cam_data, width, height, matrix_world=None):
 
 def depth_of_field(cam_data, matrix_world=None):
     """Blender's depth of field -> UsdGeomCamera fStop and focusDistance (scene units). The lens
-    is mm on a metre stage, so the delegate's aperture radius lens * 1e-3 / (2 fStop) is Cycles'
-    (round aperture: Cycles' polygonal blades and anamorphic ratio are not converted). A focus
-    object's distance is measured along the view axis, as Cycles does. fStop 0 when off."""
+    is mm on a metre stage, so the delegate's aperture radius lens * 1e-3 / (2 fStop) is Cycles'.
+    Blades (3 or more: a regular polygon inscribed in that circle, as Cycles) and their rotation
+    go to principled:apertureBlades / principled:apertureRotation (degrees); the anamorphic
+    ratio is not converted. A focus object's distance is measured along the view axis, as Cycles
+    does. fStop 0 when off."""
     dof = getattr(cam_data, "dof", None)
     if dof is None:
         return {"fStop": 0.0, "focusDistance": 1.0}
@@ -1469,7 +1471,10 @@ def depth_of_field(cam_data, matrix_world=None):
 
         axis = -(matrix_world.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()
         focus = abs(axis.dot(dof.focus_object.matrix_world.translation - matrix_world.translation))
-    return {"fStop": float(dof.aperture_fstop), "focusDistance": max(focus, 1e-6)}
+    blades = int(getattr(dof, "aperture_blades", 0))
+    return {"fStop": float(dof.aperture_fstop), "focusDistance": max(focus, 1e-6),
+            "principled:apertureBlades": float(blades if blades >= 3 else 0),
+            "principled:apertureRotation": math.degrees(float(getattr(dof, "aperture_rotation", 0.0)))}
 
 
 class MeshData:

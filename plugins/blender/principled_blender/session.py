@@ -124,7 +124,8 @@ class Session:
         self.delegate.set_transform("/World/ViewCamera", export.usd_matrix(m))
         for k, v in params.items():
             if k in ("focalLength", "horizontalAperture", "verticalAperture",
-                     "horizontalApertureOffset", "verticalApertureOffset", "fStop", "focusDistance"):
+                     "horizontalApertureOffset", "verticalApertureOffset", "fStop", "focusDistance",
+                     "principled:apertureBlades", "principled:apertureRotation"):
                 self.delegate.set_attribute("/World/ViewCamera", k, v)
         self.camera_matrix = matrix.copy()
 

@@ -1,6 +1,8 @@
 // Camera: the thin-lens aperture from UsdGeomCamera's fStop, focal length and the stage unit.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "delegate/hd/camera.h"
@@ -40,4 +42,45 @@ TEST(Camera, NoLensWithoutAnFStopAFocusDistanceOrAPerspective) {
     ortho.set(glm::dmat4(1.0), 5.0f, 3.6f, 2.4f, Camera::Projection::Orthographic);
     ortho.setDepthOfField(2.0f, 3.0f);
     EXPECT_EQ(ortho.lensRadius(), 0.0f);
+}
+
+TEST(Camera, PolygonalApertureIsUniformOverTheInscribedPolygon) {
+    // Five blades turned 18 degrees (corners at 18 + 36 + 72 k degrees, as Cycles places them):
+    // every sample lies in the pentagon, and the share within a
+    // circle of radius 0.6 (inside the inradius cos 36 = 0.809) is its area over the pentagon's,
+    // pi 0.36 / ((5/2) sin 72) = 0.4756, as for uniform samples.
+    Camera cam{Path("/cam")};
+    cam.setAperture(5, 18.0f);
+    const float rot = 18.0f * 3.14159265f / 180.0f, step = 2.0f * 3.14159265f / 5.0f;
+    const int n = 200000;
+    int inner = 0, outside = 0;
+    uint32_t state = 12345u;
+    auto next = [&] {  // xorshift32: independent of the renderer's sampler
+        state ^= state << 13, state ^= state >> 17, state ^= state << 5;
+        return float(state >> 8) * 0x1p-24f;
+    };
+    for (int i = 0; i < n; ++i) {
+        glm::vec2 p = cam.apertureSample({next(), next()});
+        inner += glm::dot(p, p) < 0.36f;
+        // Inside the pentagon: on the inner side of every edge (distance to the centre along
+        // each edge normal at most the inradius).
+        for (int k = 0; k < 5; ++k) {
+            float a = rot + float(k) * step;  // corners at rot + step/2 + k step: edges face rot + k step
+            if (p.x * std::cos(a) + p.y * std::sin(a) > std::cos(step / 2.0f) + 1e-5f) {
+                ++outside;
+                break;
+            }
+        }
+    }
+    EXPECT_EQ(outside, 0);
+    const double expected = 3.14159265 * 0.36 / (2.5 * std::sin(2.0 * 3.14159265 / 5.0));
+    EXPECT_NEAR(double(inner) / n, expected, 0.005);  // standard error 0.0011
+    // Round (fewer than 3 blades): the unit disk, share 0.36.
+    cam.setAperture(0, 0.0f);
+    inner = 0;
+    for (int i = 0; i < n; ++i) {
+        glm::vec2 p = cam.apertureSample({next(), next()});
+        inner += glm::dot(p, p) < 0.36f;
+    }
+    EXPECT_NEAR(double(inner) / n, 0.36, 0.005);
 }

@@ -92,18 +92,7 @@ def solid_image(name, rgb8, non_color=False):
 
 def empty_scene(samples, max_depth):
     """A factory-empty scene rendered by PRINCIPLED at W x H under a black world."""
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    scene.render.engine = "PRINCIPLED"
-    scene.render.resolution_x, scene.render.resolution_y = W, H
-    scene.render.resolution_percentage = 100
-    scene.principled.samples = samples
-    scene.principled.max_depth = max_depth
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = False
-    world.color = (0, 0, 0)
-    scene.world = world
-    return scene
+    return tr.empty_scene(W, H, samples, max_depth)
 
 
 def build():

@@ -89,10 +89,8 @@ def run_main(*steps):
     os._exit(1 if failures else 0)
 
 
-def overhead_sun_scene(width, height, samples, ortho_scale, max_depth=1, bake_resolution=256):
-    """An empty PRINCIPLED scene (factory settings) of width x height at `samples`, black world,
-    a delta sun of strength pi straight down (a Lambert plane's radiance is its albedo) and an
-    orthographic camera 5 above the origin looking down, ortho_scale wide. Returns the scene."""
+def empty_scene(width, height, samples, max_depth):
+    """A factory-empty scene rendered by PRINCIPLED at width x height under a black world."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scene.render.engine = "PRINCIPLED"
@@ -100,11 +98,18 @@ def overhead_sun_scene(width, height, samples, ortho_scale, max_depth=1, bake_re
     scene.render.resolution_percentage = 100
     scene.principled.samples = samples
     scene.principled.max_depth = max_depth
-    scene.principled.bake_resolution = bake_resolution
     world = bpy.data.worlds.new("World")
     world.use_nodes = False
     world.color = (0, 0, 0)
     scene.world = world
+    return scene
+
+
+def overhead_sun_scene(width, height, samples, ortho_scale, max_depth=1, bake_resolution=256):
+    """empty_scene() with a delta sun of strength pi straight down (a Lambert plane's radiance is
+    its albedo) and an orthographic camera 5 above the origin looking down, ortho_scale wide."""
+    scene = empty_scene(width, height, samples, max_depth)
+    scene.principled.bake_resolution = bake_resolution
     bpy.ops.object.light_add(type="SUN", location=(0, 0, 5))
     bpy.context.active_object.data.energy = math.pi
     bpy.context.active_object.data.angle = 0.0

@@ -109,12 +109,12 @@ hd::MaterialNetwork texturedNetwork(const std::string& file) {
     return net;
 }
 
-// A UsdPreviewSurface with a primvar-driven sRGB texture on diffuseColor and roughness.
-void evaluateTextured(benchmark::State& state) {
+// Evaluates the program of `net` at the fixture's st points, one per iteration.
+void evaluateAtPoints(benchmark::State& state, const hd::MaterialNetwork& net) {
     Fixture& f = Fixture::get();
     TextureCache cache;
     std::vector<std::string> notes;
-    MaterialProgram p = MaterialProgram::compile(texturedNetwork(f.png8), cache, &notes);
+    MaterialProgram p = MaterialProgram::compile(net, cache, &notes);
     StContext ctx;
     int i = 0;
     for (auto _ : state) {
@@ -124,6 +124,11 @@ void evaluateTextured(benchmark::State& state) {
         i = (i + 1) & (kPoints - 1);
     }
     state.SetItemsProcessed(state.iterations());
+}
+
+// A UsdPreviewSurface with a primvar-driven sRGB texture on diffuseColor and roughness.
+void evaluateTextured(benchmark::State& state) {
+    evaluateAtPoints(state, texturedNetwork(Fixture::get().png8));
 }
 BENCHMARK(evaluateTextured);
 
@@ -148,19 +153,7 @@ hd::MaterialNetwork standardSurfaceNetwork(const std::string& file) {
 }
 
 void evaluateStandardSurfaceTextured(benchmark::State& state) {
-    Fixture& f = Fixture::get();
-    TextureCache cache;
-    std::vector<std::string> notes;
-    MaterialProgram p = MaterialProgram::compile(standardSurfaceNetwork(f.png8), cache, &notes);
-    StContext ctx;
-    int i = 0;
-    for (auto _ : state) {
-        ctx.st = f.st[i];
-        ShadedMaterial m = p.evaluate(ctx);
-        benchmark::DoNotOptimize(m);
-        i = (i + 1) & (kPoints - 1);
-    }
-    state.SetItemsProcessed(state.iterations());
+    evaluateAtPoints(state, standardSurfaceNetwork(Fixture::get().png8));
 }
 BENCHMARK(evaluateStandardSurfaceTextured);
 

@@ -490,6 +490,9 @@ void MaterialProgram::run(const Op& op, const ShadingContext& context, glm::vec4
         case Op::Kind::Dot:
             regs[op.out] = glm::vec4(glm::dot(read(regs, op.in), read(regs, op.in2)));
             break;
+        case Op::Kind::Binary:
+            regs[op.out] = applyBinary(BinaryFn(op.index), read(regs, op.in), read(regs, op.in2));
+            break;
         case Op::Kind::Texture: {
             const TextureOp& t = _textures[op.index];
             glm::vec2 st(read(regs, op.in));
@@ -547,6 +550,21 @@ float MaterialProgram::presence(const ShadingContext& context) const {
     for (const Binding& b : _bindings)
         if (b.slot == Slot::Opacity) setSlot(p, b.slot, read(regs, b.source), b.source.count);
     return mapPreviewSurface(p).presence();
+}
+
+glm::vec4 MaterialProgram::applyBinary(BinaryFn fn, const glm::vec4& a, const glm::vec4& b) {
+    glm::vec4 r(0.0f);
+    for (int i = 0; i < 4; ++i) {
+        float x = 0.0f;
+        switch (fn) {
+            case BinaryFn::Divide: x = a[i] / b[i]; break;
+            case BinaryFn::Power: x = std::pow(a[i], b[i]); break;
+            case BinaryFn::Min: x = std::min(a[i], b[i]); break;
+            case BinaryFn::Max: x = std::max(a[i], b[i]); break;
+        }
+        r[i] = std::isfinite(x) ? x : 0.0f;
+    }
+    return r;
 }
 
 bool MaterialProgram::mayEmit() const {

@@ -99,13 +99,17 @@ class MaterialProgram {
     };
     struct Op {
         /// MulAdd: in * in2 + in3 per component; Dot: dot(in, in2) in every component.
-        enum class Kind : uint8_t { Texture, Primvar, Transform, MulAdd, Dot } kind;
+        enum class Kind : uint8_t { Texture, Primvar, Transform, MulAdd, Dot, Binary } kind;
         int16_t out;    ///< register written
         Operand in;     ///< st (Texture), in (Transform), the first factor (MulAdd, Dot)
-        int16_t index;  ///< into _textures, _primvars or _transforms (other kinds: -1)
+        int16_t index;  ///< into _textures, _primvars or _transforms; Binary: the BinaryFn; else -1
         Operand in2{};  ///< the second factor (MulAdd, Dot)
         Operand in3{};  ///< the addend (MulAdd)
     };
+    /// Componentwise functions of the Binary op (MaterialX divide, power, min, max); results that
+    /// are not finite (x / 0, a negative base to a fractional power) are 0.
+    enum class BinaryFn : int16_t { Divide, Power, Min, Max };
+    static glm::vec4 applyBinary(BinaryFn fn, const glm::vec4& a, const glm::vec4& b);
     struct TextureOp {
         UvTexture texture;
         hd::Token footprintPrimvar;         ///< the primvar st derives from (empty: constant st)

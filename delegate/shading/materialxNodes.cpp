@@ -69,6 +69,16 @@ std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::dot(const Ope
     return Operand{*reg, 0, 1};
 }
 
+std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::binary(BinaryFn fn, const Operand& a,
+                                                                          const Operand& b, uint8_t count) {
+    if (isConstant(a) && isConstant(b))
+        return constant(applyBinary(fn, constantValue(a), constantValue(b)), count);
+    auto reg = newRegister(glm::vec4(0.0f), false);
+    if (!reg) return std::nullopt;
+    _prog._ops.push_back({Op::Kind::Binary, *reg, a, int16_t(fn), b, Operand{}});
+    return Operand{*reg, 0, count};
+}
+
 std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::inputOperand(
     const MaterialNode& node, const char* input, const glm::vec4& fallback, uint8_t count) {
     if (node.inputConnections.count(Token(input)))
@@ -149,6 +159,21 @@ std::optional<int16_t> MaterialProgram::Compiler::compileMaterialXArithmetic(con
         auto x = in("in", 0.0f), amount = in("amount", 1.0f), minus = scalar(-1.0f);
         if (!x || !amount || !minus) return std::nullopt;
         return result(mulAdd(*x, *minus, amount, n));
+    }
+    const std::map<std::string, std::pair<BinaryFn, float>> binaries = {
+        {"divide", {BinaryFn::Divide, 1.0f}}, {"power", {BinaryFn::Power, 1.0f}},
+        {"min", {BinaryFn::Min, 0.0f}}, {"max", {BinaryFn::Max, 0.0f}}};
+    if (auto it = binaries.find(op); it != binaries.end()) {  // fn(in1, in2)
+        auto a = in("in1", 0.0f), b = in("in2", it->second.second);
+        if (!a || !b) return std::nullopt;
+        return result(binary(it->second.first, *a, *b, n));
+    }
+    if (op == "clamp") {  // min(max(in, low), high)
+        auto x = in("in", 0.0f), low = in("low", 0.0f), high = in("high", 1.0f);
+        if (!x || !low || !high) return std::nullopt;
+        auto lowered = binary(BinaryFn::Max, *x, *low, n);
+        if (!lowered) return std::nullopt;
+        return result(binary(BinaryFn::Min, *lowered, *high, n));
     }
     if (op == "mix") {  // bg + (fg - bg) * mix
         auto fg = in("fg", 0.0f), bg = in("bg", 0.0f), minus = scalar(-1.0f);

@@ -80,6 +80,8 @@ class MaterialProgram::Compiler {
                                   const std::optional<Operand>& c, uint8_t count);
     /// dot(a, b) as a scalar.
     std::optional<Operand> dot(const Operand& a, const Operand& b);
+    /// fn(a, b) componentwise (folded when both are constant).
+    std::optional<Operand> binary(BinaryFn fn, const Operand& a, const Operand& b, uint8_t count);
 
     // MaterialX nodes (materialxNodes.cpp).
     std::optional<int16_t> compileMaterialXNode(const hd::MaterialNode& node, bool* handled);

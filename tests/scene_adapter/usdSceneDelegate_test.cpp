@@ -312,7 +312,7 @@ def Scope "Looks"
             }
             def Shader "Mul"
             {
-                uniform token info:id = "ND_power_float"
+                uniform token info:id = "ND_noise2d_float"
                 float inputs:in1 = 0.5
                 float outputs:out
             }
@@ -437,11 +437,11 @@ TEST(UsdSceneDelegate, MaterialXNodeGraphTexturesAndUnsupportedNodes) {
     // emission_color: the same texels decoded from sRGB (0.8 -> 0.6038), times emission 1.
     EXPECT_NEAR(left.emission.x, 0.6038f, 1e-3f);
     EXPECT_NEAR(left.emission.z, 0.0f, 1e-6f);
-    // The power node is not supported: metalness keeps its authored 0.25, with a note that
+    // The noise node is not supported: metalness keeps its authored 0.25, with a note that
     // names the node and where it was authored.
     EXPECT_FLOAT_EQ(left.params.metallic, 0.25f);
     EXPECT_TRUE(anyHas(looks.notes,
-                       ": /Looks/Graph/NG/Mul: node 'ND_power_float' not supported"));
+                       ": /Looks/Graph/NG/Mul: node 'ND_noise2d_float' not supported"));
     ASSERT_FALSE(looks.notes.empty());
     EXPECT_TRUE(anyHas(looks.notes, "t.usda:")) << looks.notes.front();
 }

@@ -790,6 +790,40 @@ TEST_F(MaterialProgramTest, MaterialXArithmeticNodes) {
     EXPECT_TRUE(notes.empty()) << notes.front();
 }
 
+TEST_F(MaterialProgramTest, MaterialXDividePowerMinMaxClamp) {
+    // roughness = clamp(g / 0.5, 0.1, 0.7); metalness = max(min(g, 0.3), 0.2); base_color =
+    // (tint)^2 (power with a float exponent); coat = 1 / 0 (not finite: 0).
+    Net n = standardSurface();
+    n.add("/M/G", "ND_geompropvalue_float", {{Token("geomprop"), Value(std::string("g"))}})
+        .add("/M/Div", "ND_divide_float", {{Token("in2"), Value(0.5f)}})
+        .connect("/M/Div", "in1", "/M/G", "out")
+        .add("/M/Clamp", "ND_clamp_float", {{Token("low"), Value(0.1f)}, {Token("high"), Value(0.7f)}})
+        .connect("/M/Clamp", "in", "/M/Div", "out")
+        .surfaceFrom("specular_roughness", "/M/Clamp", "out")
+        .add("/M/Min", "ND_min_float", {{Token("in2"), Value(0.3f)}})
+        .connect("/M/Min", "in1", "/M/G", "out")
+        .add("/M/Max", "ND_max_float", {{Token("in2"), Value(0.2f)}})
+        .connect("/M/Max", "in1", "/M/Min", "out")
+        .surfaceFrom("metalness", "/M/Max", "out")
+        .add("/M/Tint", "ND_geompropvalue_color3", {{Token("geomprop"), Value(std::string("tint"))}})
+        .add("/M/Sq", "ND_power_color3FA", {{Token("in2"), Value(2.0f)}})
+        .connect("/M/Sq", "in1", "/M/Tint", "out")
+        .surfaceFrom("base_color", "/M/Sq", "out")
+        .add("/M/Inf", "ND_divide_float", {{Token("in1"), Value(1.0f)}, {Token("in2"), Value(0.0f)}})
+        .surfaceFrom("coat", "/M/Inf", "out");
+    MaterialProgram p = compile(n);
+    ctx.values["tint"] = glm::vec4(0.5f, 0.2f, 0.9f, 0.0f);
+    for (float g : {0.02f, 0.2f, 0.5f}) {
+        ctx.values["g"] = glm::vec4(g);
+        ShadedMaterial m = p.evaluate(ctx);
+        EXPECT_NEAR(m.params.roughness, std::clamp(g / 0.5f, 0.1f, 0.7f), 1e-6f) << g;
+        EXPECT_NEAR(m.params.metallic, std::max(std::min(g, 0.3f), 0.2f), 1e-6f) << g;
+        expectNear(m.params.baseColor, glm::vec3(0.25f, 0.04f, 0.81f));
+        EXPECT_EQ(m.params.clearcoat, 0.0f);
+    }
+    EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
 TEST_F(MaterialProgramTest, MaterialXUnsupportedNodeNotesAndKeepsTheConstant) {
     Net n = standardSurface();
     n.node("/M/Surface").where = "look.usda:12:9";

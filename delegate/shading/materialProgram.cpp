@@ -218,6 +218,22 @@ std::optional<MaterialProgram::Operand> MaterialProgram::Compiler::connection(
         o = {*reg, 0, 2};
     } else if (id.rfind("UsdPrimvarReader_", 0) == 0) {  // "result"
         o = {*reg, 0, static_cast<uint8_t>(primvarComponents(id.substr(17)))};
+    } else if (id.rfind("ND_extract_", 0) == 0) {  // component `index` of its input's register
+        const int n = program::materialxComponents(id);
+        int index = 0;
+        if (auto p = up->parameters.find(Token("index")); p != up->parameters.end())
+            index = static_cast<int>(getFloat(p->second).value_or(0.0f));
+        o = {*reg, static_cast<uint8_t>(std::clamp(index, 0, n - 1)), 1};
+    } else if (id.rfind("ND_separate", 0) == 0) {  // outx/outr, outy/outg, outz/outb, outw/outa
+        const std::string comps = "xyzw", colour = "rgba";
+        const char last = out.empty() ? 'x' : out.back();
+        size_t index = comps.find(last) != std::string::npos ? comps.find(last) : colour.find(last);
+        if (index == std::string::npos || int(index) >= program::materialxComponents(id)) {
+            note(consumer, std::string("input '") + input + "' reads unknown output '" + out + "' of " +
+                               up->path.str() + "; using its value or fallback");
+            return std::nullopt;
+        }
+        o = {*reg, static_cast<uint8_t>(index), 1};
     } else {  // a MaterialX node: its one output, "out"
         o = {*reg, 0, static_cast<uint8_t>(program::materialxComponents(id))};
     }

@@ -144,6 +144,16 @@ std::optional<int16_t> MaterialProgram::Compiler::compileMaterialXArithmetic(con
     };
     auto scalar = [&](float v) { return constant(glm::vec4(v), n); };
     if (op == "constant") return result(in("value", 0.0f));
+    if (op == "extract" || startsWith(op, "separate")) {
+        // The input's register; the consumer's connection() picks the component (MaterialX
+        // ND_extract_<type> index, ND_separate<N>_<type> outputs).
+        auto x = in("in", 0.0f);
+        if (!x) return std::nullopt;
+        if (x->offset == 0) return x->reg;
+        auto one = scalar(1.0f);  // a component of another register: copied to a register of its own
+        if (!one) return std::nullopt;
+        return result(mulAdd(*x, *one, std::nullopt, n));
+    }
     if (op == "dot") return result(in("in", 0.0f));  // MaterialX "dot": a pass-through
     if (op == "multiply") {  // in1 * in2
         auto a = in("in1", 0.0f), b = in("in2", 1.0f);

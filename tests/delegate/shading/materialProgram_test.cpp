@@ -824,6 +824,29 @@ TEST_F(MaterialProgramTest, MaterialXDividePowerMinMaxClamp) {
     EXPECT_TRUE(notes.empty()) << notes.front();
 }
 
+TEST_F(MaterialProgramTest, MaterialXExtractAndSeparatePickComponents) {
+    // An "ORM"-style colour: roughness = extract(index 1), metalness = separate3's outb, and
+    // coat = extract(index 0) of a separate3 output (a component of a component).
+    Net n = standardSurface();
+    n.add("/M/Orm", "ND_geompropvalue_color3", {{Token("geomprop"), Value(std::string("orm"))}})
+        .add("/M/Rough", "ND_extract_color3", {{Token("index"), Value(1)}})
+        .connect("/M/Rough", "in", "/M/Orm", "out")
+        .surfaceFrom("specular_roughness", "/M/Rough", "out")
+        .add("/M/Sep", "ND_separate3_color3")
+        .connect("/M/Sep", "in", "/M/Orm", "out")
+        .surfaceFrom("metalness", "/M/Sep", "outb")
+        .add("/M/Ex", "ND_extract_vector2", {{Token("index"), Value(0)}})
+        .connect("/M/Ex", "in", "/M/Sep", "outg")
+        .surfaceFrom("coat", "/M/Ex", "out");
+    MaterialProgram p = compile(n);
+    ctx.values["orm"] = glm::vec4(0.1f, 0.2f, 0.3f, 0.0f);
+    ShadedMaterial m = p.evaluate(ctx);
+    EXPECT_NEAR(m.params.roughness, 0.2f, 1e-6f);
+    EXPECT_NEAR(m.params.metallic, 0.3f, 1e-6f);
+    EXPECT_NEAR(m.params.clearcoat, 0.2f, 1e-6f);
+    EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
 TEST_F(MaterialProgramTest, MaterialXUnsupportedNodeNotesAndKeepsTheConstant) {
     Net n = standardSurface();
     n.node("/M/Surface").where = "look.usda:12:9";

@@ -125,10 +125,7 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             MaterialRecord& slot = _snapshot.materials[size_t(it->second)];
             // Mesh lights come from emission (constant or textured): redo them only if it is or
             // was there.
-            auto emits = [](const MaterialRecord& r) {
-                return r.mayEmit || r.constant.emission != glm::vec3(0.0f);
-            };
-            if (emits(slot) || emits(m->record())) meshLights = true;
+            if (slot.mayEmit || m->record().mayEmit) meshLights = true;
             slot = m->record();
             ++_materialUpdates;
         }
@@ -228,15 +225,15 @@ bool EmbreeRenderDelegate::mayEmit(const GeometryRecord* r) const {
     for (const MeshLightGroup& g : _meshLightGroups)
         if (g.record == r) return true;
     if (r->kind != GeometryRecord::Kind::Triangles) return false;
-    auto emits = [&](int mi) {
-        if (mi < 0 || mi >= int(_snapshot.materials.size())) return false;
-        const MaterialRecord& m = _snapshot.materials[size_t(mi)];
-        return m.mayEmit || m.constant.emission != glm::vec3(0.0f);
-    };
-    if (emits(r->materialIndex)) return true;
+    if (materialMayEmit(r->materialIndex)) return true;
     for (int mi : r->triangleMaterial)
-        if (mi != r->materialIndex && emits(mi)) return true;
+        if (mi != r->materialIndex && materialMayEmit(mi)) return true;
     return false;
+}
+
+bool EmbreeRenderDelegate::materialMayEmit(int materialIndex) const {
+    return materialIndex >= 0 && materialIndex < int(_snapshot.materials.size()) &&
+           _snapshot.materials[size_t(materialIndex)].mayEmit;
 }
 
 void EmbreeRenderDelegate::buildMeshLights() {
@@ -253,11 +250,6 @@ void EmbreeRenderDelegate::buildMeshLights() {
     std::vector<GeometrySource*> sources(_param->geometry().begin(), _param->geometry().end());
     std::sort(sources.begin(), sources.end(),
               [](GeometrySource* a, GeometrySource* b) { return a->record()->primId < b->record()->primId; });
-    auto emits = [&](int mi) {
-        if (mi < 0 || mi >= int(_snapshot.materials.size())) return false;
-        const MaterialRecord& m = _snapshot.materials[size_t(mi)];
-        return m.mayEmit || m.constant.emission != glm::vec3(0.0f);
-    };
     // Instanced emitters copy their emitting triangles per placement (≈ 60 bytes each).
     constexpr size_t kInstancedTriangleBudget = size_t(1) << 20;
     size_t instancedTriangles = 0;
@@ -269,9 +261,9 @@ void EmbreeRenderDelegate::buildMeshLights() {
         const std::vector<unsigned>* ids = g->instanceGeomIds();
         if (!ids && g->instanceId() == RTC_INVALID_GEOMETRY_ID) continue;
         std::vector<int> materials;  // the emitting materials this prim uses, sorted
-        if (emits(r->materialIndex)) materials.push_back(r->materialIndex);
+        if (materialMayEmit(r->materialIndex)) materials.push_back(r->materialIndex);
         for (int mi : r->triangleMaterial)
-            if (emits(mi)) materials.push_back(mi);
+            if (materialMayEmit(mi)) materials.push_back(mi);
         if (materials.empty()) continue;
         std::sort(materials.begin(), materials.end());
         materials.erase(std::unique(materials.begin(), materials.end()), materials.end());

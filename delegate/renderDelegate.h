@@ -96,6 +96,8 @@ private:
     void computeLightPower();
     float sceneRadius() const;
     bool mayEmit(const GeometryRecord* r) const;
+    /// Whether material `materialIndex` of the table may emit (MaterialRecord::mayEmit).
+    bool materialMayEmit(int materialIndex) const;
     void addInstancerInstances();
 
     EmbreeDevice _device;

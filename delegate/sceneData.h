@@ -24,7 +24,7 @@ struct MaterialRecord {
     shading::ShadedMaterial constant;                        ///< used when program is null
     std::shared_ptr<const shading::MaterialProgram> program;  ///< non-null when textured
     bool mayBePartlyPresent = false;  ///< opacity < 1 somewhere: shadow rays must evaluate it
-    bool mayEmit = false;  ///< constant emission != 0, or emissiveColor textured (program)
+    bool mayEmit = false;  ///< constant emission != 0, or emissiveColor textured (MaterialProgram::mayEmit)
 };
 
 /// One primvar of a mesh: by default three values per triangle (one per corner); or one value

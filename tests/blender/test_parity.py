@@ -70,6 +70,17 @@ ALBEDO = ((TEXEL / 255 + 0.055) / 1.055) ** 2.4
 render_combined = tr.render_combined
 
 
+def principled_material(name, inputs):
+    """A new node material (Principled BSDF and Material Output, as Blender creates it) with the
+    Principled BSDF's inputs set from {socket name: value}. Returns (material, the BSDF node)."""
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    b = m.node_tree.nodes["Principled BSDF"]
+    for k, v in inputs.items():
+        b.inputs[k].default_value = v
+    return m, b
+
+
 def left_plane_material(name):
     """A 2 m plane at x = -1.2 with a new node material of its own (Principled BSDF and Material
     Output, as Blender creates it), assigned to the plane."""
@@ -310,12 +321,8 @@ def test_uv_mapping():
 def test_area_one_sided():
     scene = empty_scene(samples=64, max_depth=1)
     bpy.ops.mesh.primitive_plane_add(size=20.0, location=(0, 0, 0))
-    m = bpy.data.materials.new("Floor")
-    m.use_nodes = True
-    b = m.node_tree.nodes["Principled BSDF"]
-    b.inputs["Specular"].default_value = 0.0
-    b.inputs["Roughness"].default_value = 1.0
-    b.inputs["Base Color"].default_value = (ALBEDO, ALBEDO, ALBEDO, 1.0)
+    m, _b = principled_material("Floor", {"Specular": 0.0, "Roughness": 1.0,
+                                          "Base Color": (ALBEDO, ALBEDO, ALBEDO, 1.0)})
     bpy.context.active_object.data.materials.append(m)
     bpy.ops.object.light_add(type="AREA", location=(0, 0, 1.0))
     lamp = bpy.context.active_object
@@ -471,12 +478,8 @@ def test_specular_fresnel():
     scene = empty_scene(samples=64, max_depth=1)
     scene.world.color = (1.0, 1.0, 1.0)
     bpy.ops.mesh.primitive_plane_add(size=40.0)
-    m = bpy.data.materials.new("SpecularOnly")
-    m.use_nodes = True
-    b = m.node_tree.nodes["Principled BSDF"]
-    b.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-    b.inputs["Specular"].default_value = 0.5
-    b.inputs["Roughness"].default_value = 0.3
+    m, _b = principled_material("SpecularOnly", {"Base Color": (0.0, 0.0, 0.0, 1.0), "Specular": 0.5,
+                                                 "Roughness": 0.3})
     bpy.context.active_object.data.materials.append(m)
     cam = bpy.data.objects.new("Cam", bpy.data.cameras.new("Cam"))
     scene.collection.objects.link(cam)
@@ -508,12 +511,8 @@ def lt_scene(samples):
     scene.render.resolution_x = scene.render.resolution_y = LT_RES
     scene.view_settings.view_transform = "Standard"
     bpy.ops.mesh.primitive_plane_add(size=10.0)
-    floor = bpy.data.materials.new("Floor")
-    floor.use_nodes = True
-    b = floor.node_tree.nodes["Principled BSDF"]
-    b.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    b.inputs["Specular"].default_value = 0.0
-    b.inputs["Roughness"].default_value = 1.0
+    floor, _b = principled_material("Floor", {"Base Color": (0.8, 0.8, 0.8, 1.0), "Specular": 0.0,
+                                              "Roughness": 1.0})
     bpy.context.active_object.data.materials.append(floor)
     cam = bpy.data.objects.new("Cam", bpy.data.cameras.new("Cam"))
     scene.collection.objects.link(cam)
@@ -526,13 +525,8 @@ def lt_scene(samples):
 
 
 def emissive(name, rgb=(1.0, 1.0, 1.0), strength=1.0):
-    m = bpy.data.materials.new(name)
-    m.use_nodes = True
-    b = m.node_tree.nodes["Principled BSDF"]
-    b.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-    b.inputs["Specular"].default_value = 0.0
-    b.inputs["Emission"].default_value = (*rgb, 1.0)
-    b.inputs["Emission Strength"].default_value = strength
+    m, _b = principled_material(name, {"Base Color": (0.0, 0.0, 0.0, 1.0), "Specular": 0.0,
+                                       "Emission": (*rgb, 1.0), "Emission Strength": strength})
     return m
 
 

@@ -117,6 +117,33 @@ Bsdf::View Bsdf::prepare(const glm::vec3& woIn, const glm::vec3& smoothNormal) c
     return v;
 }
 
+LobeMask Bsdf::sharpLobes(float maxAlpha) const {
+    LobeMask sharp = _set.deltaMask;
+    auto narrow = [&](const Ggx& g) { return std::max(g.ax, g.ay) <= maxAlpha; };
+    if ((_lobes & kSpecBit) && narrow(_set.specular.dist)) sharp |= kSpecBit;
+    if ((_lobes & kCoatBit) && _set.clearcoat.dist.alpha <= maxAlpha) sharp |= kCoatBit;
+    if ((_lobes & kTransBit) && narrow(_set.transmission.dist) && narrow(_set.transmissionInside.dist))
+        sharp |= kTransBit;
+    return sharp & _lobes;
+}
+
+Bsdf::View Bsdf::restrict(const View& view, LobeMask lobes) const {
+    View v = view;
+    v.active &= lobes;
+    float sum = 0.0f;
+    for (int k = 0; k < kLobeCount; ++k) {
+        if (!(v.active & (1u << k))) v.prob[k] = 0.0f;
+        sum += v.prob[k];
+    }
+    if (sum > 0.0f) {
+        for (float& p : v.prob) p /= sum;
+    } else {
+        const int n = std::popcount(v.active);
+        for (int k = 0; k < kLobeCount; ++k) v.prob[k] = (v.active & (1u << k)) ? 1.0f / float(n) : 0.0f;
+    }
+    return v;
+}
+
 std::array<float, kLobeCount> Bsdf::lobeProbabilities(const glm::vec3& wo) const {
     return prepare(wo).prob;
 }

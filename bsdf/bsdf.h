@@ -78,6 +78,15 @@ public:
         return (_lobes & t) && !(_set.deltaMask & t);
     }
 
+    /// The lobes narrow enough to carry caustics: delta lobes, and specular, clearcoat and
+    /// transmission lobes whose GGX/GTR1 alpha (the larger of an anisotropic pair) is at most
+    /// maxAlpha. Diffuse and sheen are never sharp.
+    LobeMask sharpLobes(float maxAlpha) const;
+    /// The view restricted to the lobes in `lobes`: sample() then picks among those only (with
+    /// renormalised probabilities) and eval()/the sample's f and pdf cover those lobes only.
+    /// The returned view has no active lobe when none of `lobes` is active in `view`.
+    View restrict(const View& view, LobeMask lobes) const;
+
     /// Probability that sample() picks each lobe for this wo (never depends on wi).
     std::array<float, kLobeCount> lobeProbabilities(const glm::vec3& wo) const;
 

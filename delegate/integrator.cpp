@@ -8,6 +8,8 @@
 #include <tuple>
 #include <type_traits>
 
+#include "delegate/cameraConnection.h"
+#include "delegate/causticScene.h"
 #include "delegate/hd/token.h"
 #include "delegate/lightSampling.h"
 #include "delegate/shadingNormal.h"
@@ -292,6 +294,100 @@ float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const g
     return 0.0f;  // more layers than a path may cross: treat as blocked
 }
 
+
+// The material at a hit: the bound one (evaluated here if textured; an untextured material's
+// record and prebuilt BSDF are used as they are, with nothing written per hit), or
+// UsdPreviewSurface defaults with displayColor.
+struct HitMaterial {
+    std::optional<shading::ShadedMaterial> store;
+    const shading::ShadedMaterial* mat = nullptr;
+    const bsdf::Bsdf* constantBsdf = nullptr;  // prebuilt for untextured materials
+    int index = -1;                            // GeomSubset's or the prim's material
+};
+
+void materialAt(const SceneSnapshot& scene, const std::vector<std::optional<bsdf::Bsdf>>& constantBsdfs,
+                const Hit& hit, const SurfacePoint& context, HitMaterial* out) {
+    const GeometryRecord& rec = *hit.record;
+    out->index = rec.materialFor(hit.triangle);
+    if (out->index >= 0 && out->index < int(scene.materials.size())) {
+        const MaterialRecord& m = scene.materials[size_t(out->index)];
+        if (m.program) {
+            out->mat = &out->store.emplace(m.program->evaluate(context));
+        } else {
+            out->mat = &m.constant;
+            out->constantBsdf = &*constantBsdfs[size_t(out->index)];
+        }
+        return;
+    }
+    shading::ShadedMaterial& shaded = out->store.emplace();
+    out->mat = &shaded;
+    shaded.params.baseColor = rec.displayColor;
+    float dc[3];
+    static const hd::Token kDisplayColor("displayColor");  // interned once, not per hit
+    if (context.primvar(kDisplayColor, 3, dc))
+        shaded.params.baseColor = glm::clamp(glm::vec3(dc[0], dc[1], dc[2]), 0.0f, 1.0f);
+    shaded.params.roughness = 0.5f;
+    shaded.params.specular = 0.5f;
+}
+
+// The shading frame at a hit seen from wo (world, on the side the hit's normals face).
+struct ShadingFrame {
+    Frame frame;
+    glm::vec3 woLocal;
+    bool bumped;  // the shading normal is not the surface's own: diffuse lobes are bump-shadowed
+};
+
+ShadingFrame shadingFrame(const Hit& hit, const shading::ShadedMaterial& mat, const glm::vec3& wo,
+                          bool bumpShadowing) {
+    // Shading normals (interpolated or mapped) are tilted back toward the geometric normal
+    // until the view's mirror direction clears the surface (validReflectionNormal): no black
+    // rims, and grazing views shade like Cycles.
+    glm::vec3 ns = validReflectionNormal(hit.ng, wo, hit.ns);
+    // Solid dielectrics need the outward normal: inside the object the BSDF sees
+    // wo.z < 0 and refracts with the inverse index of refraction.
+    const bool solidTransmission = mat.params.specTrans > 0.0f && !mat.params.thin;
+    if (mat.hasNormalMap && !(solidTransmission && hit.backface)) {
+        // Mapped around the surface's own interpolated normal, then bent once (Cycles: the
+        // Normal Map node uses the smooth normal; the closure applies the bending).
+        Frame tf = tangentFrame(hit, hit.ns);
+        glm::vec3 mapped = glm::normalize(tf.toWorld(mat.tangentNormal));
+        if (std::isfinite(mapped.x)) ns = validReflectionNormal(hit.ng, wo, mapped);
+    }
+    if (solidTransmission && hit.backface) ns = -ns;
+    Frame frame(ns);
+    // A shading normal other than the surface's own (mapped or bent): its diffuse lobes are
+    // shadowed by the surface (Bsdf::prepare with the smooth normal), as in Cycles.
+    const bool bumped = bumpShadowing && ns != hit.ns && !(solidTransmission && hit.backface);
+    return {frame, frame.toLocal(wo), bumped};
+}
+
+bsdf::Bsdf::View prepareView(const bsdf::Bsdf& bsdf, const ShadingFrame& sf, const Hit& hit) {
+    return sf.bumped ? bsdf.prepare(sf.woLocal, sf.frame.toLocal(hit.ns)) : bsdf.prepare(sf.woLocal);
+}
+
+// The hit as a ray travelling along unit d would see it: normals faced toward that ray.
+Hit seenAlong(const Hit& hit, const glm::vec3& d) {
+    Hit h = hit;
+    const glm::vec3 ng = hit.backface ? -hit.ng : hit.ng;  // as authored
+    h.backface = glm::dot(ng, d) > 0.0f;
+    h.ng = h.backface ? -ng : ng;
+    h.ns = glm::dot(hit.ns, h.ng) < 0.0f ? -hit.ns : hit.ns;
+    return h;
+}
+
+// Componentwise share of f that the sharp lobes carry (perLobe from the same evaluation);
+// 0 where f is 0.
+glm::vec3 lobeShare(const bsdf::LobeValues& perLobe, const glm::vec3& f, bsdf::LobeMask lobes) {
+    glm::vec3 part(0.0f);
+    for (int i = 0; i < bsdf::kLobeCount; ++i)
+        if (lobes & (1u << i)) part += perLobe[size_t(i)];
+    glm::vec3 share;
+    for (int c = 0; c < 3; ++c) share[c] = f[c] > 0.0f ? std::clamp(part[c] / f[c], 0.0f, 1.0f) : 0.0f;
+    return share;
+}
+
+bool anyPositive(const glm::vec3& v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
+
 }  // namespace
 
 Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings)
@@ -345,6 +441,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     float prevBsdfPdf = 0.0f;
     glm::vec3 prevNg(0.0f);
     int passThrough = 0;
+    // Caustic split (delegate/causticScene.h): light tracing's share c of the path so far, applied
+    // as (1 - c) to caustic lights reached after the first hit.
+    const CausticScene* caustic = causticsActive() ? _settings.caustics : nullptr;
+    glm::vec3 causticShare(0.0f);
 
     for (int depth = 0;; ++depth) {
         Hit hit;
@@ -355,11 +455,12 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // have found them. Without MIS, lights that NEE samples are counted only by NEE
         // (weight 0 here), except after a delta bounce, which NEE cannot follow; directions
         // NEE cannot produce (pdf 0, e.g. below the surface) always count fully.
-        auto addEmitter = [&](const glm::vec3& Le, float lightPdf) {
+        auto addEmitter = [&](const glm::vec3& Le, float lightPdf, uint32_t li) {
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f
                           : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
             glm::vec3 c = beta * Le * w;
+            if (caustic && depth >= 2 && caustic->isCausticLight(li)) c *= glm::vec3(1.0f) - causticShare;
             if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                 c *= _settings.clampIndirect / maxComponent(c);
             credit(c);
@@ -371,7 +472,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             glm::vec3 Le;
             float pdf;
             if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf))
-                addEmitter(Le, pdf * light.pickProbability);
+                addEmitter(Le, pdf * light.pickProbability, li);
         }
         if (!found) {
             for (uint32_t li : _environmentLights) {
@@ -380,7 +481,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::vec3 Le;
                 float pdf;
                 if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf))
-                    addEmitter(Le, pdf * light.pickProbability);
+                    addEmitter(Le, pdf * light.pickProbability, li);
             }
             break;
         }
@@ -395,34 +496,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             --depth;
             continue;
         }
-        // Material: the bound one (evaluated here if textured), or UsdPreviewSurface
-        // defaults with displayColor.
         SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v);
-        // Built only for textured or unbound materials (an untextured material's record and
-        // prebuilt BSDF are used as they are, with nothing written per hit).
-        std::optional<shading::ShadedMaterial> shadedStore;
-        const shading::ShadedMaterial* mat = nullptr;
-        const bsdf::Bsdf* constantBsdf = nullptr;  // prebuilt for untextured materials
-        const int materialIndex = rec.materialFor(hit.triangle);  // GeomSubset or the prim's
-        if (materialIndex >= 0 && materialIndex < int(_scene.materials.size())) {
-            const MaterialRecord& m = _scene.materials[materialIndex];
-            if (m.program) {
-                mat = &shadedStore.emplace(m.program->evaluate(context));
-            } else {
-                mat = &m.constant;
-                constantBsdf = &*_constantBsdfs[size_t(materialIndex)];
-            }
-        } else {
-            shading::ShadedMaterial& shaded = shadedStore.emplace();
-            mat = &shaded;
-            shaded.params.baseColor = rec.displayColor;
-            float dc[3];
-            static const hd::Token kDisplayColor("displayColor");  // interned once, not per hit
-            if (context.primvar(kDisplayColor, 3, dc))
-                shaded.params.baseColor = glm::clamp(glm::vec3(dc[0], dc[1], dc[2]), 0.0f, 1.0f);
-            shaded.params.roughness = 0.5f;
-            shaded.params.specular = 0.5f;
-        }
+        HitMaterial hm;
+        materialAt(_scene, _constantBsdfs, hit, context, &hm);
+        const shading::ShadedMaterial* mat = hm.mat;
+        const int materialIndex = hm.index;
         // Partial presence (opacity, cutouts): a stochastic choice to pass through.
         float presence = mat->presence();
         if (presence < 1.0f && passThrough < kMaxPassThrough) {
@@ -466,26 +544,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         }
 
         glm::vec3 wo = -ray.direction;
-        // Shading normals (interpolated or mapped) are tilted back toward the geometric normal
-        // until the view's mirror direction clears the surface (validReflectionNormal): no black
-        // rims, and grazing views shade like Cycles.
-        glm::vec3 ns = validReflectionNormal(hit.ng, wo, hit.ns);
-        // Solid dielectrics need the outward normal: inside the object the BSDF sees
-        // wo.z < 0 and refracts with the inverse index of refraction.
-        bool solidTransmission = mat->params.specTrans > 0.0f && !mat->params.thin;
-        if (mat->hasNormalMap && !(solidTransmission && hit.backface)) {
-            // Mapped around the surface's own interpolated normal, then bent once (Cycles: the
-            // Normal Map node uses the smooth normal; the closure applies the bending).
-            Frame tf = tangentFrame(hit, hit.ns);
-            glm::vec3 mapped = glm::normalize(tf.toWorld(mat->tangentNormal));
-            if (std::isfinite(mapped.x)) ns = validReflectionNormal(hit.ng, wo, mapped);
-        }
-        if (solidTransmission && hit.backface) ns = -ns;
-        Frame frame(ns);
-        glm::vec3 woLocal = frame.toLocal(wo);
-        // A shading normal other than the surface's own (mapped or bent): its diffuse lobes are
-        // shadowed by the surface (Bsdf::prepare with the smooth normal), as in Cycles.
-        const bool bumped = _settings.bumpShadowing && ns != hit.ns && !(solidTransmission && hit.backface);
+        const ShadingFrame sf = shadingFrame(hit, *mat, wo, _settings.bumpShadowing);
+        const Frame& frame = sf.frame;
+        const glm::vec3& woLocal = sf.woLocal;
         // maxDepth = N: N bounces after the camera hit, Cycles' max_bounces convention (0 = direct
         // light only: NEE at the camera hit plus the emitter its BSDF ray reaches). `>=` here
         // made maxDepth 0 render emitters only and gave every path one bounce fewer than Cycles.
@@ -494,9 +555,14 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         static_assert(std::is_trivially_destructible_v<bsdf::Bsdf>);
         alignas(bsdf::Bsdf) std::byte builtStorage[sizeof(bsdf::Bsdf)];
         const bsdf::Bsdf& bsdf =
-            constantBsdf ? *constantBsdf : *::new (builtStorage) bsdf::Bsdf(mat->params, _settings.bsdf);
-        const bsdf::Bsdf::View view =  // shared by NEE and sampling
-            bumped ? bsdf.prepare(woLocal, frame.toLocal(hit.ns)) : bsdf.prepare(woLocal);
+            hm.constantBsdf ? *hm.constantBsdf : *::new (builtStorage) bsdf::Bsdf(mat->params, _settings.bsdf);
+        const bsdf::Bsdf::View view = prepareView(bsdf, sf, hit);  // shared by NEE and sampling
+        // Caustic split: the lobes of this vertex light tracing counts as sharp (casters only).
+        const bsdf::LobeMask sharp =
+            caustic && caustic->isCaster(hit.instId) ? bsdf.sharpLobes(caustic->maxAlpha()) : 0u;
+        // After the first hit, a light reached from here through a sharp lobe is partly light
+        // tracing's: this vertex's sharp share of f is needed.
+        const bool shareHere = depth > 0 && sharp != 0 && anyPositive(causticShare);
 
         // Next-event estimation: one light picked by power, or every light in turn when the scene
         // has few (SceneSnapshot::neeAllLights; their pick probabilities are then 1).
@@ -519,7 +585,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 float bsdfPdf = 0.0f;
                 bsdf::LobeValues perLobe;
                 const bool split = depth == 0 && _settings.splitLobes;
-                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf, split ? &perLobe : nullptr);
+                const bool share = shareHere && caustic->isCausticLight(li);
+                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf, split || share ? &perLobe : nullptr);
+                if (share) f *= glm::vec3(1.0f) - causticShare * lobeShare(perLobe, f, sharp);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
                     glm::vec3 shadowOrigin = offsetOrigin(hit.p, hit.ng, ls.wi);
@@ -562,6 +630,20 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             return out;
         }
         if (depth == 0) pathLobe = _settings.splitLobes ? static_cast<int>(s->lobe) : 0;
+        if (caustic && (depth == 0 || anyPositive(causticShare))) {
+            // x1 passes on the share of its lobes that are not sharp (none through a delta
+            // lobe); later vertices multiply in their sharp share (all of it through a delta).
+            glm::vec3 sharpShare(s->delta ? 1.0f : 0.0f);
+            if (sharp != 0 && !s->delta) {
+                bsdf::LobeValues perLobe;
+                const glm::vec3 f = bsdf.eval(view, s->wi, nullptr, &perLobe);
+                sharpShare = lobeShare(perLobe, f, sharp);
+            }
+            if (depth == 0)
+                causticShare = s->delta ? glm::vec3(0.0f) : glm::vec3(1.0f) - sharpShare;
+            else
+                causticShare *= sharp != 0 ? sharpShare : glm::vec3(0.0f);
+        }
         // NEE samples the far side only for rough transmission (neeThrough): a direction
         // transmitted by anything else could not have come from it, so lights it reaches count
         // fully (treated like a delta bounce); otherwise they are MIS-weighted as reflections.
@@ -591,6 +673,134 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     }
     out.radiance = L;
     return out;
+}
+
+
+bool Integrator::causticsActive() const {
+    return _settings.caustics && _settings.caustics->active() && _settings.nee &&
+           !(_settings.clampIndirect > 0.0f);
+}
+
+uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sampler, const CameraConnector& camera,
+                                      Splat* splats, int* count) const {
+    *count = 0;
+    if (!causticsActive() || !camera.valid()) return 0;
+    const CausticScene& caustic = *_settings.caustics;
+    glm::vec3 beta = emitted.weight;  // the light the path carries (estimator weight)
+    glm::vec3 scatter(1.0f);          // product of the scattering factors alone (roulette)
+    Ray ray;
+    ray.origin = emitted.origin;
+    ray.direction = emitted.direction;
+    uint32_t rays = 0;
+    int sharpVertices = 0, passThrough = 0;
+    for (int bounce = 0;; ++bounce) {
+        Hit hit;
+        ++rays;
+        if (!intersect(_scene, ray, &hit)) break;
+        SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v);
+        HitMaterial hm;
+        materialAt(_scene, _constantBsdfs, hit, context, &hm);
+        const shading::ShadedMaterial& mat = *hm.mat;
+        // Partial presence: the light passes through as the camera's paths do.
+        const float presence = mat.presence();
+        if (presence < 1.0f && passThrough < kMaxPassThrough) {
+            if (presence <= 0.0f || sampler.next1D() >= presence) {
+                ++passThrough;
+                ray.origin = offsetOrigin(hit.p, hit.ng, ray.direction);
+                --bounce;
+                continue;
+            }
+        }
+        alignas(bsdf::Bsdf) std::byte builtStorage[sizeof(bsdf::Bsdf)];
+        const bsdf::Bsdf& bsdf =
+            hm.constantBsdf ? *hm.constantBsdf : *::new (builtStorage) bsdf::Bsdf(mat.params, _settings.bsdf);
+        const bsdf::LobeMask sharp = caustic.isCaster(hit.instId) ? bsdf.sharpLobes(caustic.maxAlpha()) : 0u;
+        const glm::vec3 toLight = -ray.direction;
+
+        // Connect to the camera through the lobes that are not sharp, once the light has been
+        // through a sharp one (before that it is direct light: the path tracer's). The BSDF is
+        // evaluated as the camera path sees it: wo toward the camera, wi toward the light.
+        CameraConnection cc;
+        const glm::vec2 uLens = sampler.next2D();
+        if (sharpVertices > 0 && (bsdf.lobes() & ~sharp) != 0 && camera.connect(hit.p, uLens, &cc)) {
+            const Hit seen = seenAlong(hit, -cc.toCamera);
+            const GeometryRecord& rec = *hit.record;
+            // Camera rays do not see the back of a single-sided mesh (trace(), depth 0).
+            const bool culled = seen.backface && !rec.doubleSided && rec.kind == GeometryRecord::Kind::Triangles;
+            const ShadingFrame sf = shadingFrame(seen, mat, cc.toCamera, _settings.bumpShadowing);
+            const glm::vec3 wiLocal = sf.frame.toLocal(toLight);
+            const bool transmit = wiLocal.z * sf.woLocal.z < 0.0f;
+            const float cosLight = std::abs(glm::dot(seen.ng, toLight));
+            // The side rule of trace()'s BSDF samples (no leaks between the two normals).
+            if (!culled && (glm::dot(toLight, seen.ng) > 0.0f) != transmit && cosLight > 0.0f) {
+                const bsdf::Bsdf::View view = bsdf.restrict(prepareView(bsdf, sf, seen), bsdf.lobes() & ~sharp);
+                Splat sp;
+                const glm::vec3 f = bsdf.eval(view, wiLocal, nullptr, _settings.splitLobes ? &sp.lobes : nullptr);
+                if (anyPositive(f)) {
+                    // Veach 1997, eq. 5.19 (adjoint shading normals) with the camera's importance:
+                    // weight * f |ns.wi| / |ng.wi| * |ng.wo| * We G.
+                    const float geo = std::abs(glm::dot(seen.ng, cc.toCamera)) / cosLight * cc.importance;
+                    const glm::vec3 origin = offsetOrigin(hit.p, seen.ng, cc.toCamera);
+                    const float tfar = glm::length(cc.lensPoint - origin) * (1.0f - 1e-4f);
+                    ++rays;
+                    if (_settings.recorder) _settings.recorder->record(origin, cc.toCamera, 0.0f, tfar, true);
+                    const float visible = transmittance(_scene, origin, cc.toCamera, tfar);
+                    if (visible > 0.0f && *count < kMaxCausticSplats) {
+                        const glm::vec3 scale = beta * (geo * visible);
+                        sp.x = cc.x;
+                        sp.y = cc.y;
+                        sp.value = scale * f;
+                        if (_settings.splitLobes)
+                            for (auto& l : sp.lobes) l *= scale;
+                        if (finite(sp.value)) splats[(*count)++] = sp;
+                    }
+                }
+            }
+        }
+
+        // Continue through the sharp lobes only, within the camera paths' bounce limit.
+        if (sharp == 0 || sharpVertices + 1 > _settings.maxDepth) break;
+        const ShadingFrame lf = shadingFrame(hit, mat, toLight, _settings.bumpShadowing);
+        const bsdf::Bsdf::View lightView = bsdf.restrict(prepareView(bsdf, lf, hit), sharp);
+        const glm::vec2 u = sampler.next2D();
+        const float ulobe = sampler.next1D();
+        auto s = bsdf.sample(lightView, ulobe, u);
+        if (!s || !(s->pdf > 0.0f)) break;
+        const glm::vec3 wi = lf.frame.toWorld(s->wi);  // onward, toward the camera's side
+        const bool transmit = s->wi.z * lf.woLocal.z < 0.0f;
+        if ((glm::dot(wi, hit.ng) > 0.0f) == transmit) break;
+        const float cosIn = std::abs(glm::dot(hit.ng, toLight)), cosOut = std::abs(glm::dot(hit.ng, wi));
+        if (!(cosIn > 0.0f)) break;
+        glm::vec3 factor;
+        if (s->delta) {
+            // A mirror or smooth glass scatters alike both ways; the shading-normal term remains.
+            factor = s->f / s->pdf * (cosOut / cosIn);
+        } else {
+            // The camera path's BSDF at this vertex (wo onward, wi toward the light), sharp lobes
+            // only: the light path's density picked wi, the value must be the camera's.
+            const Hit seen = seenAlong(hit, -wi);
+            const ShadingFrame cf = shadingFrame(seen, mat, wi, _settings.bumpShadowing);
+            const bsdf::Bsdf::View view = bsdf.restrict(prepareView(bsdf, cf, seen), sharp);
+            const glm::vec3 f = bsdf.eval(view, cf.frame.toLocal(toLight));
+            factor = f / s->pdf * (cosOut / cosIn);
+        }
+        if (!finite(factor) || !anyPositive(factor)) break;
+        beta *= factor;
+        scatter *= factor;
+        ++sharpVertices;
+        ray.origin = offsetOrigin(hit.p, hit.ng, wi);
+        ray.direction = wi;
+        ray.tnear = 0.0f;
+        ray.tfar = kInf;
+        // Russian roulette on the scattering alone (Arvo & Kirk 1990), as trace() does.
+        if (bounce + 1 >= _settings.rouletteDepth) {
+            const float q = std::min(1.0f, maxComponent(scatter));
+            if (sampler.next1D() >= q) break;
+            beta /= q;
+            scatter /= q;
+        }
+    }
+    return rays;
 }
 
 }  // namespace principled::embree

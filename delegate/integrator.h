@@ -20,6 +20,10 @@
 namespace principled::embree {
 
 struct LightSample;  // delegate/lightSampling.h
+class CausticScene;         // delegate/causticScene.h
+class CameraConnector;      // delegate/cameraConnection.h
+struct CameraConnection;
+struct EmittedRay;
 
 struct IntegratorSettings {
     SamplerKind sampler = SamplerKind::Sobol;
@@ -39,6 +43,13 @@ struct IntegratorSettings {
     /// whole first-hit contribution is in lobes[0] and no per-lobe values are computed.
     bool splitLobes = true;
     bsdf::Options bsdf;
+    /// Caustic light tracing (delegate/causticScene.h): the scene's casters and caustic lights;
+    /// null or inactive: the path tracer does everything. Owned by the render pass.
+    const CausticScene* caustics = nullptr;
+    /// Roughness at or below which a caster's lobe is sharp (0 turns caustic tracing off).
+    float causticRoughness = 0.1f;
+    /// Light paths traced per camera sample when the scene has casters and caustic lights.
+    float causticPaths = 0.25f;
 };
 
 struct Ray {
@@ -78,7 +89,32 @@ public:
 
     PathSample trace(const Ray& cameraRay, Sampler& sampler) const;
 
+    /// Whether caustic light tracing shares the work (settings.caustics active).
+    bool causticsActive() const;
+    /// What a caustic light path delivers to one pixel: value = weight * f * importance, and with
+    /// splitLobes its split by the lobes of the surface the camera sees.
+    struct Splat {
+        int x = 0, y = 0;
+        glm::vec3 value{0.0f};
+        bsdf::LobeValues lobes{};
+    };
+    /// Traces one light path from the emitted ray through sharp lobes of casters and connects
+    /// every later vertex to the camera through its other lobes (the caustic share of the path
+    /// space that trace() leaves out). Calls splat for each connection; returns the rays cast.
+    template <typename SplatFn>
+    uint32_t traceCaustic(const EmittedRay& emitted, Sampler& sampler, const CameraConnector& camera,
+                          SplatFn&& splat) const {
+        Splat buffer[kMaxCausticSplats];
+        int count = 0;
+        uint32_t rays = traceCausticPath(emitted, sampler, camera, buffer, &count);
+        for (int i = 0; i < count; ++i) splat(buffer[i]);
+        return rays;
+    }
+    static constexpr int kMaxCausticSplats = 16;
+
 private:
+    uint32_t traceCausticPath(const EmittedRay& emitted, Sampler& sampler, const CameraConnector& camera,
+                              Splat* splats, int* count) const;
     /// Next-event estimation on a mesh light whose emission is textured: the radiance of the
     /// light's material at the sampled point, into ls->Li. False when it is zero or invalid.
     bool texturedEmission(const LightRecord& light, LightSample* ls) const;

@@ -393,6 +393,17 @@ bool intersectUnshaped(const LightRecord& l, const glm::vec3& o, const glm::vec3
 
 }  // namespace
 
+glm::vec3 emittedRadiance(const LightRecord& l, const glm::vec3& q, const glm::vec3& d) {
+    glm::vec3 Le = l.radiance;
+    if (l.kind == LightRecord::Kind::Rect) {
+        const glm::vec3 r = q - l.center;
+        Le *= rectTexel(l, glm::dot(r, l.axisU) / glm::dot(l.axisU, l.axisU),
+                        glm::dot(r, l.axisV) / glm::dot(l.axisV, l.axisV));
+    }
+    if (l.shaping.enabled) Le *= shapingFactor(l.shaping, d);
+    return Le;
+}
+
 bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec3& d, float tmax,
                         glm::vec3* Le, float* pdf) {
     if (!intersectUnshaped(l, o, d, tmax, Le, pdf)) return false;

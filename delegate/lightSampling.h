@@ -40,6 +40,12 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::ve
 
 bool isAreaLight(const LightRecord& l);
 
+/// Radiance that area light l (sphere, rect, disk, cylinder) emits from its surface point q
+/// along unit direction d, shaping and rect texture included: what intersectAreaLight() returns
+/// for a ray that reaches q travelling along -d. q must lie on the light; the caller checks
+/// that d leaves the emitting side.
+glm::vec3 emittedRadiance(const LightRecord& l, const glm::vec3& q, const glm::vec3& d);
+
 /// Solid-angle pdf with which sampleLight() picks a point of mesh light l, from `origin`, seen at
 /// `distance` under the cosine `cosLight` (its surface normal against the direction).
 float meshLightPdf(const LightRecord& l, const glm::vec3& origin, float distance, float cosLight);

@@ -42,6 +42,12 @@ void EmbreeRenderBuffer::addSample(int x, int y, const float* values) {
     ++_count[p];
 }
 
+void EmbreeRenderBuffer::addToSum(int x, int y, const float* values) {
+    if (!_multiSampled || _format == hd::Format::Int32) return;
+    double* s = &_sum[(size_t(y) * _width + x) * _components];
+    for (int i = 0; i < _components; ++i) s[i] += values[i];
+}
+
 void EmbreeRenderBuffer::addSample(int x, int y, int32_t value) {
     size_t p = size_t(y) * _width + x;
     if (_count[p] == 0) _ints[p] = value;

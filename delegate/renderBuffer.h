@@ -33,6 +33,9 @@ public:
     /// distinct pixels.
     void addSample(int x, int y, const float* values);
     void addSample(int x, int y, int32_t value);
+    /// Adds values to pixel (x, y)'s sum without counting a sample (multi-sampled float buffers
+    /// only): light tracing's share of the samples the pass already added there.
+    void addToSum(int x, int y, const float* values);
     /// Overwrites pixel (x, y) with one value per component, counted as one sample (for
     /// statistics the pass computes itself, e.g. sampleCount and variance).
     void setPixel(int x, int y, const float* values);

@@ -560,6 +560,13 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Lights visible to camera", Token("lightCameraVisibility"), Value(0),
          "camera rays see the shapes of sphere, rect, disk and cylinder lights (0, as Cycles, Karma and hdEmbree: "
          "lights light the scene and show in reflections only)"},
+        {"Caustics", Token("caustics"), Value(1),
+         "light tracing for caustics: light from sphere, rect, disk, cylinder and distant lights through sharp "
+         "specular, clearcoat or glass lobes onto the surfaces the camera sees (0: path tracing only)"},
+        {"Caustic roughness", Token("causticRoughness"), Value(0.1f),
+         "lobes at most this rough carry caustics to light tracing"},
+        {"Caustic paths", Token("causticPaths"), Value(0.25f),
+         "light paths per camera sample when the scene has caustic casters and lights"},
         {"Bump shadowing", Token("bumpShadowing"), Value(1),
          "diffuse and sheen lobes shadowed where a normal map or bent normal leans away from the surface "
          "(Chiang et al. 2019, as Cycles); 0: off"},
@@ -623,6 +630,10 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
     s.lightsVisible = intSetting("lightCameraVisibility", 0) != 0;
     s.bumpShadowing = intSetting("bumpShadowing", 1) != 0;
+    s.causticRoughness = intSetting("caustics", 1) != 0 ? std::clamp(floatSetting("causticRoughness", 0.1f), 0.0f, 1.0f) : 0.0f;
+    s.causticPaths = std::clamp(floatSetting("causticPaths", 0.25f), 0.0f, 64.0f);
+    if (!std::isfinite(s.causticRoughness)) s.causticRoughness = 0.0f;
+    if (!std::isfinite(s.causticPaths)) s.causticPaths = 0.0f;
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
     s.mis = intSetting("mis", 1) != 0;

@@ -10,6 +10,8 @@
 #include <tbb/parallel_for.h>
 
 #include "delegate/aovs.h"
+#include "delegate/cameraConnection.h"
+#include "delegate/causticScene.h"
 #include "delegate/hd/camera.h"
 #include "delegate/hd/renderIndex.h"
 #include "delegate/hd/tokens.h"
@@ -150,6 +152,11 @@ float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0
 
 }  // namespace
 
+EmbreeRenderPass::EmbreeRenderPass(hd::RenderIndex* index, EmbreeRenderDelegate* delegate)
+    : RenderPass(index), _delegate(delegate) {}
+
+EmbreeRenderPass::~EmbreeRenderPass() = default;
+
 bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
     // The delegate's content version moves only when a commit changed what is rendered, so an
     // edit that leaves the image as it is does not throw the samples away.
@@ -179,6 +186,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _samples = 0;
         _passes = 0;
         _converged = false;
+        _causticPaths = 0;
         _pixelDone.assign(pixels, 0);
         _active = pixels;
         _lumSum.assign(pixels, 0.0);
@@ -244,6 +252,16 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
             settings.aovPrimvars.emplace_back(name);
         }
     }
+    // Caustic light tracing: casters and lights found again only when the content or settings change.
+    if (settings.causticRoughness > 0.0f && settings.causticPaths > 0.0f) {
+        const unsigned content = _delegate->contentVersion(), set = _delegate->renderSettingsVersion();
+        if (!_caustics || content != _causticContent || set != _causticSettings) {
+            _caustics = std::make_unique<CausticScene>(scene, settings.bsdf, settings.causticRoughness);
+            _causticContent = content;
+            _causticSettings = set;
+        }
+        settings.caustics = _caustics.get();
+    }
     Integrator integrator(scene, settings);
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
     glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));
@@ -286,6 +304,75 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
             invalid += tileInvalid;
             taken += tileSamples;
         });
+    if (integrator.causticsActive()) {
+        // Caustic light paths: each is an estimate of every pixel's caustic share at once
+        // (CameraConnection::importance), so a pixel's estimate is its splat sum over the paths
+        // traced. It joins the pixel's mean as this pass's `batch` samples' share.
+        const CameraConnector connector(*cam, state.width, state.height);
+        const bool lobes = settings.splitLobes;
+        const long paths = std::max(1L, std::lround(double(settings.causticPaths) * batch * double(pixels)));
+        std::vector<float> splat(pixels * 3, 0.0f), lobeSplat(lobes ? pixels * 3 * bsdf::kLobeCount : 0, 0.0f);
+        const uint64_t base = _causticPaths;
+        const uint32_t causticSeed = seed ^ 0xa511e9b3u;
+        // Splats are collected per chunk of paths and added in path order: the same image for
+        // any thread count (float sums depend on their order). Batches bound the memory.
+        constexpr long kChunk = 256, kBatch = 128 * kChunk;
+        std::vector<std::vector<Integrator::Splat>> chunkSplats(size_t(kBatch / kChunk));
+        for (long b0 = 0; b0 < paths; b0 += kBatch) {
+            const long b1 = std::min(paths, b0 + kBatch);
+            const long chunks = (b1 - b0 + kChunk - 1) / kChunk;
+            tbb::parallel_for(tbb::blocked_range<long>(0, chunks), [&](const tbb::blocked_range<long>& range) {
+                long localRays = 0;
+                for (long c = range.begin(); c < range.end(); ++c) {
+                    std::vector<Integrator::Splat>& out = chunkSplats[size_t(c)];
+                    out.clear();
+                    for (long i = b0 + c * kChunk; i < std::min(b1, b0 + (c + 1) * kChunk); ++i) {
+                        // One Owen-scrambled Sobol sequence over all light paths of the frame.
+                        Sampler sampler(settings.sampler, causticSeed, 0u, uint32_t(base + uint64_t(i)));
+                        const glm::vec2 uPos = sampler.next2D();
+                        const float uLight = sampler.next1D(), uTarget = sampler.next1D();
+                        const glm::vec2 uDir = sampler.next2D();
+                        EmittedRay emitted;
+                        if (!_caustics->sampleEmission(scene, uLight, uTarget, uPos, uDir, &emitted)) continue;
+                        localRays += integrator.traceCaustic(emitted, sampler, connector,
+                                                             [&](const Integrator::Splat& sp) { out.push_back(sp); });
+                    }
+                }
+                rays += localRays;
+            });
+            for (long c = 0; c < chunks; ++c)
+                for (const Integrator::Splat& sp : chunkSplats[size_t(c)]) {
+                    const size_t p = size_t(sp.y) * size_t(state.width) + size_t(sp.x);
+                    for (int k = 0; k < 3; ++k) splat[3 * p + k] += sp.value[k];
+                    if (lobes)
+                        for (int l = 0; l < bsdf::kLobeCount; ++l)
+                            for (int k = 0; k < 3; ++k) lobeSplat[(p * bsdf::kLobeCount + l) * 3 + k] += sp.lobes[l][k];
+                }
+        }
+        _causticPaths += uint64_t(paths);
+        const float scale = float(batch) / float(paths);
+        for (int y = 0; y < state.height; ++y)
+            for (int x = 0; x < state.width; ++x) {
+                const size_t p = size_t(y) * size_t(state.width) + size_t(x);
+                if (_pixelDone[p]) continue;  // took no samples this pass
+                const glm::vec3 e = scale * glm::vec3(splat[3 * p], splat[3 * p + 1], splat[3 * p + 2]);
+                if (e == glm::vec3(0.0f)) continue;
+                for (const auto& a : aovs) {
+                    if (a.info.kind == AovKind::Color) {
+                        const float v[4] = {e.x, e.y, e.z, 0.0f};
+                        a.buffer->addToSum(x, y, v);
+                    } else if (lobes && a.info.kind >= AovKind::Diffuse && a.info.kind <= AovKind::Transmission) {
+                        const int l = int(a.info.kind) - int(AovKind::Diffuse);
+                        const float* q = &lobeSplat[(p * bsdf::kLobeCount + size_t(l)) * 3];
+                        const float v[3] = {scale * q[0], scale * q[1], scale * q[2]};
+                        a.buffer->addToSum(x, y, v);
+                    }
+                }
+                // The pixel's luminance statistics get the mean's share; the light paths' own
+                // variance is not in them.
+                _lumSum[p] += luminance(e);
+            }
+    }
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     _delegate->addPassStats(rays.load(), taken.load(), invalid.load(), seconds);

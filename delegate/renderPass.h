@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -17,11 +18,12 @@
 namespace principled::embree {
 
 class EmbreeRenderDelegate;
+class CausticScene;
 
 class EmbreeRenderPass : public hd::RenderPass {
 public:
-    EmbreeRenderPass(hd::RenderIndex* index, EmbreeRenderDelegate* delegate)
-        : RenderPass(index), _delegate(delegate) {}
+    EmbreeRenderPass(hd::RenderIndex* index, EmbreeRenderDelegate* delegate);
+    ~EmbreeRenderPass() override;
 
     void execute(const hd::RenderPassState& state) override;
     bool isConverged() const override { return _converged; }
@@ -70,6 +72,11 @@ private:
     size_t _active = 0;
     int _rangeFirst = 0, _rangeEnd = 0;
     RayRecorder* _recorder = nullptr;
+    // Caustic light tracing: the casters and lights of the current scene content and settings,
+    // and the light paths traced since the last restart (their Sobol indices continue).
+    std::unique_ptr<CausticScene> _caustics;
+    unsigned _causticContent = ~0u, _causticSettings = ~0u;
+    uint64_t _causticPaths = 0;
 };
 
 }  // namespace principled::embree

@@ -1,0 +1,268 @@
+// SPDX-License-Identifier: Apache-2.0
+// Caustic light tracing (delegate/causticScene.h): light from small lights through sharp lobes
+// onto what the camera sees. Checked against a closed form (a plane mirror and a delta sun, which
+// path tracing alone cannot render at all) and against path tracing alone where both can (the
+// split of path space must not change the mean), and for what it costs where it has nothing to do.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "plugins/renderSession.h"
+#include "tests/support/seedStatistics.h"
+
+using namespace principled;
+
+namespace {
+
+std::unique_ptr<host::RenderSession> run(const std::string& usda, host::SessionOptions o) {
+    auto s = host::RenderSession::openString(usda, "caustics.usda", o);
+    while (!s->step()) {
+    }
+    return s;
+}
+
+// Mean red value over the central half of the image (both axes).
+double centreMean(host::RenderSession& s) {
+    const float* c = s.color();
+    const int w = s.width(), h = s.height();
+    double sum = 0.0;
+    int n = 0;
+    for (int y = h / 4; y < 3 * h / 4; ++y)
+        for (int x = w / 4; x < 3 * w / 4; ++x, ++n) sum += c[4 * (y * w + x)];
+    return sum / n;
+}
+
+std::vector<float> red(host::RenderSession& s) {
+    std::vector<float> r(size_t(s.width()) * s.height());
+    for (size_t i = 0; i < r.size(); ++i) r[i] = s.color()[4 * i];
+    return r;
+}
+
+// A grey wall (z = 3, facing -z) seen head-on by a camera at z = 1, and `rest`.
+std::string wallScene(const std::string& rest) {
+    return R"(#usda 1.0
+def Mesh "Wall" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-2, -2, 3), (-2, 2, 3), (2, 2, 3), (2, -2, 3)]
+    rel material:binding = </Grey>
+}
+def Material "Grey"
+{
+    token outputs:surface.connect = </Grey/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0.5, 0.5, 0.5)
+        float inputs:roughness = 1
+        float inputs:specular = 0
+        token outputs:surface
+    }
+}
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, 1)
+    float xformOp:rotateY = 180
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateY"]
+}
+)" + rest;
+}
+
+// A 1 x 1 perfect mirror at the origin tilted 45 degrees (normal (0, 1, 1) / sqrt 2): a sun
+// shining down -y is reflected along +z onto the wall, its irradiance unchanged (F = 1 for a
+// white metal).
+const char* kMirrorAndSun = R"(
+def Mesh "Mirror" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-0.5, -0.35355, 0.35355), (0.5, -0.35355, 0.35355), (0.5, 0.35355, -0.35355), (-0.5, 0.35355, -0.35355)]
+    rel material:binding = </Chrome>
+}
+def Material "Chrome"
+{
+    token outputs:surface.connect = </Chrome/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:metallic = 1
+        float inputs:roughness = 0
+        token outputs:surface
+    }
+}
+def DistantLight "Sun"
+{
+    float inputs:angle = 0
+    float inputs:intensity = 2
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:rotateX"]
+}
+)";
+
+// The same sun shining straight at the wall (along +z).
+const char* kSunOnWall = R"(
+def DistantLight "Sun"
+{
+    float inputs:angle = 0
+    float inputs:intensity = 2
+    float xformOp:rotateY = 180
+    uniform token[] xformOpOrder = ["xformOp:rotateY"]
+}
+)";
+
+}  // namespace
+
+TEST(Caustics, PlaneMirrorReflectsADeltaSunOntoAWallAtFullIrradiance) {
+    // A delta sun seen through a perfect mirror: no path-tracing strategy can find it (a BSDF
+    // sample never hits a delta light, the shadow ray toward the sun is blocked by nothing but
+    // misses the mirror's reflection), so without light tracing the wall stays black. With it,
+    // the lit patch must equal the wall lit directly by the same sun at the same angle.
+    host::SessionOptions o;
+    o.width = o.height = 32;
+    o.samplesPerPixel = 64;
+    auto direct = run(wallScene(kSunOnWall), o);
+    const double expected = centreMean(*direct);
+    ASSERT_GT(expected, 0.05);
+    auto caustic = run(wallScene(kMirrorAndSun), o);
+    EXPECT_NEAR(centreMean(*caustic) / expected, 1.0, 0.03) << centreMean(*caustic) << " vs " << expected;
+    o.settings = {{"caustics", "0"}};
+    auto off = run(wallScene(kMirrorAndSun), o);
+    EXPECT_EQ(centreMean(*off), 0.0);
+}
+
+namespace {
+
+// A floor under a 10-degree sun (45 degrees high by default), with a ball of material `ball` on it, seen
+// from straight above (the ball's shadow and caustic in view).
+std::string ballOnFloor(const std::string& ball, int sunElevation = 45) {
+    return R"(#usda 1.0
+def Mesh "Floor" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-3, 0, -3), (-3, 0, 3), (3, 0, 3), (3, 0, -3)]
+    rel material:binding = </Looks/Floor>
+}
+def Scope "Looks" {
+def Material "Floor"
+{
+    token outputs:surface.connect = </Looks/Floor/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0.6, 0.6, 0.6)
+        float inputs:roughness = 0.9
+        token outputs:surface
+    }
+}
+}
+def Sphere "Ball" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    double radius = 0.5
+    double3 xformOp:translate = (0, 0.5, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    rel material:binding = </BallLook>
+}
+def Material "BallLook"
+{
+    token outputs:surface.connect = </BallLook/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+)" + ball + R"(
+        token outputs:surface
+    }
+}
+def DistantLight "Sun"
+{
+    float inputs:angle = 10
+    float inputs:intensity = 20
+    float3 xformOp:rotateXYZ = ()" + std::to_string(-sunElevation) + R"(, 30, 0)
+    uniform token[] xformOpOrder = ["xformOp:rotateXYZ"]
+}
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 5, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+}
+
+// Light tracing on and off must render the same image in the mean (over seeds); the caustic's
+// noise must drop with it. Returns {on, off}.
+std::pair<test::SeedStats, test::SeedStats> onAndOff(const std::string& scene, int spp) {
+    auto stats = [&](const char* caustics) {
+        return test::seedStatistics(
+            [&](int seed) {
+                host::SessionOptions o;
+                o.width = o.height = 24;
+                o.samplesPerPixel = spp;
+                o.seed = seed;
+                o.settings = {{"caustics", caustics}};
+                return red(*run(scene, o));
+            },
+            0, 8);
+    };
+    return {stats("1"), stats("0")};
+}
+
+::testing::AssertionResult sameMean(const test::SeedStats& a, const test::SeedStats& b) {
+    const double tol = 4.0 * std::hypot(a.se, b.se) + 2e-3 * std::abs(b.mean);
+    if (std::abs(a.mean - b.mean) < tol) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << a.mean << " +- " << a.se << " vs " << b.mean << " +- " << b.se;
+}
+
+}  // namespace
+
+TEST(Caustics, GlossyMetalCausticHasTheMeanOfPathTracingAndLessNoise) {
+    // A low sun: the floor gets about as much light from the ball as from the sun itself.
+    const auto [on, off] = onAndOff(ballOnFloor(R"(
+        color3f inputs:diffuseColor = (0.95, 0.8, 0.5)
+        float inputs:metallic = 1
+        float inputs:roughness = 0.08)", 12), 64);
+    EXPECT_TRUE(sameMean(on, off));
+    EXPECT_LT(on.pixelVar, 0.7 * off.pixelVar) << on.pixelVar << " vs " << off.pixelVar;
+}
+
+TEST(Caustics, SmoothGlassCausticHasTheMeanOfPathTracing) {
+    // Refraction through a delta lobe both ways (the light path samples it from the light's side).
+    const auto [on, off] = onAndOff(ballOnFloor(R"(
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:roughness = 0
+        float inputs:specTrans = 1)"), 64);
+    EXPECT_TRUE(sameMean(on, off));
+    EXPECT_LT(on.pixelVar, off.pixelVar) << on.pixelVar << " vs " << off.pixelVar;
+}
+
+TEST(Caustics, RoughGlassCausticHasTheMeanOfPathTracing) {
+    // A rough (but sharp) refraction: the light path's density picks the direction, the value is
+    // the camera path's BTDF, which is not symmetric.
+    const auto [on, off] = onAndOff(ballOnFloor(R"(
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:roughness = 0.09
+        float inputs:specTrans = 1)"), 64);
+    EXPECT_TRUE(sameMean(on, off));
+}
+
+TEST(Caustics, ScenesWithoutSharpLobesRenderExactlyAsWithout) {
+    // A rough metal ball: nothing is sharp, light tracing has nothing to do and the image is
+    // bit-identical (no sample streams change).
+    const std::string scene = ballOnFloor(R"(
+        color3f inputs:diffuseColor = (0.9, 0.9, 0.9)
+        float inputs:metallic = 1
+        float inputs:roughness = 0.3)");
+    host::SessionOptions o;
+    o.width = o.height = 16;
+    o.samplesPerPixel = 8;
+    auto on = run(scene, o);
+    o.settings = {{"caustics", "0"}};
+    auto off = run(scene, o);
+    EXPECT_EQ(red(*on), red(*off));
+}

@@ -277,6 +277,12 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
     _lightCdf.back() = 1.0f;
 }
 
+float CausticScene::meanTargetRadius() const {
+    float sum = 0.0f;
+    for (const CausticTarget& t : _targets) sum += t.radius;
+    return _targets.empty() ? 0.0f : sum / float(_targets.size());
+}
+
 float CausticScene::directionPdf(const Light& l, const glm::vec3& p, const glm::vec3& d, size_t sampled) const {
     float pdf = 0.0f;
     for (size_t t = 0; t < _targets.size(); ++t) {

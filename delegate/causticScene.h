@@ -63,6 +63,9 @@ public:
     bool isCausticLight(size_t index) const { return index < _lightFlag.size() && _lightFlag[index]; }
     const std::vector<CausticTarget>& targets() const { return _targets; }
     size_t casterCount() const { return _casters; }
+    size_t lightCount() const { return _lights.size(); }
+    /// Mean radius of the targets (the photon search radius's scale).
+    float meanTargetRadius() const;
 
     /// A ray emitted by a caustic light toward the targets: uLight picks the light (by power
     /// toward the targets), uTarget the target, uPos and uDir the origin and direction. False

@@ -441,10 +441,16 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     float prevBsdfPdf = 0.0f;
     glm::vec3 prevNg(0.0f);
     int passThrough = 0;
-    // Caustic split (delegate/causticScene.h): light tracing's share c of the path so far, applied
-    // as (1 - c) to caustic lights reached after the first hit.
+    // Caustic split (delegate/causticScene.h). Of a path x1..xk that ends on a caustic light,
+    // light tracing (x1 connected to the camera) and photon merging (x2 on, when photons are
+    // given) take the lobe labelings "x_m through a lobe that is not sharp, x_m+1..x_k through
+    // sharp lobes"; the path tracer keeps the rest. causticOpen = sum over m <= j of
+    // rest_m * prod_{m<i<=j} sharp_i, the chains still open after x_j (lobe shares of f at the
+    // sampled directions); causticCovered = the share taken from the light the last sampled
+    // direction reaches (causticOpen before that vertex times its sharp share).
     const CausticScene* caustic = causticsActive() ? _settings.caustics : nullptr;
-    glm::vec3 causticShare(0.0f);
+    const bool merging = caustic && _settings.photons && !_settings.photons->empty();
+    glm::vec3 causticOpen(0.0f), causticCovered(0.0f);
 
     for (int depth = 0;; ++depth) {
         Hit hit;
@@ -460,7 +466,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                           ? 1.0f
                           : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
             glm::vec3 c = beta * Le * w;
-            if (caustic && depth >= 2 && caustic->isCausticLight(li)) c *= glm::vec3(1.0f) - causticShare;
+            if (caustic && caustic->isCausticLight(li)) c *= glm::vec3(1.0f) - causticCovered;
             if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                 c *= _settings.clampIndirect / maxComponent(c);
             credit(c);
@@ -562,7 +568,27 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             caustic && caustic->isCaster(hit.instId) ? bsdf.sharpLobes(caustic->maxAlpha()) : 0u;
         // After the first hit, a light reached from here through a sharp lobe is partly light
         // tracing's: this vertex's sharp share of f is needed.
-        const bool shareHere = depth > 0 && sharp != 0 && anyPositive(causticShare);
+        const bool shareHere = sharp != 0 && anyPositive(causticOpen);
+
+        // Caustic light after the first hit: the photons' density through the lobes that are not
+        // sharp (Jensen 1996, eq. 12, with the adjoint shading-normal factor of the connection).
+        if (merging && depth >= 1) {
+            if (const bsdf::LobeMask rest = bsdf.lobes() & ~sharp) {
+                const bsdf::Bsdf::View restView = bsdf.restrict(view, rest);
+                glm::vec3 sum(0.0f);
+                _settings.photons->query(hit.p, [&](const Photon& ph) {
+                    if (depth + ph.sharpVertices > _settings.maxDepth) return;
+                    if (std::abs(glm::dot(ph.normal, hit.ng)) < 0.9f) return;  // another surface
+                    const glm::vec3 aLocal = frame.toLocal(ph.toLight);
+                    const float cosG = glm::dot(ph.toLight, hit.ng);
+                    const bool through = aLocal.z * woLocal.z < 0.0f;
+                    if (cosG == 0.0f || (cosG > 0.0f) == through) return;
+                    sum += bsdf.eval(restView, aLocal) * ph.power / std::abs(cosG);
+                });
+                const glm::vec3 c = beta * sum * _settings.photonScale;
+                if (finite(c)) credit(c);
+            }
+        }
 
         // Next-event estimation: one light picked by power, or every light in turn when the scene
         // has few (SceneSnapshot::neeAllLights; their pick probabilities are then 1).
@@ -587,7 +613,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 const bool split = depth == 0 && _settings.splitLobes;
                 const bool share = shareHere && caustic->isCausticLight(li);
                 glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf, split || share ? &perLobe : nullptr);
-                if (share) f *= glm::vec3(1.0f) - causticShare * lobeShare(perLobe, f, sharp);
+                if (share) f *= glm::vec3(1.0f) - causticOpen * lobeShare(perLobe, f, sharp);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
                     glm::vec3 shadowOrigin = offsetOrigin(hit.p, hit.ng, ls.wi);
@@ -630,19 +656,22 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             return out;
         }
         if (depth == 0) pathLobe = _settings.splitLobes ? static_cast<int>(s->lobe) : 0;
-        if (caustic && (depth == 0 || anyPositive(causticShare))) {
-            // x1 passes on the share of its lobes that are not sharp (none through a delta
-            // lobe); later vertices multiply in their sharp share (all of it through a delta).
-            glm::vec3 sharpShare(s->delta ? 1.0f : 0.0f);
-            if (sharp != 0 && !s->delta) {
+        if (caustic && (depth == 0 || merging || anyPositive(causticOpen))) {
+            // Lobe shares at the sampled direction: a delta sample goes through a sharp lobe of a
+            // caster (delta lobes are sharp) or through neither class (not a caster).
+            glm::vec3 sharpShare(0.0f), restShare(0.0f);
+            if (s->delta) {
+                sharpShare = glm::vec3(sharp != 0 ? 1.0f : 0.0f);
+            } else if (sharp == 0) {
+                restShare = glm::vec3(1.0f);
+            } else {
                 bsdf::LobeValues perLobe;
                 const glm::vec3 f = bsdf.eval(view, s->wi, nullptr, &perLobe);
                 sharpShare = lobeShare(perLobe, f, sharp);
+                restShare = glm::vec3(1.0f) - sharpShare;
             }
-            if (depth == 0)
-                causticShare = s->delta ? glm::vec3(0.0f) : glm::vec3(1.0f) - sharpShare;
-            else
-                causticShare *= sharp != 0 ? sharpShare : glm::vec3(0.0f);
+            causticCovered = causticOpen * sharpShare;
+            causticOpen = causticCovered + (depth == 0 || merging ? restShare : glm::vec3(0.0f));
         }
         // NEE samples the far side only for rough transmission (neeThrough): a direction
         // transmitted by anything else could not have come from it, so lights it reaches count
@@ -682,8 +711,9 @@ bool Integrator::causticsActive() const {
 }
 
 uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sampler, const CameraConnector& camera,
-                                      Splat* splats, int* count) const {
+                                      Splat* splats, int* count, Photon* photons, int* photonCount) const {
     *count = 0;
+    *photonCount = 0;
     if (!causticsActive() || !camera.valid()) return 0;
     const CausticScene& caustic = *_settings.caustics;
     glm::vec3 beta = emitted.weight;  // the light the path carries (estimator weight)
@@ -720,6 +750,10 @@ uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sample
         // Connect to the camera through the lobes that are not sharp, once the light has been
         // through a sharp one (before that it is direct light: the path tracer's). The BSDF is
         // evaluated as the camera path sees it: wo toward the camera, wi toward the light.
+        // A caustic photon for vertices after the camera paths' first hit (trace(), merging).
+        if (sharpVertices > 0 && (bsdf.lobes() & ~sharp) != 0 && _settings.causticMerging &&
+            *photonCount < kMaxCausticSplats && finite(beta))
+            photons[(*photonCount)++] = Photon{hit.p, hit.ng, toLight, beta, sharpVertices};
         CameraConnection cc;
         const glm::vec2 uLens = sampler.next2D();
         if (sharpVertices > 0 && (bsdf.lobes() & ~sharp) != 0 && camera.connect(hit.p, uLens, &cc)) {

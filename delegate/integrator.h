@@ -14,6 +14,7 @@
 
 #include "bsdf/bsdf.h"
 #include "delegate/rayRecorder.h"
+#include "delegate/photonGrid.h"
 #include "delegate/sampler.h"
 #include "delegate/sceneData.h"
 
@@ -50,6 +51,16 @@ struct IntegratorSettings {
     float causticRoughness = 0.1f;
     /// Light paths traced per camera sample when the scene has casters and caustic lights.
     float causticPaths = 0.25f;
+    /// Caustic photons of the pass: at path vertices after the first hit the path tracer takes
+    /// the caustic light from their density (null: only the first hit's caustics are light
+    /// traced, later ones stay with path tracing). photonScale = 1 / (light paths * pi r^2).
+    const PhotonGrid* photons = nullptr;
+    float photonScale = 0.0f;
+    /// Light paths store photons (settings causticMerging).
+    bool causticMerging = true;
+    /// Photon search radius at the first pass, world units (0: 5 % of the casters' mean
+    /// bounding radius); it shrinks as r^2 ~ paths^(-1/3) (Knaus & Zwicker 2011, alpha 2/3).
+    float causticMergeRadius = 0.0f;
 };
 
 struct Ray {
@@ -101,20 +112,23 @@ public:
     /// Traces one light path from the emitted ray through sharp lobes of casters and connects
     /// every later vertex to the camera through its other lobes (the caustic share of the path
     /// space that trace() leaves out). Calls splat for each connection; returns the rays cast.
-    template <typename SplatFn>
+    /// Stores a photon (photonFn) at the same vertices when settings.causticMerging.
+    template <typename SplatFn, typename PhotonFn>
     uint32_t traceCaustic(const EmittedRay& emitted, Sampler& sampler, const CameraConnector& camera,
-                          SplatFn&& splat) const {
+                          SplatFn&& splat, PhotonFn&& photon) const {
         Splat buffer[kMaxCausticSplats];
-        int count = 0;
-        uint32_t rays = traceCausticPath(emitted, sampler, camera, buffer, &count);
+        Photon photons[kMaxCausticSplats];
+        int count = 0, photonCount = 0;
+        uint32_t rays = traceCausticPath(emitted, sampler, camera, buffer, &count, photons, &photonCount);
         for (int i = 0; i < count; ++i) splat(buffer[i]);
+        for (int i = 0; i < photonCount; ++i) photon(photons[i]);
         return rays;
     }
     static constexpr int kMaxCausticSplats = 16;
 
 private:
     uint32_t traceCausticPath(const EmittedRay& emitted, Sampler& sampler, const CameraConnector& camera,
-                              Splat* splats, int* count) const;
+                              Splat* splats, int* count, Photon* photons, int* photonCount) const;
     /// Next-event estimation on a mesh light whose emission is textured: the radiance of the
     /// light's material at the sampled point, into ls->Li. False when it is zero or invalid.
     bool texturedEmission(const LightRecord& light, LightSample* ls) const;

@@ -567,6 +567,12 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
          "lobes at most this rough carry caustics to light tracing"},
         {"Caustic paths", Token("causticPaths"), Value(0.25f),
          "light paths per camera sample when the scene has caustic casters and lights"},
+        {"Caustic merging", Token("causticMerging"), Value(1),
+         "caustics seen after the first bounce (in mirrors, lighting other surfaces) from light-traced photons "
+         "(progressive photon mapping); 0: path tracing finds those"},
+        {"Caustic merge radius", Token("causticMergeRadius"), Value(0.0f),
+         "photon search radius at 1 sample per pixel, scene units (0: 5 % of the caustic casters' size); "
+         "shrinks as samples accumulate"},
         {"Bump shadowing", Token("bumpShadowing"), Value(1),
          "diffuse and sheen lobes shadowed where a normal map or bent normal leans away from the surface "
          "(Chiang et al. 2019, as Cycles); 0: off"},
@@ -634,6 +640,9 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.causticPaths = std::clamp(floatSetting("causticPaths", 0.25f), 0.0f, 64.0f);
     if (!std::isfinite(s.causticRoughness)) s.causticRoughness = 0.0f;
     if (!std::isfinite(s.causticPaths)) s.causticPaths = 0.0f;
+    s.causticMerging = intSetting("causticMerging", 1) != 0;
+    s.causticMergeRadius = floatSetting("causticMergeRadius", 0.0f);
+    if (!(s.causticMergeRadius > 0.0f) || !std::isfinite(s.causticMergeRadius)) s.causticMergeRadius = 0.0f;
     auto model = getString(renderSetting(Token("shadingModel")));
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
     s.mis = intSetting("mis", 1) != 0;
@@ -667,6 +676,9 @@ std::map<std::string, double> EmbreeRenderDelegate::renderStats() const {
         {"rays", double(_rays.load())},
         {"samples", double(_samples.load())},
         {"invalidSamples", double(_invalidSamples.load())},
+        {"causticCasters", double(std::max(0L, _causticCasters.load()))},
+        {"causticLights", double(_causticLights.load())},
+        {"causticPaths", double(_causticPaths.load())},
         {"renderSeconds", secs},
         {"mraysPerSecond", secs > 0 ? double(_rays.load()) / secs * 1e-6 : 0.0},
         {"blasBuilds", double(_param->blasBuilds.load())},
@@ -690,8 +702,23 @@ std::map<std::string, double> EmbreeRenderDelegate::renderStats() const {
     return stats;
 }
 
+void EmbreeRenderDelegate::setCausticStats(long casters, long lights, long paths) {
+    _causticCasters = casters;
+    _causticLights = lights;
+    _causticPaths += paths;
+}
+
 std::string EmbreeRenderDelegate::sceneSummary() const {
-    return describeFeatures(describeScene(_snapshot, integratorSettings().bsdf));
+    std::string s = describeFeatures(describeScene(_snapshot, integratorSettings().bsdf));
+    const long casters = _causticCasters.load(), lights = _causticLights.load();
+    if (casters == -2) return s;  // no pass yet
+    if (casters == -1) return s + "; caustics: path tracing only (turned off: caustics, clampIndirect or nee)";
+    if (casters > 0 && lights > 0)
+        s += "; caustics: light tracing from " + std::to_string(lights) + " light(s) through " +
+             std::to_string(casters) + " caster(s) with sharp lobes";
+    else
+        s += casters == 0 ? "; caustics: none (no prim has a sharp lobe)" : "; caustics: none (no sphere, rect, disk, cylinder or distant light)";
+    return s;
 }
 
 }  // namespace principled::embree

@@ -77,6 +77,9 @@ public:
     int minSamples() const { return intSetting("minSamples", 16); }
     int seed() const;
     void addPassStats(long rays, long samples, long invalidSamples, double seconds);
+    /// Caustic light tracing as the last pass found it: casters, caustic lights, and the light
+    /// paths it traced (added up); casters -1: turned off (settings caustics, clampIndirect, nee).
+    void setCausticStats(long casters, long lights, long paths);
 
 private:
     int intSetting(const char* key, int fallback) const;
@@ -130,6 +133,7 @@ private:
     std::atomic<unsigned> _settingsVersion{1};
     // Stats.
     std::atomic<long> _rays{0}, _samples{0}, _invalidSamples{0}, _topCommits{0};
+    std::atomic<long> _causticCasters{-2}, _causticLights{0}, _causticPaths{0};
     std::atomic<double> _renderSeconds{0.0};
     std::atomic<long> _instances{0};  ///< instancer instances in the last commit
 };

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "delegate/aovs.h"
 #include "delegate/cameraConnection.h"
 #include "delegate/causticScene.h"
+#include "delegate/photonGrid.h"
 #include "delegate/hd/camera.h"
 #include "delegate/hd/renderIndex.h"
 #include "delegate/hd/tokens.h"
@@ -263,6 +265,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         settings.caustics = _caustics.get();
     }
     Integrator integrator(scene, settings);
+    long causticPathsThisPass = 0;
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
     glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));
     const float lensRadius = cam->lensRadius();  // once per pass, not per ray
@@ -274,6 +277,82 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     int first = rangeFirst + _samples;
     std::atomic<long> rays{0}, invalid{0}, taken{0};
     auto start = std::chrono::steady_clock::now();
+    // Caustic light paths first: their photons serve this pass's camera paths.
+    std::vector<float> splat, lobeSplat;
+    std::vector<Photon> photons;
+    const bool lobes = settings.splitLobes;
+    if (integrator.causticsActive()) {
+        // Caustic light paths: each is an estimate of every pixel's caustic share at once
+        // (CameraConnection::importance), so a pixel's estimate is its splat sum over the paths
+        // traced. It joins the pixel's mean as this pass's `batch` samples' share.
+        const CameraConnector connector(*cam, state.width, state.height);
+        // At most 2^20 paths a pass (photon memory); big frames get fewer per camera sample.
+        const long paths = std::clamp(std::lround(double(settings.causticPaths) * batch * double(pixels)), 1L, 1L << 20);
+        splat.assign(pixels * 3, 0.0f);
+        lobeSplat.assign(lobes ? pixels * 3 * bsdf::kLobeCount : 0, 0.0f);
+        const uint64_t base = _causticPaths;
+        const uint32_t causticSeed = seed ^ 0xa511e9b3u;
+        // Splats are collected per chunk of paths and added in path order: the same image for
+        // any thread count (float sums depend on their order). Batches bound the memory.
+        constexpr long kChunk = 256, kBatch = 128 * kChunk;
+        std::vector<std::vector<Integrator::Splat>> chunkSplats(size_t(kBatch / kChunk));
+        std::vector<std::vector<Photon>> chunkPhotons(size_t(kBatch / kChunk));
+        for (long b0 = 0; b0 < paths; b0 += kBatch) {
+            const long b1 = std::min(paths, b0 + kBatch);
+            const long chunks = (b1 - b0 + kChunk - 1) / kChunk;
+            tbb::parallel_for(tbb::blocked_range<long>(0, chunks), [&](const tbb::blocked_range<long>& range) {
+                long localRays = 0;
+                for (long c = range.begin(); c < range.end(); ++c) {
+                    std::vector<Integrator::Splat>& out = chunkSplats[size_t(c)];
+                    std::vector<Photon>& outPhotons = chunkPhotons[size_t(c)];
+                    out.clear();
+                    outPhotons.clear();
+                    for (long i = b0 + c * kChunk; i < std::min(b1, b0 + (c + 1) * kChunk); ++i) {
+                        // One Owen-scrambled Sobol sequence over all light paths of the frame.
+                        Sampler sampler(settings.sampler, causticSeed, 0u, uint32_t(base + uint64_t(i)));
+                        const glm::vec2 uPos = sampler.next2D();
+                        const float uLight = sampler.next1D(), uTarget = sampler.next1D();
+                        const glm::vec2 uDir = sampler.next2D();
+                        EmittedRay emitted;
+                        if (!_caustics->sampleEmission(scene, uLight, uTarget, uPos, uDir, &emitted)) continue;
+                        localRays += integrator.traceCaustic(emitted, sampler, connector,
+                                                             [&](const Integrator::Splat& sp) { out.push_back(sp); },
+                                                             [&](const Photon& ph) { outPhotons.push_back(ph); });
+                    }
+                }
+                rays += localRays;
+            });
+            for (long c = 0; c < chunks; ++c) {
+                photons.insert(photons.end(), chunkPhotons[size_t(c)].begin(), chunkPhotons[size_t(c)].end());
+                for (const Integrator::Splat& sp : chunkSplats[size_t(c)]) {
+                    const size_t p = size_t(sp.y) * size_t(state.width) + size_t(sp.x);
+                    for (int k = 0; k < 3; ++k) splat[3 * p + k] += sp.value[k];
+                    if (lobes)
+                        for (int l = 0; l < bsdf::kLobeCount; ++l)
+                            for (int k = 0; k < 3; ++k) lobeSplat[(p * bsdf::kLobeCount + l) * 3 + k] += sp.lobes[l][k];
+                }
+            }
+        }
+        _causticPaths += uint64_t(paths);
+        causticPathsThisPass = paths;
+    }
+    // The camera paths merge the photons within a radius that shrinks with the paths traced.
+    PhotonGrid photonGrid;
+    std::optional<Integrator> merging;
+    if (!photons.empty()) {
+        const double perSample = std::max(1.0, double(settings.causticPaths) * double(pixels));
+        const float r0 = settings.causticMergeRadius > 0.0f ? settings.causticMergeRadius
+                                                            : 0.05f * _caustics->meanTargetRadius();
+        const float r = r0 * float(std::pow(std::max(1.0, double(_causticPaths) / perSample), -1.0 / 6.0));
+        photonGrid = PhotonGrid(std::move(photons), r);
+        if (!photonGrid.empty()) {
+            IntegratorSettings withPhotons = settings;
+            withPhotons.photons = &photonGrid;
+            withPhotons.photonScale = float(1.0 / (double(causticPathsThisPass) * 3.14159265358979 * double(r) * r));
+            merging.emplace(scene, withPhotons);
+        }
+    }
+    const Integrator& pathTracer = merging ? *merging : integrator;
     tbb::parallel_for(
         tbb::blocked_range2d<int>(0, state.height, kTileSize, 0, state.width, kTileSize),
         [&](const tbb::blocked_range2d<int>& tile) {
@@ -289,7 +368,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         // (pinhole images keep their sample dimensions).
                         glm::vec2 lens = thinLens ? cam->apertureSample(sampler.next2D()) : glm::vec2(0.0f);
                         Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y, lensRadius, lens);
-                        PathSample ps = integrator.trace(r, sampler);
+                        PathSample ps = pathTracer.trace(r, sampler);
                         tileRays += ps.rays;
                         ++tileSamples;
                         tileInvalid += ps.invalid;
@@ -304,52 +383,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
             invalid += tileInvalid;
             taken += tileSamples;
         });
-    if (integrator.causticsActive()) {
-        // Caustic light paths: each is an estimate of every pixel's caustic share at once
-        // (CameraConnection::importance), so a pixel's estimate is its splat sum over the paths
-        // traced. It joins the pixel's mean as this pass's `batch` samples' share.
-        const CameraConnector connector(*cam, state.width, state.height);
-        const bool lobes = settings.splitLobes;
-        const long paths = std::max(1L, std::lround(double(settings.causticPaths) * batch * double(pixels)));
-        std::vector<float> splat(pixels * 3, 0.0f), lobeSplat(lobes ? pixels * 3 * bsdf::kLobeCount : 0, 0.0f);
-        const uint64_t base = _causticPaths;
-        const uint32_t causticSeed = seed ^ 0xa511e9b3u;
-        // Splats are collected per chunk of paths and added in path order: the same image for
-        // any thread count (float sums depend on their order). Batches bound the memory.
-        constexpr long kChunk = 256, kBatch = 128 * kChunk;
-        std::vector<std::vector<Integrator::Splat>> chunkSplats(size_t(kBatch / kChunk));
-        for (long b0 = 0; b0 < paths; b0 += kBatch) {
-            const long b1 = std::min(paths, b0 + kBatch);
-            const long chunks = (b1 - b0 + kChunk - 1) / kChunk;
-            tbb::parallel_for(tbb::blocked_range<long>(0, chunks), [&](const tbb::blocked_range<long>& range) {
-                long localRays = 0;
-                for (long c = range.begin(); c < range.end(); ++c) {
-                    std::vector<Integrator::Splat>& out = chunkSplats[size_t(c)];
-                    out.clear();
-                    for (long i = b0 + c * kChunk; i < std::min(b1, b0 + (c + 1) * kChunk); ++i) {
-                        // One Owen-scrambled Sobol sequence over all light paths of the frame.
-                        Sampler sampler(settings.sampler, causticSeed, 0u, uint32_t(base + uint64_t(i)));
-                        const glm::vec2 uPos = sampler.next2D();
-                        const float uLight = sampler.next1D(), uTarget = sampler.next1D();
-                        const glm::vec2 uDir = sampler.next2D();
-                        EmittedRay emitted;
-                        if (!_caustics->sampleEmission(scene, uLight, uTarget, uPos, uDir, &emitted)) continue;
-                        localRays += integrator.traceCaustic(emitted, sampler, connector,
-                                                             [&](const Integrator::Splat& sp) { out.push_back(sp); });
-                    }
-                }
-                rays += localRays;
-            });
-            for (long c = 0; c < chunks; ++c)
-                for (const Integrator::Splat& sp : chunkSplats[size_t(c)]) {
-                    const size_t p = size_t(sp.y) * size_t(state.width) + size_t(sp.x);
-                    for (int k = 0; k < 3; ++k) splat[3 * p + k] += sp.value[k];
-                    if (lobes)
-                        for (int l = 0; l < bsdf::kLobeCount; ++l)
-                            for (int k = 0; k < 3; ++k) lobeSplat[(p * bsdf::kLobeCount + l) * 3 + k] += sp.lobes[l][k];
-                }
-        }
-        _causticPaths += uint64_t(paths);
+    if (causticPathsThisPass > 0) {
+        const long paths = causticPathsThisPass;
         const float scale = float(batch) / float(paths);
         for (int y = 0; y < state.height; ++y)
             for (int x = 0; x < state.width; ++x) {
@@ -376,6 +411,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     _delegate->addPassStats(rays.load(), taken.load(), invalid.load(), seconds);
+    if (settings.caustics && (integrator.causticsActive() || !_caustics->active()))
+        _delegate->setCausticStats(_caustics->casterCount(), _caustics->lightCount(), causticPathsThisPass);
+    else
+        _delegate->setCausticStats(-1, 0, 0);  // turned off by the settings
     _samples += batch;
     ++_passes;
     // Adaptive sampling: a pixel stops once the relative standard error of its mean luminance

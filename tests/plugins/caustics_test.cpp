@@ -137,9 +137,18 @@ TEST(Caustics, PlaneMirrorReflectsADeltaSunOntoAWallAtFullIrradiance) {
 
 namespace {
 
+const std::string kTopCamera = R"(
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 5, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+
 // A floor under a 10-degree sun (45 degrees high by default), with a ball of material `ball` on it, seen
 // from straight above (the ball's shadow and caustic in view).
-std::string ballOnFloor(const std::string& ball, int sunElevation = 45) {
+std::string ballOnFloor(const std::string& ball, int sunElevation = 45, const std::string& camera = kTopCamera) {
     return R"(#usda 1.0
 def Mesh "Floor" (prepend apiSchemas = ["MaterialBindingAPI"])
 {
@@ -186,13 +195,8 @@ def DistantLight "Sun"
     float3 xformOp:rotateXYZ = ()" + std::to_string(-sunElevation) + R"(, 30, 0)
     uniform token[] xformOpOrder = ["xformOp:rotateXYZ"]
 }
-def Camera "Cam"
-{
-    double3 xformOp:translate = (0, 5, 0)
-    float xformOp:rotateX = -90
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
-)";
+
+)" + camera;
 }
 
 // Light tracing on and off must render the same image in the mean (over seeds); the caustic's
@@ -249,6 +253,45 @@ TEST(Caustics, RoughGlassCausticHasTheMeanOfPathTracing) {
         float inputs:roughness = 0.09
         float inputs:specTrans = 1)"), 64);
     EXPECT_TRUE(sameMean(on, off));
+}
+
+TEST(Caustics, CausticsSeenInAMirrorHaveTheMeanOfPathTracing) {
+    // The glass ball's caustic seen only in a tilted mirror the camera looks into (camera ->
+    // mirror -> floor -> glass -> sun): light tracing cannot connect through the mirror, the
+    // photons' density at the floor vertex takes that light instead.
+    const std::string mirror = R"(
+def Mesh "Mirror" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-3, 4, -1), (3, 4, -1), (3, 6, 1), (-3, 6, 1)]
+    rel material:binding = </Chrome>
+}
+def Material "Chrome"
+{
+    token outputs:surface.connect = </Chrome/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:metallic = 1
+        float inputs:roughness = 0
+        token outputs:surface
+    }
+}
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 5, 4)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)";
+    const auto [on, off] = onAndOff(ballOnFloor(R"(
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:roughness = 0
+        float inputs:specTrans = 1)", 45, mirror), 256);
+    EXPECT_TRUE(sameMean(on, off));
+    EXPECT_LT(on.pixelVar, off.pixelVar) << on.pixelVar << " vs " << off.pixelVar;
 }
 
 TEST(Caustics, ScenesWithoutSharpLobesRenderExactlyAsWithout) {

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/photonGrid.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace principled::embree {
+
+PhotonGrid::PhotonGrid(std::vector<Photon> photons, float radius) : _photons(std::move(photons)) {
+    if (_photons.empty() || !(radius > 0.0f) || !std::isfinite(radius)) {
+        _photons.clear();
+        return;
+    }
+    _radius = radius;
+    _invCell = 1.0f / (2.0f * radius);
+    const uint32_t buckets = std::bit_ceil(uint32_t(std::max<size_t>(64, 2 * _photons.size())));
+    _mask = buckets - 1;
+    std::vector<uint32_t> key(_photons.size());
+    _start.assign(size_t(buckets) + 1, 0);
+    for (size_t i = 0; i < _photons.size(); ++i) {
+        key[i] = hash(glm::ivec3(glm::floor(_photons[i].position * _invCell)));
+        ++_start[key[i] + 1];
+    }
+    for (uint32_t b = 0; b < buckets; ++b) _start[b + 1] += _start[b];
+    _order.resize(_photons.size());
+    std::vector<uint32_t> fill(_start.begin(), _start.end() - 1);
+    for (size_t i = 0; i < _photons.size(); ++i) _order[fill[key[i]]++] = uint32_t(i);  // stable
+}
+
+}  // namespace principled::embree

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: Apache-2.0
+// Caustic photons (light-path vertices after a sharp scattering) in a uniform hash grid, for
+// the density estimate that gives the path tracer the caustic light it leaves out at vertices
+// after the first hit (photon mapping; Jensen 1996, "Global Illumination using Photon Maps").
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace principled::embree {
+
+struct Photon {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f};   ///< geometric normal on the side the light arrived from
+    glm::vec3 toLight{0.0f};  ///< unit direction back along the light path
+    glm::vec3 power{0.0f};    ///< the light path's weight on arrival (EmittedRay::weight units)
+    int sharpVertices = 0;    ///< sharp scatterings before it (for the bounce limit)
+};
+
+/// Photons binned in cells of twice the search radius; a query visits the 2x2x2 cells around
+/// the point. Built once per pass, read-only while the pass shades.
+class PhotonGrid {
+public:
+    PhotonGrid() = default;
+    /// Photons in the order given (kept: queries visit them in that order, so results do not
+    /// depend on thread scheduling).
+    PhotonGrid(std::vector<Photon> photons, float radius);
+
+    bool empty() const { return _photons.empty(); }
+    float radius() const { return _radius; }
+    size_t size() const { return _photons.size(); }
+
+    /// Calls fn(photon) for every photon within the radius of p.
+    template <typename Fn>
+    void query(const glm::vec3& p, Fn&& fn) const {
+        if (_photons.empty()) return;
+        const glm::vec3 g = p * _invCell - 0.5f;
+        const glm::ivec3 base(glm::floor(g));
+        const float r2 = _radius * _radius;
+        uint32_t seen[8];
+        for (int c = 0; c < 8; ++c) {
+            const uint32_t h = hash(base + glm::ivec3(c & 1, (c >> 1) & 1, c >> 2));
+            seen[c] = h;
+            if (std::find(seen, seen + c, h) != seen + c) continue;  // two cells, one bucket
+            for (uint32_t i = _start[h]; i < _start[h + 1]; ++i) {
+                const Photon& ph = _photons[_order[i]];
+                const glm::vec3 d = ph.position - p;
+                if (glm::dot(d, d) <= r2) fn(ph);
+            }
+        }
+    }
+
+private:
+    uint32_t hash(const glm::ivec3& c) const {
+        // Teschner et al. 2003, "Optimized Spatial Hashing for Collision Detection", section 4.
+        const uint32_t h = (uint32_t(c.x) * 73856093u) ^ (uint32_t(c.y) * 19349663u) ^ (uint32_t(c.z) * 83492791u);
+        return h & _mask;
+    }
+
+    std::vector<Photon> _photons;
+    std::vector<uint32_t> _order;  ///< photon indices sorted by cell hash (stable)
+    std::vector<uint32_t> _start;  ///< per hash bucket: first index into _order; size buckets + 1
+    float _radius = 0.0f, _invCell = 0.0f;
+    uint32_t _mask = 0;
+};
+
+}  // namespace principled::embree

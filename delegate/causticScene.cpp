@@ -161,6 +161,7 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
     struct Caster {
         int prim, placement;
         Box box;
+        CausticTarget sphere;  ///< the tightest sphere known (an implicit sphere's own)
     };
     std::vector<Caster> casters;
     Box sceneBox;
@@ -188,7 +189,17 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
         sceneBox.grow(world);
         if (info.caster) {
             _casterByInstance[inst] = 1;
-            casters.push_back({rec->primId, placed ? placed->instanceIndex : -1, world});
+            const glm::mat4& m = placed ? placed->objectToWorld : rec->objectToWorld;
+            CausticTarget sphere = world.sphere();
+            if (rec->kind == GeometryRecord::Kind::Sphere) {
+                // An implicit sphere: its own centre and radius (times the largest axis scale),
+                // a third of its bounding box's sphere's cross-section.
+                const float scale = std::max({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])),
+                                              glm::length(glm::vec3(m[2]))});
+                const CausticTarget own{glm::vec3(m * glm::vec4(rec->center, 1.0f)), rec->radius * scale};
+                if (own.radius < sphere.radius && std::isfinite(own.radius)) sphere = own;
+            }
+            casters.push_back({rec->primId, placed ? placed->instanceIndex : -1, world, sphere});
         }
     }
     std::sort(casters.begin(), casters.end(), [](const Caster& a, const Caster& b) {
@@ -206,8 +217,8 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
     _sceneRadius = s.radius;
 
     // Targets: one per caster, or groups of casters split along their centres' longest spread.
-    if (casterBoxes.size() <= kMaxTargets) {
-        for (const Box& b : casterBoxes) _targets.push_back(b.sphere());
+    if (casters.size() <= kMaxTargets) {
+        for (const Caster& c : casters) _targets.push_back(c.sphere);
     } else {
         Box centres;
         for (const Box& b : casterBoxes) centres.grow(0.5f * (b.lo + b.hi));

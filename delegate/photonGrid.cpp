@@ -4,10 +4,14 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <vector>
 
 namespace principled::embree {
 
 PhotonGrid::PhotonGrid(std::vector<Photon> photons, float radius) : _photons(std::move(photons)) {
+    std::erase_if(_photons, [](const Photon& p) {
+        return !std::isfinite(p.position.x) || !std::isfinite(p.position.y) || !std::isfinite(p.position.z);
+    });
     if (_photons.empty() || !(radius > 0.0f) || !std::isfinite(radius)) {
         _photons.clear();
         return;
@@ -19,7 +23,7 @@ PhotonGrid::PhotonGrid(std::vector<Photon> photons, float radius) : _photons(std
     std::vector<uint32_t> key(_photons.size());
     _start.assign(size_t(buckets) + 1, 0);
     for (size_t i = 0; i < _photons.size(); ++i) {
-        key[i] = hash(glm::ivec3(glm::floor(_photons[i].position * _invCell)));
+        key[i] = hash(cell(_photons[i].position * _invCell));
         ++_start[key[i] + 1];
     }
     for (uint32_t b = 0; b < buckets; ++b) _start[b + 1] += _start[b];

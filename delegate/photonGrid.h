@@ -37,8 +37,7 @@ public:
     template <typename Fn>
     void query(const glm::vec3& p, Fn&& fn) const {
         if (_photons.empty()) return;
-        const glm::vec3 g = p * _invCell - 0.5f;
-        const glm::ivec3 base(glm::floor(g));
+        const glm::ivec3 base = cell(p * _invCell - 0.5f);
         const float r2 = _radius * _radius;
         uint32_t seen[8];
         for (int c = 0; c < 8; ++c) {
@@ -54,6 +53,10 @@ public:
     }
 
 private:
+    /// The integer cell of a point in cell units, clamped (no overflow far from the origin).
+    static glm::ivec3 cell(const glm::vec3& g) {
+        return glm::ivec3(glm::clamp(glm::floor(g), glm::vec3(-1e9f), glm::vec3(1e9f)));
+    }
     uint32_t hash(const glm::ivec3& c) const {
         // Teschner et al. 2003, "Optimized Spatial Hashing for Collision Detection", section 4.
         const uint32_t h = (uint32_t(c.x) * 73856093u) ^ (uint32_t(c.y) * 19349663u) ^ (uint32_t(c.z) * 83492791u);

@@ -565,7 +565,7 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
          "specular, clearcoat or glass lobes onto the surfaces the camera sees (0: path tracing only)"},
         {"Caustic roughness", Token("causticRoughness"), Value(0.1f),
          "lobes at most this rough carry caustics to light tracing"},
-        {"Caustic paths", Token("causticPaths"), Value(0.25f),
+        {"Caustic paths", Token("causticPaths"), Value(0.125f),
          "light paths per camera sample when the scene has caustic casters and lights"},
         {"Caustic merging", Token("causticMerging"), Value(1),
          "caustics seen after the first bounce (in mirrors, lighting other surfaces) from light-traced photons "
@@ -637,7 +637,7 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.lightsVisible = intSetting("lightCameraVisibility", 0) != 0;
     s.bumpShadowing = intSetting("bumpShadowing", 1) != 0;
     s.causticRoughness = intSetting("caustics", 1) != 0 ? std::clamp(floatSetting("causticRoughness", 0.1f), 0.0f, 1.0f) : 0.0f;
-    s.causticPaths = std::clamp(floatSetting("causticPaths", 0.25f), 0.0f, 64.0f);
+    s.causticPaths = std::clamp(floatSetting("causticPaths", 0.125f), 0.0f, 64.0f);
     if (!std::isfinite(s.causticRoughness)) s.causticRoughness = 0.0f;
     if (!std::isfinite(s.causticPaths)) s.causticPaths = 0.0f;
     s.causticMerging = intSetting("causticMerging", 1) != 0;

@@ -290,7 +290,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         const long paths = std::clamp(std::lround(double(settings.causticPaths) * batch * double(pixels)), 1L, 1L << 20);
         splat.assign(pixels * 3, 0.0f);
         lobeSplat.assign(lobes ? pixels * 3 * bsdf::kLobeCount : 0, 0.0f);
-        const uint64_t base = _causticPaths;
+        // Sample ranges rendered apart (distributed frames) trace disjoint light paths.
+        const uint64_t base = _causticPaths + uint64_t(double(rangeFirst) * double(settings.causticPaths) * double(pixels));
         const uint32_t causticSeed = seed ^ 0xa511e9b3u;
         // Splats are collected per chunk of paths and added in path order: the same image for
         // any thread count (float sums depend on their order). Batches bound the memory.

@@ -255,7 +255,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         }
     }
     // Caustic light tracing: casters and lights found again only when the content or settings change.
-    if (settings.causticRoughness > 0.0f && settings.causticPaths > 0.0f) {
+    // Not in the first pass after a restart: the viewport's first image (1 sample) comes from
+    // path tracing alone, which is unbiased on its own; light tracing joins from the second pass.
+    const bool causticsWanted = settings.causticRoughness > 0.0f && settings.causticPaths > 0.0f;
+    if (causticsWanted && _passes > 0) {
         const unsigned content = _delegate->contentVersion(), set = _delegate->renderSettingsVersion();
         if (!_caustics || content != _causticContent || set != _causticSettings) {
             _caustics = std::make_unique<CausticScene>(scene, settings.bsdf, settings.causticRoughness);
@@ -412,10 +415,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     _delegate->addPassStats(rays.load(), taken.load(), invalid.load(), seconds);
-    if (settings.caustics && (integrator.causticsActive() || !_caustics->active()))
-        _delegate->setCausticStats(_caustics->casterCount(), _caustics->lightCount(), causticPathsThisPass);
-    else
+    if (!causticsWanted || (settings.caustics && !integrator.causticsActive() && _caustics->active()))
         _delegate->setCausticStats(-1, 0, 0);  // turned off by the settings
+    else if (settings.caustics)
+        _delegate->setCausticStats(long(_caustics->casterCount()), long(_caustics->lightCount()), causticPathsThisPass);
     _samples += batch;
     ++_passes;
     // Adaptive sampling: a pixel stops once the relative standard error of its mean luminance

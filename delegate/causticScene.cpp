@@ -129,6 +129,7 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
         }
     }
     if (!anyLight) return;
+    _lightsFound = size_t(std::count(_lightFlag.begin(), _lightFlag.end(), uint8_t(1)));
 
     // Which materials have a sharp lobe: constant ones once, textured ones per prim at probes.
     std::vector<int8_t> constantSharp(scene.materials.size(), -1);

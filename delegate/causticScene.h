@@ -63,7 +63,10 @@ public:
     bool isCausticLight(size_t index) const { return index < _lightFlag.size() && _lightFlag[index]; }
     const std::vector<CausticTarget>& targets() const { return _targets; }
     size_t casterCount() const { return _casters; }
-    size_t lightCount() const { return _lights.size(); }
+    /// Caustic lights: those light paths start from (when there are casters), else those found.
+    size_t lightCount() const { return _lights.empty() ? _lightsFound : _lights.size(); }
+    /// Radius of a sphere around every placed prim.
+    float sceneRadius() const { return _sceneRadius; }
     /// Mean radius of the targets (the photon search radius's scale).
     float meanTargetRadius() const;
 
@@ -93,6 +96,7 @@ private:
     float _sceneRadius = 0.0f;
     float _maxAlpha = 0.0f;
     size_t _casters = 0;
+    size_t _lightsFound = 0;
 };
 
 }  // namespace principled::embree

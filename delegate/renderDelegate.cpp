@@ -717,7 +717,8 @@ std::string EmbreeRenderDelegate::sceneSummary() const {
         s += "; caustics: light tracing from " + std::to_string(lights) + " light(s) through " +
              std::to_string(casters) + " caster(s) with sharp lobes";
     else
-        s += casters == 0 ? "; caustics: none (no prim has a sharp lobe)" : "; caustics: none (no sphere, rect, disk, cylinder or distant light)";
+        s += lights == 0 ? "; caustics: none (no sphere, rect, disk, cylinder or distant light)"
+                         : "; caustics: none (no prim has a sharp lobe)";
     return s;
 }
 

@@ -347,7 +347,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         const double perSample = std::max(1.0, double(settings.causticPaths) * double(pixels));
         const float r0 = settings.causticMergeRadius > 0.0f ? settings.causticMergeRadius
                                                             : 0.05f * _caustics->meanTargetRadius();
-        const float r = r0 * float(std::pow(std::max(1.0, double(_causticPaths) / perSample), -1.0 / 6.0));
+        // Kept within the scene's scale: a huge radius would make every query visit every photon.
+        const float rMax = 0.1f * _caustics->sceneRadius();
+        const float r = std::clamp(r0 * float(std::pow(std::max(1.0, double(_causticPaths) / perSample), -1.0 / 6.0)),
+                                   1e-6f * rMax, rMax);
         photonGrid = PhotonGrid(std::move(photons), r);
         if (!photonGrid.empty()) {
             IntegratorSettings withPhotons = settings;

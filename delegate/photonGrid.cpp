@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace principled::embree {
@@ -17,6 +18,14 @@ PhotonGrid::PhotonGrid(std::vector<Photon> photons, float radius) : _photons(std
         return;
     }
     _radius = radius;
+    _lo = glm::vec3(std::numeric_limits<float>::max());
+    _hi = -_lo;
+    for (const Photon& ph : _photons) {
+        _lo = glm::min(_lo, ph.position);
+        _hi = glm::max(_hi, ph.position);
+    }
+    _lo -= radius;
+    _hi += radius;
     _invCell = 1.0f / (2.0f * radius);
     const uint32_t buckets = std::bit_ceil(uint32_t(std::max<size_t>(64, 2 * _photons.size())));
     _mask = buckets - 1;

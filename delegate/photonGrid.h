@@ -37,6 +37,8 @@ public:
     template <typename Fn>
     void query(const glm::vec3& p, Fn&& fn) const {
         if (_photons.empty()) return;
+        // Outside the photons' bounds (grown by the radius): nothing to visit.
+        if (glm::any(glm::lessThan(p, _lo)) || glm::any(glm::greaterThan(p, _hi))) return;
         const glm::ivec3 base = cell(p * _invCell - 0.5f);
         const float r2 = _radius * _radius;
         uint32_t seen[8];
@@ -66,6 +68,7 @@ private:
     std::vector<Photon> _photons;
     std::vector<uint32_t> _order;  ///< photon indices sorted by cell hash (stable)
     std::vector<uint32_t> _start;  ///< per hash bucket: first index into _order; size buckets + 1
+    glm::vec3 _lo{0.0f}, _hi{0.0f};  ///< the photons' bounds grown by the radius
     float _radius = 0.0f, _invCell = 0.0f;
     uint32_t _mask = 0;
 };

@@ -39,29 +39,41 @@ std::vector<float> red(host::RenderSession& s) {
     return r;
 }
 
-// A grey wall (z = 3, facing -z) seen head-on by a camera at z = 1, and `rest`.
-std::string wallScene(const std::string& rest) {
-    return R"(#usda 1.0
-def Mesh "Wall" (prepend apiSchemas = ["MaterialBindingAPI"])
+// A one-quad mesh `name` with corners `points` (USDA tuple list) bound to a new
+// UsdPreviewSurface material `look` with the given input lines.
+std::string quad(const std::string& name, const std::string& points, const std::string& look,
+                 const std::string& inputs) {
+    return "def Mesh \"" + name + R"(" (prepend apiSchemas = ["MaterialBindingAPI"])
 {
     uniform token subdivisionScheme = "none"
     int[] faceVertexCounts = [4]
     int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-2, -2, 3), (-2, 2, 3), (2, 2, 3), (2, -2, 3)]
-    rel material:binding = </Grey>
+    point3f[] points = [)" + points + R"(]
+    rel material:binding = </)" + look + R"(>
 }
-def Material "Grey"
+def Material ")" + look + R"("
 {
-    token outputs:surface.connect = </Grey/S.outputs:surface>
+    token outputs:surface.connect = </)" + look + R"(/S.outputs:surface>
     def Shader "S"
     {
         uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (0.5, 0.5, 0.5)
-        float inputs:roughness = 1
-        float inputs:specular = 0
+)" + inputs + R"(
         token outputs:surface
     }
 }
+)";
+}
+
+const char* kChromeInputs = R"(        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:metallic = 1
+        float inputs:roughness = 0)";
+
+// A grey wall (z = 3, facing -z) seen head-on by a camera at z = 1, and `rest`.
+std::string wallScene(const std::string& rest) {
+    return "#usda 1.0\n" +
+           quad("Wall", "(-2, -2, 3), (-2, 2, 3), (2, 2, 3), (2, -2, 3)", "Grey", R"(        color3f inputs:diffuseColor = (0.5, 0.5, 0.5)
+        float inputs:roughness = 1
+        float inputs:specular = 0)") + R"(
 def Camera "Cam"
 {
     double3 xformOp:translate = (0, 0, 1)
@@ -74,27 +86,7 @@ def Camera "Cam"
 // A 1 x 1 perfect mirror at the origin tilted 45 degrees (normal (0, 1, 1) / sqrt 2): a sun
 // shining down -y is reflected along +z onto the wall, its irradiance unchanged (F = 1 for a
 // white metal).
-const char* kMirrorAndSun = R"(
-def Mesh "Mirror" (prepend apiSchemas = ["MaterialBindingAPI"])
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-0.5, -0.35355, 0.35355), (0.5, -0.35355, 0.35355), (0.5, 0.35355, -0.35355), (-0.5, 0.35355, -0.35355)]
-    rel material:binding = </Chrome>
-}
-def Material "Chrome"
-{
-    token outputs:surface.connect = </Chrome/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (1, 1, 1)
-        float inputs:metallic = 1
-        float inputs:roughness = 0
-        token outputs:surface
-    }
-}
+const std::string kMirrorAndSun = quad("Mirror", "(-0.5, -0.35355, 0.35355), (0.5, -0.35355, 0.35355), (0.5, 0.35355, -0.35355), (-0.5, 0.35355, -0.35355)", "Chrome", kChromeInputs) + R"(
 def DistantLight "Sun"
 {
     float inputs:angle = 0
@@ -259,27 +251,7 @@ TEST(Caustics, CausticsSeenInAMirrorHaveTheMeanOfPathTracing) {
     // The glass ball's caustic seen only in a tilted mirror the camera looks into (camera ->
     // mirror -> floor -> glass -> sun): light tracing cannot connect through the mirror, the
     // photons' density at the floor vertex takes that light instead.
-    const std::string mirror = R"(
-def Mesh "Mirror" (prepend apiSchemas = ["MaterialBindingAPI"])
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-3, 4, -1), (3, 4, -1), (3, 6, 1), (-3, 6, 1)]
-    rel material:binding = </Chrome>
-}
-def Material "Chrome"
-{
-    token outputs:surface.connect = </Chrome/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (1, 1, 1)
-        float inputs:metallic = 1
-        float inputs:roughness = 0
-        token outputs:surface
-    }
-}
+    const std::string mirror = quad("Mirror", "(-3, 4, -1), (3, 4, -1), (3, 6, 1), (-3, 6, 1)", "Chrome", kChromeInputs) + R"(
 def Camera "Cam"
 {
     double3 xformOp:translate = (0, 5, 4)

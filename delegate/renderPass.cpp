@@ -255,10 +255,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         }
     }
     // Caustic light tracing: casters and lights found again only when the content or settings change.
-    // Not in the first pass after a restart: the viewport's first image (1 sample) comes from
-    // path tracing alone, which is unbiased on its own; light tracing joins from the second pass.
     const bool causticsWanted = settings.causticRoughness > 0.0f && settings.causticPaths > 0.0f;
-    if (causticsWanted && _passes > 0) {
+    if (causticsWanted) {
         const unsigned content = _delegate->contentVersion(), set = _delegate->renderSettingsVersion();
         if (!_caustics || content != _causticContent || set != _causticSettings) {
             _caustics = std::make_unique<CausticScene>(scene, settings.bsdf, settings.causticRoughness);
@@ -290,7 +288,11 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         // traced. It joins the pixel's mean as this pass's `batch` samples' share.
         const CameraConnector connector(*cam, state.width, state.height);
         // At most 2^20 paths a pass (photon memory); big frames get fewer per camera sample.
-        const long paths = std::clamp(std::lround(double(settings.causticPaths) * batch * double(pixels)), 1L, 1L << 20);
+        // The first pass after a restart (the viewport's first image) traces an eighth: its
+        // latency stays that of path tracing, and caustics path tracing cannot find at all (a
+        // delta light through a mirror) are still in it.
+        const double share = _passes == 0 ? 0.125 : 1.0;
+        const long paths = std::clamp(std::lround(share * double(settings.causticPaths) * batch * double(pixels)), 1L, 1L << 20);
         splat.assign(pixels * 3, 0.0f);
         lobeSplat.assign(lobes ? pixels * 3 * bsdf::kLobeCount : 0, 0.0f);
         // Sample ranges rendered apart (distributed frames) trace disjoint light paths.

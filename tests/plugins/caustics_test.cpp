@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 
+#include "delegate/causticScene.h"
+#include "delegate/renderDelegate.h"
 #include "plugins/renderSession.h"
 #include "tests/support/seedStatistics.h"
 
@@ -286,4 +289,111 @@ TEST(Caustics, ScenesWithoutSharpLobesRenderExactlyAsWithout) {
     o.settings = {{"caustics", "0"}};
     auto off = run(scene, o);
     EXPECT_EQ(red(*on), red(*off));
+}
+
+TEST(CausticScene, EmittedRaysCountOverlappingTargetsOnce) {
+    // A delta sun straight down on two mirror balls (r = 0.5, centres 0.6 apart): light paths
+    // start uniformly in either ball's disc, and their weights must add up to the sun's
+    // irradiance times the area of the union of the discs (the overlap counted once; with the
+    // density of one disc alone it would count twice).
+    const std::string scene = R"(#usda 1.0
+def Sphere "A" (prepend apiSchemas = ["MaterialBindingAPI"]) { double radius = 0.5  rel material:binding = </Chrome> }
+def Sphere "B" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    double radius = 0.5
+    double3 xformOp:translate = (0.6, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    rel material:binding = </Chrome>
+}
+def Material "Chrome"
+{
+    token outputs:surface.connect = </Chrome/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+)" + std::string(kChromeInputs) + R"(
+        token outputs:surface
+    }
+}
+def DistantLight "Sun"
+{
+    float inputs:angle = 0
+    float inputs:intensity = 2
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:rotateX"]
+}
+def Camera "Cam" { double3 xformOp:translate = (0, 0, 5)  uniform token[] xformOpOrder = ["xformOp:translate"] }
+)";
+    host::SessionOptions o;
+    o.width = o.height = 8;
+    o.samplesPerPixel = 1;
+    auto s = run(scene, o);
+    const embree::SceneSnapshot& snap = s->delegate()->snapshot();
+    const embree::CausticScene caustics(snap, s->delegate()->integratorSettings().bsdf, 0.1f);
+    ASSERT_TRUE(caustics.active());
+    ASSERT_EQ(caustics.targets().size(), 2u);
+    ASSERT_EQ(snap.lights.size(), 1u);
+    const double irradiance = snap.lights[0].irradiance.x;
+    const double r = caustics.targets()[0].radius, d = 0.6;
+    // Two discs of radius r, centres d apart: 2 pi r^2 minus the lens 2 r^2 acos(d / 2r) - (d / 2) sqrt(4 r^2 - d^2).
+    const double lens = 2.0 * r * r * std::acos(d / (2.0 * r)) - 0.5 * d * std::sqrt(4.0 * r * r - d * d);
+    const double expected = irradiance * (2.0 * M_PI * r * r - lens);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const int n = 200000;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        embree::EmittedRay ray;
+        if (caustics.sampleEmission(snap, u(rng), u(rng), {u(rng), u(rng)}, {u(rng), u(rng)}, &ray)) {
+            sum += ray.weight.x;
+            EXPECT_LT(std::abs(ray.direction.y + 1.0f), 1e-5f);
+        }
+    }
+    EXPECT_NEAR(sum / n / expected, 1.0, 0.01) << sum / n << " vs " << expected;
+}
+
+TEST(CausticScene, EmittedRaysOfASphereLightCarryItsFluxTowardTheTarget) {
+    // A small sphere light (radius a, radiance L) 20 above a mirror ball (radius r): the flux it
+    // sends into the ball's cone is pi^2 L a^2 r^2 / D^2 up to (r / D)^2; light paths only go
+    // there, so their mean weight is that flux.
+    const std::string scene = R"(#usda 1.0
+def Sphere "A" (prepend apiSchemas = ["MaterialBindingAPI"]) { double radius = 0.5  rel material:binding = </Chrome> }
+def Material "Chrome"
+{
+    token outputs:surface.connect = </Chrome/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+)" + std::string(kChromeInputs) + R"(
+        token outputs:surface
+    }
+}
+def SphereLight "Lamp"
+{
+    float inputs:radius = 0.05
+    float inputs:intensity = 3
+    double3 xformOp:translate = (0, 20, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Camera "Cam" { double3 xformOp:translate = (0, 0, 5)  uniform token[] xformOpOrder = ["xformOp:translate"] }
+)";
+    host::SessionOptions o;
+    o.width = o.height = 8;
+    o.samplesPerPixel = 1;
+    auto s = run(scene, o);
+    const embree::SceneSnapshot& snap = s->delegate()->snapshot();
+    const embree::CausticScene caustics(snap, s->delegate()->integratorSettings().bsdf, 0.1f);
+    ASSERT_TRUE(caustics.active());
+    ASSERT_EQ(snap.lights.size(), 1u);
+    const double L = snap.lights[0].radiance.x, a = snap.lights[0].radius, r = caustics.targets()[0].radius;
+    const double expected = M_PI * M_PI * L * a * a * r * r / (20.0 * 20.0);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const int n = 200000;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        embree::EmittedRay ray;
+        if (caustics.sampleEmission(snap, u(rng), u(rng), {u(rng), u(rng)}, {u(rng), u(rng)}, &ray)) sum += ray.weight.x;
+    }
+    EXPECT_NEAR(sum / n / expected, 1.0, 0.01) << sum / n << " vs " << expected;
 }

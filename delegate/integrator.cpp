@@ -2,6 +2,7 @@
 #include "delegate/integrator.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <new>
@@ -64,16 +65,25 @@ struct Hit {
     int element = 0;  ///< authored face (meshes), 0 for implicit surfaces
     unsigned triangle = 0;
     float u = 0.0f, v = 0.0f;  ///< barycentrics of corners 1 and 2
+    float offset = 0.0f;  ///< how far ray origins leave the surface (offsetScale of p)
 };
+
+// About 16 float ulps of the position's magnitude (2^-23 relative each), with a floor for
+// positions near the origin: large enough for the reconstructed hit point's error, small
+// enough that contact shadows survive far from the origin. Once per hit, for all its rays.
+float offsetScale(const glm::vec3& p) { return std::max(1e-5f, 2e-6f * maxComponent(glm::abs(p))); }
 
 // Whether Embree accepts the ray: origin and direction components within its FLT_LARGE
 // (1.844e18; its RayK::valid() asserts on larger ones), distances not NaN. A scene with points
 // near 1e30 puts camera or bounce rays out there; such rays miss everything instead.
+// The six magnitudes are compared as integers, one compare for their maximum: for floats >= 0
+// the bit patterns order like the values (IEEE 754-2008, §5.10), and a NaN's lie above
+// infinity's, so NaN components fail as `<=` makes them fail.
 bool embreeRayValid(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) {
-    constexpr float kLarge = 1.844e18f;
-    const glm::vec3 ao = glm::abs(o), ad = glm::abs(d);
-    return ao.x <= kLarge && ao.y <= kLarge && ao.z <= kLarge && ad.x <= kLarge && ad.y <= kLarge &&
-           ad.z <= kLarge && tnear >= 0.0f && tnear <= tfar;
+    constexpr uint32_t kLargeBits = std::bit_cast<uint32_t>(1.844e18f);
+    uint32_t m = 0;
+    for (float x : {o.x, o.y, o.z, d.x, d.y, d.z}) m = std::max(m, std::bit_cast<uint32_t>(x) & 0x7fffffffu);
+    return m <= kLargeBits && tnear >= 0.0f && tnear <= tfar;
 }
 
 bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
@@ -103,11 +113,11 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
         inst < scene.instanceByInstance.size() ? scene.instanceByInstance[inst] : nullptr;
     hit->instance = placed;
     hit->instId = inst;
-    const glm::mat3 normalToWorld =
-        placed ? placed->normalToWorld : rec.normalToWorld;
+    const glm::mat3& normalToWorld = placed ? placed->normalToWorld : rec.normalToWorld;
     hit->p = ray.origin + rh.ray.tfar * ray.direction;
     const glm::mat4& objectToWorld = placed ? placed->objectToWorld : rec.objectToWorld;
     glm::vec3 ngObj, nsObj;
+    bool smooth = false;  // nsObj interpolated from authored normals (else it is ngObj)
     if (rec.kind == GeometryRecord::Kind::Sphere) {
         glm::mat4 worldToObject = placed ? glm::inverse(placed->objectToWorld) : rec.worldToObject;
         glm::vec3 pObj = glm::vec3(worldToObject * glm::vec4(hit->p, 1.0f));
@@ -135,23 +145,28 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
         // not with the ray's origin and distance.
         glm::vec3 pObj = (1.0f - rh.hit.u - rh.hit.v) * p0 + rh.hit.u * p1 + rh.hit.v * p2;
         hit->p = glm::vec3(objectToWorld * glm::vec4(pObj, 1.0f));
-        nsObj = ngObj;
         if (!rec.cornerNormals.empty()) {
             float u = rh.hit.u, v = rh.hit.v;
             const glm::vec3* n = &rec.cornerNormals[3 * size_t(rh.hit.primID)];
             nsObj = (1.0f - u - v) * n[0] + u * n[1] + v * n[2];
+            smooth = true;
         } else if (!rec.vertexNormals.empty()) {
             float u = rh.hit.u, v = rh.hit.v;
             const auto& n = rec.vertexNormals;
             nsObj = (1.0f - u - v) * n[t.x] + u * n[t.y] + v * n[t.z];
+            smooth = true;
         }
     }
     glm::vec3 ng = normalToWorld * ngObj;
-    glm::vec3 ns = normalToWorld * nsObj;
-    float lg = glm::length(ng), ls = glm::length(ns);
+    float lg = glm::length(ng);
     if (!(lg > 0.0f) || !std::isfinite(lg)) return false;  // degenerate triangle
     ng /= lg;
-    ns = (ls > 0.0f && std::isfinite(ls)) ? ns / ls : ng;
+    glm::vec3 ns = ng;  // the same arithmetic on the same vector when not smooth
+    if (smooth) {
+        ns = normalToWorld * nsObj;
+        float ls = glm::length(ns);
+        ns = (ls > 0.0f && std::isfinite(ls)) ? ns / ls : ng;
+    }
     // Shade both sides: face the normals toward the incoming ray (remembering whether the ray
     // arrived from behind, which solid transmissive materials need to know).
     hit->backface = glm::dot(ng, ray.direction) > 0.0f;
@@ -159,6 +174,7 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     if (glm::dot(ns, ng) < 0.0f) ns = -ns;
     hit->ng = ng;
     hit->ns = ns;
+    hit->offset = offsetScale(hit->p);
     return true;
 }
 
@@ -180,14 +196,10 @@ bool occluded(const SceneSnapshot& scene, const glm::vec3& origin, const glm::ve
     return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
-// Offset a ray origin off the surface along the geometric normal, scaled to the position's
-// magnitude so large and small scenes both avoid self-intersection.
-glm::vec3 offsetOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& dir) {
-    // About 16 float ulps of the position's magnitude (2^-23 relative each), with a floor
-    // for positions near the origin: large enough for the reconstructed hit point's error,
-    // small enough that contact shadows survive far from the origin.
-    float scale = std::max(1e-5f, 2e-6f * maxComponent(glm::abs(p)));
-    return p + (glm::dot(dir, ng) >= 0.0f ? scale : -scale) * ng;
+// Offset a ray origin off the surface along the geometric normal, by Hit::offset (scaled to
+// the position's magnitude, so large and small scenes both avoid self-intersection).
+glm::vec3 offsetOrigin(const Hit& hit, const glm::vec3& dir) {
+    return hit.p + (glm::dot(dir, hit.ng) >= 0.0f ? hit.offset : -hit.offset) * hit.ng;
 }
 
 // The mesh light that holds the emitting triangles of material `material` at a hit: among the
@@ -285,7 +297,7 @@ float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const g
         const float p = presenceAt(scene, h);
         T *= 1.0f - p;
         if (!(T > 0.0f)) return 0.0f;
-        r.origin = offsetOrigin(h.p, h.ng, dir);
+        r.origin = offsetOrigin(h, dir);
         if (bounded) {
             r.tfar = glm::dot(end - r.origin, dir);
             if (!(r.tfar > 0.0f)) return T;
@@ -498,7 +510,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (depth == 0 && hit.backface && !rec.doubleSided &&
             rec.kind == GeometryRecord::Kind::Triangles && passThrough < kMaxPassThrough) {
             ++passThrough;
-            ray.origin = offsetOrigin(hit.p, hit.ng, ray.direction);
+            ray.origin = offsetOrigin(hit, ray.direction);
             --depth;
             continue;
         }
@@ -512,7 +524,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (presence < 1.0f && passThrough < kMaxPassThrough) {
             if (presence <= 0.0f || sampler.next1D() >= presence) {
                 ++passThrough;
-                ray.origin = offsetOrigin(hit.p, hit.ng, ray.direction);
+                ray.origin = offsetOrigin(hit, ray.direction);
                 --depth;  // not a bounce
                 continue;
             }
@@ -616,7 +628,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 if (share) f *= glm::vec3(1.0f) - causticOpen * lobeShare(perLobe, f, sharp);
                 if (maxComponent(f) > 0.0f) {
                     ++out.rays;
-                    glm::vec3 shadowOrigin = offsetOrigin(hit.p, hit.ng, ls.wi);
+                    glm::vec3 shadowOrigin = offsetOrigin(hit, ls.wi);
                     // Stop just short of a sampled point on an area light.
                     float tfar = ls.distance >= kInf ? kInf
                                                       : std::max(0.0f, glm::length(hit.p + ls.distance * ls.wi - shadowOrigin) * (1.0f - 1e-4f));
@@ -679,7 +691,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         prevDelta = s->delta || (transmit && !neeThrough);
         prevBsdfPdf = s->pdf;
         prevNg = hit.ng;
-        ray.origin = offsetOrigin(hit.p, hit.ng, wi);
+        ray.origin = offsetOrigin(hit, wi);
         ray.direction = wi;
         ray.tnear = 0.0f;
         ray.tfar = kInf;
@@ -736,7 +748,7 @@ uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sample
         if (presence < 1.0f && passThrough < kMaxPassThrough) {
             if (presence <= 0.0f || sampler.next1D() >= presence) {
                 ++passThrough;
-                ray.origin = offsetOrigin(hit.p, hit.ng, ray.direction);
+                ray.origin = offsetOrigin(hit, ray.direction);
                 --bounce;
                 continue;
             }
@@ -774,7 +786,7 @@ uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sample
                     // Veach 1997, eq. 5.19 (adjoint shading normals) with the camera's importance:
                     // weight * f |ns.wi| / |ng.wi| * |ng.wo| * We G.
                     const float geo = std::abs(glm::dot(seen.ng, cc.toCamera)) / cosLight * cc.importance;
-                    const glm::vec3 origin = offsetOrigin(hit.p, seen.ng, cc.toCamera);
+                    const glm::vec3 origin = offsetOrigin(seen, cc.toCamera);
                     const float tfar = glm::length(cc.lensPoint - origin) * (1.0f - 1e-4f);
                     ++rays;
                     if (_settings.recorder) _settings.recorder->record(origin, cc.toCamera, 0.0f, tfar, true);
@@ -822,7 +834,7 @@ uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sample
         beta *= factor;
         scatter *= factor;
         ++sharpVertices;
-        ray.origin = offsetOrigin(hit.p, hit.ng, wi);
+        ray.origin = offsetOrigin(hit, wi);
         ray.direction = wi;
         ray.tnear = 0.0f;
         ray.tfar = kInf;

@@ -67,6 +67,12 @@ constexpr uint32_t reverse(uint32_t x) {
 constexpr detail::SobolByteTables detail::kSobolReversedByteTables =
     byteTables([](const std::array<uint32_t, 32>& v, int bit) { return reverse(v[31 - bit]); });
 
+constexpr std::array<uint8_t, 256> detail::kReversedBytes = [] {
+    std::array<uint8_t, 256> t{};
+    for (uint32_t b = 0; b < 256; ++b) t[b] = uint8_t(reverse(b) >> 24);
+    return t;
+}();
+
 // External linkage from the declaration in sampler.h.
 constexpr detail::SobolByteTables detail::kSobolByteTables =
     byteTables([](const std::array<uint32_t, 32>& v, int bit) { return v[bit]; });

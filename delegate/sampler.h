@@ -33,6 +33,16 @@ extern const SobolByteTables kSobolByteTables;
 /// index reverseBits(b << 8k), so reversed points come from reversed indices directly.
 extern const SobolByteTables kSobolReversedByteTables;
 
+/// Each byte with its bits in reverse order (built at compile time in sampler.cpp).
+extern const std::array<uint8_t, 256> kReversedBytes;
+
+/// reverseBits(x) >> 8, the 24 bits a float in [0, 1) keeps: the low three bytes of x, each
+/// reversed, in swapped order.
+inline uint32_t reverseBitsTop24(uint32_t x) {
+    return uint32_t(kReversedBytes[x & 0xffu]) << 16 | uint32_t(kReversedBytes[(x >> 8) & 0xffu]) << 8 |
+           uint32_t(kReversedBytes[(x >> 16) & 0xffu]);
+}
+
 /// Bit reversal: a byte swap, then the bits of each byte reversed.
 inline uint32_t reverseBits(uint32_t x) {
     x = __builtin_bswap32(x);
@@ -84,7 +94,7 @@ public:
           _reversedIndex(detail::reverseBits(sampleIndex)) {}
 
     /// Uniform in [0, 1).
-    float next1D() { return toUnit(value(_dimension++)); }
+    float next1D() { return toUnit24(value24(_dimension++)); }
     /// A 2-D decision starts a fresh group of four, so it always gets dimensions (0, 1) of an
     /// Owen-scrambled Sobol sequence of its own: a (0,2)-sequence, stratified in 2-D. 1-D
     /// decisions take the dimensions left over in the group (2 and 3), which keeps a light
@@ -98,9 +108,10 @@ public:
     uint32_t dimension() const { return _dimension; }
 
 private:
-    uint32_t value(uint32_t d) {
+    /// The top 24 bits of dimension d's 32-bit value (all that toUnit24 keeps).
+    uint32_t value24(uint32_t d) {
         if (_kind == SamplerKind::Independent)
-            return hashCombine(hashCombine(_pixelKey, _index), d * 0x85ebca6bu + 1u);
+            return hashCombine(hashCombine(_pixelKey, _index), d * 0x85ebca6bu + 1u) >> 8;
         // Burley 2020 section 4: dimensions come in groups of four Owen-scrambled Sobol
         // dimensions; each group shuffles the sample order per pixel (scrambling the index)
         // with its own seed, which decorrelates the groups ("padding").
@@ -113,10 +124,10 @@ private:
             _groupSeed = hashCombine(_pixelKey, group);
             _shuffledReversed = laineKarrasPermutation(_reversedIndex, _groupSeed);
         }
-        return detail::reverseBits(laineKarrasPermutation(sobol4Reversed(_shuffledReversed, int(d & 3u)),
-                                                          hashCombine(_groupSeed, (d & 3u) + 1u)));
+        return detail::reverseBitsTop24(laineKarrasPermutation(sobol4Reversed(_shuffledReversed, int(d & 3u)),
+                                                               hashCombine(_groupSeed, (d & 3u) + 1u)));
     }
-    static float toUnit(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
+    static float toUnit24(uint32_t x) { return static_cast<float>(x) * 0x1p-24f; }
 
     SamplerKind _kind;
     uint32_t _pixelKey;

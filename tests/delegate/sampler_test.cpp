@@ -119,3 +119,14 @@ TEST(Sampler, ValuesFollowTheScrambledSobolDefinition) {
         }
     }
 }
+
+TEST(Sampler, TopBitsOfTheReversalComeFromTheLowBytes) {
+    // reverseBitsTop24 (three byte-table lookups) is the 24 bits reverseBits keeps for a float.
+    uint32_t x = 0x9e3779b9u;
+    for (int i = 0; i < 100000; ++i) {
+        x = hashMix(x + uint32_t(i));
+        ASSERT_EQ(detail::reverseBitsTop24(x), detail::reverseBits(x) >> 8) << x;
+    }
+    for (uint32_t b : {0u, 1u, 0x80u, 0xffu, 0xffffffu, 0x1000000u, 0xffffffffu})
+        ASSERT_EQ(detail::reverseBitsTop24(b), detail::reverseBits(b) >> 8) << b;
+}

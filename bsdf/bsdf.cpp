@@ -128,6 +128,7 @@ LobeMask Bsdf::sharpLobes(float maxAlpha) const {
 }
 
 Bsdf::View Bsdf::restrict(const View& view, LobeMask lobes) const {
+    if ((view.active & lobes) == view.active) return view;  // nothing to take out
     View v = view;
     v.active &= lobes;
     float sum = 0.0f;
@@ -136,7 +137,7 @@ Bsdf::View Bsdf::restrict(const View& view, LobeMask lobes) const {
         sum += v.prob[k];
     }
     if (sum > 0.0f) {
-        for (float& p : v.prob) p /= sum;
+        for (float& p : v.prob) p /= sum;  // divided, as prepare() does: the same probabilities
     } else {
         const int n = std::popcount(v.active);
         for (int k = 0; k < kLobeCount; ++k) v.prob[k] = (v.active & (1u << k)) ? 1.0f / float(n) : 0.0f;

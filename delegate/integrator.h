@@ -116,8 +116,18 @@ public:
     template <typename SplatFn, typename PhotonFn>
     uint32_t traceCaustic(const EmittedRay& emitted, Sampler& sampler, const CameraConnector& camera,
                           SplatFn&& splat, PhotonFn&& photon) const {
-        Splat buffer[kMaxCausticSplats];
-        Photon photons[kMaxCausticSplats];
+        // Uninitialised storage: entries are written before they are read (a value-initialised
+        // pair of arrays cost 2 KB of stores per light path).
+        union Buffers {
+            Splat splats[kMaxCausticSplats];
+            Buffers() {}
+        } splatStore;
+        union PhotonBuffers {
+            Photon photons[kMaxCausticSplats];
+            PhotonBuffers() {}
+        } photonStore;
+        Splat* buffer = splatStore.splats;
+        Photon* photons = photonStore.photons;
         int count = 0, photonCount = 0;
         uint32_t rays = traceCausticPath(emitted, sampler, camera, buffer, &count, photons, &photonCount);
         for (int i = 0; i < count; ++i) splat(buffer[i]);

@@ -42,6 +42,21 @@ std::vector<float> red(host::RenderSession& s) {
     return r;
 }
 
+// A UsdPreviewSurface material `look` with the given input lines.
+std::string material(const std::string& look, const std::string& inputs) {
+    return "def Material \"" + look + R"("
+{
+    token outputs:surface.connect = </)" + look + R"(/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+)" + inputs + R"(
+        token outputs:surface
+    }
+}
+)";
+}
+
 // A one-quad mesh `name` with corners `points` (USDA tuple list) bound to a new
 // UsdPreviewSurface material `look` with the given input lines.
 std::string quad(const std::string& name, const std::string& points, const std::string& look,
@@ -54,17 +69,7 @@ std::string quad(const std::string& name, const std::string& points, const std::
     point3f[] points = [)" + points + R"(]
     rel material:binding = </)" + look + R"(>
 }
-def Material ")" + look + R"("
-{
-    token outputs:surface.connect = </)" + look + R"(/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-)" + inputs + R"(
-        token outputs:surface
-    }
-}
-)";
+)" + material(look, inputs);
 }
 
 const char* kChromeInputs = R"(        color3f inputs:diffuseColor = (1, 1, 1)
@@ -179,17 +184,7 @@ def Sphere "Ball" (prepend apiSchemas = ["MaterialBindingAPI"])
     uniform token[] xformOpOrder = ["xformOp:translate"]
     rel material:binding = </BallLook>
 }
-def Material "BallLook"
-{
-    token outputs:surface.connect = </BallLook/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-)" + ball + R"(
-        token outputs:surface
-    }
-}
-def DistantLight "Sun"
+)" + material("BallLook", ball) + R"(def DistantLight "Sun"
 {
     float inputs:angle = 10
     float inputs:intensity = 20
@@ -305,17 +300,7 @@ def Sphere "B" (prepend apiSchemas = ["MaterialBindingAPI"])
     uniform token[] xformOpOrder = ["xformOp:translate"]
     rel material:binding = </Chrome>
 }
-def Material "Chrome"
-{
-    token outputs:surface.connect = </Chrome/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-)" + std::string(kChromeInputs) + R"(
-        token outputs:surface
-    }
-}
-def DistantLight "Sun"
+)" + material("Chrome", kChromeInputs) + R"(def DistantLight "Sun"
 {
     float inputs:angle = 0
     float inputs:intensity = 2
@@ -358,17 +343,7 @@ TEST(CausticScene, EmittedRaysOfASphereLightCarryItsFluxTowardTheTarget) {
     // there, so their mean weight is that flux.
     const std::string scene = R"(#usda 1.0
 def Sphere "A" (prepend apiSchemas = ["MaterialBindingAPI"]) { double radius = 0.5  rel material:binding = </Chrome> }
-def Material "Chrome"
-{
-    token outputs:surface.connect = </Chrome/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-)" + std::string(kChromeInputs) + R"(
-        token outputs:surface
-    }
-}
-def SphereLight "Lamp"
+)" + material("Chrome", kChromeInputs) + R"(def SphereLight "Lamp"
 {
     float inputs:radius = 0.05
     float inputs:intensity = 3

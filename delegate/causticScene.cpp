@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "bsdf/bsdf.h"
+#include "bsdf/frame.h"
 #include "bsdf/warp.h"
 #include "delegate/lightSampling.h"
 #include "delegate/surfacePoint.h"
@@ -20,13 +21,10 @@ constexpr int kProbes = 16;  // points a textured material is probed at
 
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
-// Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1), listing 3.
 void basis(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
-    float sign = std::copysign(1.0f, n.z);
-    float a = -1.0f / (sign + n.z);
-    float c = n.x * n.y * a;
-    *t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-    *b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+    const bsdf::Frame f = bsdf::Frame::fromZ(n);
+    *t = f.x;
+    *b = f.y;
 }
 
 // 1 - cos(theta_max) of the cone a sphere of radius r subtends at distance^2 d2 > r^2, without
@@ -49,39 +47,6 @@ glm::vec3 sampleCone(const glm::vec3& n, float omc, const glm::vec2& u) {
 bool isCausticLightKind(LightRecord::Kind k) {
     return k == LightRecord::Kind::Distant || k == LightRecord::Kind::Sphere || k == LightRecord::Kind::Rect ||
            k == LightRecord::Kind::Disk || k == LightRecord::Kind::Cylinder;
-}
-
-// A point of area light l, uniform in area, with the light's outward normal there.
-bool sampleLightSurface(const LightRecord& l, const glm::vec2& u, glm::vec3* p, glm::vec3* n) {
-    switch (l.kind) {
-        case LightRecord::Kind::Sphere: {
-            const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-            const float phi = 2.0f * kPi * u.y;
-            *n = glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
-            *p = l.center + l.radius * *n;
-            return true;
-        }
-        case LightRecord::Kind::Rect:
-            *p = l.center + (2.0f * u.x - 1.0f) * l.axisU + (2.0f * u.y - 1.0f) * l.axisV;
-            *n = l.normal;
-            return true;
-        case LightRecord::Kind::Disk: {
-            const glm::vec2 d = bsdf::squareToConcentricDisk(u);
-            *p = l.center + d.x * l.axisU + d.y * l.axisV;
-            *n = l.normal;
-            return true;
-        }
-        case LightRecord::Kind::Cylinder: {
-            const glm::vec3 axis = glm::normalize(l.axisU);
-            glm::vec3 t, b;
-            basis(axis, &t, &b);
-            const float phi = 2.0f * kPi * u.y;
-            *n = std::cos(phi) * t + std::sin(phi) * b;
-            *p = l.center + (2.0f * u.x - 1.0f) * l.axisU + l.radius * *n;
-            return true;
-        }
-        default: return false;
-    }
 }
 
 struct Box {
@@ -129,7 +94,6 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
         }
     }
     if (!anyLight) return;
-    _lightsFound = size_t(std::count(_lightFlag.begin(), _lightFlag.end(), uint8_t(1)));
 
     // Which materials have a sharp lobe: constant ones once, textured ones per prim at probes.
     std::vector<int8_t> constantSharp(scene.materials.size(), -1);
@@ -357,7 +321,7 @@ bool CausticScene::sampleEmission(const SceneSnapshot& scene, float uLight, floa
         out->weight = Le / (pdfDir * pdfArea * pLight);
     } else {
         glm::vec3 p, n;
-        if (!sampleLightSurface(l, uPos, &p, &n)) return false;
+        if (!lightSurfacePoint(l, uPos, &p, &n)) return false;
         const glm::vec3 toC = tg.center - p;
         const float d2 = glm::dot(toC, toC);
         glm::vec3 d;

@@ -14,6 +14,7 @@
 // a partition of path space between estimators is unbiased like MIS with 0/1 weights).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -63,8 +64,8 @@ public:
     bool isCausticLight(size_t index) const { return index < _lightFlag.size() && _lightFlag[index]; }
     const std::vector<CausticTarget>& targets() const { return _targets; }
     size_t casterCount() const { return _casters; }
-    /// Caustic lights: those light paths start from (when there are casters), else those found.
-    size_t lightCount() const { return _lights.empty() ? _lightsFound : _lights.size(); }
+    /// Caustic lights: those light paths start from (with casters), else those found.
+    size_t lightCount() const { return size_t(std::count(_lightFlag.begin(), _lightFlag.end(), uint8_t(1))); }
     /// Radius of a sphere around every placed prim.
     float sceneRadius() const { return _sceneRadius; }
     /// Mean radius of the targets (the photon search radius's scale).
@@ -96,7 +97,6 @@ private:
     float _sceneRadius = 0.0f;
     float _maxAlpha = 0.0f;
     size_t _casters = 0;
-    size_t _lightsFound = 0;
 };
 
 }  // namespace principled::embree

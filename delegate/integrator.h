@@ -100,6 +100,13 @@ public:
 
     PathSample trace(const Ray& cameraRay, Sampler& sampler) const;
 
+    /// Gives trace() the pass's caustic photons (IntegratorSettings::photons, photonScale), once
+    /// the pass's light paths have made them and before any camera path is traced.
+    void usePhotons(const PhotonGrid* photons, float scale) {
+        _settings.photons = photons;
+        _settings.photonScale = scale;
+    }
+
     /// Whether caustic light tracing shares the work (settings.caustics active).
     bool causticsActive() const;
     /// What a caustic light path delivers to one pixel: value = weight * f * importance, and with

@@ -233,8 +233,8 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
                 q = l.center + a * l.axisU + b * l.axisV;
                 texel = rectTexel(l, a, b);
             } else {
-                glm::vec2 dsk = bsdf::squareToConcentricDisk(u);
-                q = l.center + dsk.x * l.axisU + dsk.y * l.axisV;
+                glm::vec3 normal;
+                lightSurfacePoint(l, u, &q, &normal);
             }
             glm::vec3 toQ = q - p;
             float dist = glm::length(toQ);
@@ -298,13 +298,8 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             return out->pdf > 0.0f;
         }
         case LightRecord::Kind::Cylinder: {
-            // Uniform on the side surface: axisU is half the length along the axis; the
-            // circle is spanned by two radius vectors perpendicular to it.
-            glm::vec3 axis = glm::normalize(l.axisU), t, b;
-            basis(axis, &t, &b);
-            float phi = 2.0f * kPi * u.y;
-            glm::vec3 radial = std::cos(phi) * t + std::sin(phi) * b;
-            glm::vec3 q = l.center + (2.0f * u.x - 1.0f) * l.axisU + l.radius * radial;
+            glm::vec3 q, radial;
+            lightSurfacePoint(l, u, &q, &radial);
             glm::vec3 toQ = q - p;
             float dist = glm::length(toQ);
             if (!(dist > 0.0f)) return false;
@@ -392,6 +387,40 @@ bool intersectUnshaped(const LightRecord& l, const glm::vec3& o, const glm::vec3
 }
 
 }  // namespace
+
+bool lightSurfacePoint(const LightRecord& l, const glm::vec2& u, glm::vec3* p, glm::vec3* n) {
+    switch (l.kind) {
+        case LightRecord::Kind::Sphere: {
+            const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+            const float phi = 2.0f * kPi * u.y;
+            *n = glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+            *p = l.center + l.radius * *n;
+            return true;
+        }
+        case LightRecord::Kind::Rect:
+            *p = l.center + (2.0f * u.x - 1.0f) * l.axisU + (2.0f * u.y - 1.0f) * l.axisV;
+            *n = l.normal;
+            return true;
+        case LightRecord::Kind::Disk: {
+            const glm::vec2 d = bsdf::squareToConcentricDisk(u);
+            *p = l.center + d.x * l.axisU + d.y * l.axisV;
+            *n = l.normal;
+            return true;
+        }
+        case LightRecord::Kind::Cylinder: {
+            // Uniform on the side surface: axisU is half the length along the axis; the
+            // circle is spanned by two radius vectors perpendicular to it.
+            const glm::vec3 axis = glm::normalize(l.axisU);
+            glm::vec3 t, b;
+            basis(axis, &t, &b);
+            const float phi = 2.0f * kPi * u.y;
+            *n = std::cos(phi) * t + std::sin(phi) * b;
+            *p = l.center + (2.0f * u.x - 1.0f) * l.axisU + l.radius * *n;
+            return true;
+        }
+        default: return false;
+    }
+}
 
 glm::vec3 emittedRadiance(const LightRecord& l, const glm::vec3& q, const glm::vec3& d) {
     glm::vec3 Le = l.radiance;

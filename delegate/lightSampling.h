@@ -40,6 +40,11 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::ve
 
 bool isAreaLight(const LightRecord& l);
 
+/// A point of area light l (sphere, rect, disk, cylinder) uniform in its area from two uniform
+/// numbers, with the light's outward (emitting) normal there; false for other kinds. The rect,
+/// disk and cylinder points are the ones sampleLight() uses for the same numbers.
+bool lightSurfacePoint(const LightRecord& l, const glm::vec2& u, glm::vec3* p, glm::vec3* n);
+
 /// Radiance that area light l (sphere, rect, disk, cylinder) emits from its surface point q
 /// along unit direction d, shaping and rect texture included: what intersectAreaLight() returns
 /// for a ray that reaches q travelling along -d. q must lie on the light; the caller checks

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <optional>
 #include <cmath>
 #include <sstream>
 
@@ -344,7 +343,6 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     }
     // The camera paths merge the photons within a radius that shrinks with the paths traced.
     PhotonGrid photonGrid;
-    std::optional<Integrator> merging;
     if (!photons.empty()) {
         const double perSample = std::max(1.0, double(settings.causticPaths) * double(pixels));
         const float r0 = settings.causticMergeRadius > 0.0f ? settings.causticMergeRadius
@@ -354,14 +352,9 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         const float r = std::clamp(r0 * float(std::pow(std::max(1.0, double(_causticPaths) / perSample), -1.0 / 6.0)),
                                    1e-6f * rMax, rMax);
         photonGrid = PhotonGrid(std::move(photons), r);
-        if (!photonGrid.empty()) {
-            IntegratorSettings withPhotons = settings;
-            withPhotons.photons = &photonGrid;
-            withPhotons.photonScale = float(1.0 / (double(causticPathsThisPass) * 3.14159265358979 * double(r) * r));
-            merging.emplace(scene, withPhotons);
-        }
+        if (!photonGrid.empty())
+            integrator.usePhotons(&photonGrid, float(1.0 / (double(causticPathsThisPass) * 3.14159265358979 * double(r) * r)));
     }
-    const Integrator& pathTracer = merging ? *merging : integrator;
     tbb::parallel_for(
         tbb::blocked_range2d<int>(0, state.height, kTileSize, 0, state.width, kTileSize),
         [&](const tbb::blocked_range2d<int>& tile) {
@@ -377,7 +370,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         // (pinhole images keep their sample dimensions).
                         glm::vec2 lens = thinLens ? cam->apertureSample(sampler.next2D()) : glm::vec2(0.0f);
                         Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y, lensRadius, lens);
-                        PathSample ps = pathTracer.trace(r, sampler);
+                        PathSample ps = integrator.trace(r, sampler);
                         tileRays += ps.rays;
                         ++tileSamples;
                         tileInvalid += ps.invalid;

@@ -49,8 +49,11 @@ struct IntegratorSettings {
     const CausticScene* caustics = nullptr;
     /// Roughness at or below which a caster's lobe is sharp (0 turns caustic tracing off).
     float causticRoughness = 0.1f;
-    /// Light paths traced per camera sample when the scene has casters and caustic lights.
+    /// Light paths traced per camera sample when the scene has casters and caustic lights: the
+    /// count used throughout, or with causticAdaptive the first passes' count and the centre of
+    /// the range the budget picks from (delegate/causticBudget.h).
     float causticPaths = 0.125f;
+    bool causticAdaptive = true;
     /// Caustic photons of the pass: at path vertices after the first hit the path tracer takes
     /// the caustic light from their density (null: only the first hit's caustics are light
     /// traced, later ones stay with path tracing). photonScale = 1 / (light paths * pi r^2).

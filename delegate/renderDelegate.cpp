@@ -566,7 +566,11 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Caustic roughness", Token("causticRoughness"), Value(0.1f),
          "lobes at most this rough carry caustics to light tracing"},
         {"Caustic paths", Token("causticPaths"), Value(0.125f),
-         "light paths per camera sample when the scene has caustic casters and lights"},
+         "light paths per camera sample when the scene has caustic casters and lights (with causticAdaptive: "
+         "the first passes' count; later passes pick within 1/16x to 4x of it)"},
+        {"Caustic adaptive", Token("causticAdaptive"), Value(1),
+         "later passes trace as many caustic light paths as make the image's variance times its rays least, "
+         "from the passes before (0: causticPaths throughout)"},
         {"Caustic merging", Token("causticMerging"), Value(1),
          "caustics seen after the first bounce (in mirrors, lighting other surfaces) from light-traced photons "
          "(progressive photon mapping); 0: path tracing finds those"},
@@ -641,6 +645,7 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     if (!std::isfinite(s.causticRoughness)) s.causticRoughness = 0.0f;
     if (!std::isfinite(s.causticPaths)) s.causticPaths = 0.0f;
     s.causticMerging = intSetting("causticMerging", 1) != 0;
+    s.causticAdaptive = intSetting("causticAdaptive", 1) != 0;
     s.causticMergeRadius = floatSetting("causticMergeRadius", 0.0f);
     if (!(s.causticMergeRadius > 0.0f) || !std::isfinite(s.causticMergeRadius)) s.causticMergeRadius = 0.0f;
     auto model = getString(renderSetting(Token("shadingModel")));

@@ -11,6 +11,7 @@
 
 #include "delegate/aovs.h"
 #include "delegate/cameraConnection.h"
+#include "delegate/causticBudget.h"
 #include "delegate/causticScene.h"
 #include "delegate/photonGrid.h"
 #include "delegate/hd/camera.h"
@@ -188,6 +189,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _passes = 0;
         _converged = false;
         _causticPaths = 0;
+        _causticBudget.reset();
         _pixelDone.assign(pixels, 0);
         _active = pixels;
         _lumSum.assign(pixels, 0.0);
@@ -275,7 +277,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     // double up to kMaxSamplesPerPass.
     int batch = std::min({_target - _samples, 1 << std::min(_passes, 4), kMaxSamplesPerPass});
     int first = rangeFirst + _samples;
-    std::atomic<long> rays{0}, invalid{0}, taken{0};
+    std::atomic<long> rays{0}, invalid{0}, taken{0}, lightRays{0}, cameraRays{0};
     auto start = std::chrono::steady_clock::now();
     // Caustic light paths first: their photons serve this pass's camera paths.
     std::vector<float> splat, lobeSplat;
@@ -291,15 +293,21 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         // latency stays that of path tracing, and caustics path tracing cannot find at all (a
         // delta light through a mirror) are still in it.
         const double share = _passes == 0 ? 0.125 : 1.0;
-        const long paths = std::clamp(std::lround(share * double(settings.causticPaths) * batch * double(pixels)), 1L, 1L << 20);
+        // Paths per camera sample: as many as make variance x cost least (delegate/causticBudget.h).
+        const double perSample = settings.causticAdaptive
+                                     ? _causticBudget.pathsPerSample(settings.causticPaths, pixels)
+                                     : double(settings.causticPaths);
+        const long paths = std::clamp(std::lround(share * perSample * batch * double(pixels)), 1L, 1L << 20);
         splat.assign(pixels * 3, 0.0f);
         lobeSplat.assign(lobes ? pixels * 3 * bsdf::kLobeCount : 0, 0.0f);
         // Sample ranges rendered apart (distributed frames) trace disjoint light paths.
-        const uint64_t base = _causticPaths + uint64_t(double(rangeFirst) * double(settings.causticPaths) * double(pixels));
+        const uint64_t base =
+            _causticPaths + uint64_t(double(rangeFirst) * double(settings.causticPaths) * CausticBudget::kMaxFactor * double(pixels));
         const uint32_t causticSeed = seed ^ 0xa511e9b3u;
         // Splats are collected per chunk of paths and added in path order: the same image for
         // any thread count (float sums depend on their order). Batches bound the memory.
         constexpr long kChunk = 256, kBatch = 128 * kChunk;
+        double splatSquares = 0.0;  // for the budget, summed in path order
         std::vector<std::vector<Integrator::Splat>> chunkSplats(size_t(kBatch / kChunk));
         std::vector<std::vector<Photon>> chunkPhotons(size_t(kBatch / kChunk));
         for (long b0 = 0; b0 < paths; b0 += kBatch) {
@@ -325,12 +333,14 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                                                              [&](const Photon& ph) { outPhotons.push_back(ph); });
                     }
                 }
-                rays += localRays;
+                lightRays += localRays;
             });
             for (long c = 0; c < chunks; ++c) {
                 photons.insert(photons.end(), chunkPhotons[size_t(c)].begin(), chunkPhotons[size_t(c)].end());
                 for (const Integrator::Splat& sp : chunkSplats[size_t(c)]) {
                     const size_t p = size_t(sp.y) * size_t(state.width) + size_t(sp.x);
+                    const double ls = luminance(sp.value);
+                    splatSquares += ls * ls;
                     for (int k = 0; k < 3; ++k) splat[3 * p + k] += sp.value[k];
                     if (lobes)
                         for (int l = 0; l < bsdf::kLobeCount; ++l)
@@ -340,6 +350,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         }
         _causticPaths += uint64_t(paths);
         causticPathsThisPass = paths;
+        rays += lightRays;
+        _causticBudget.addLightPaths(uint64_t(paths), uint64_t(lightRays.load()), splatSquares);
     }
     // The camera paths merge the photons within a radius that shrinks with the paths traced.
     PhotonGrid photonGrid;
@@ -355,6 +367,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         if (!photonGrid.empty())
             integrator.usePhotons(&photonGrid, float(1.0 / (double(causticPathsThisPass) * 3.14159265358979 * double(r) * r)));
     }
+    // The caustic budget's per-pixel variance of this pass's samples (-1: none), summed after the
+    // pass in pixel order so the budget, and the image, do not depend on the thread count.
+    const bool budgetStats = causticPathsThisPass > 0 && settings.causticAdaptive && batch >= 2;
+    if (budgetStats) _passVariance.assign(pixels, -1.0);
     tbb::parallel_for(
         tbb::blocked_range2d<int>(0, state.height, kTileSize, 0, state.width, kTileSize),
         [&](const tbb::blocked_range2d<int>& tile) {
@@ -363,6 +379,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                     uint32_t pixel = uint32_t(y) * uint32_t(state.width) + uint32_t(x);
                     if (_pixelDone[pixel]) continue;  // adaptive sampling: converged
+                    double passSum = 0.0, passSquares = 0.0;  // this pass's samples (caustic budget)
                     for (int s = first; s < first + batch; ++s) {
                         Sampler sampler(settings.sampler, seed, pixel, uint32_t(s));
                         glm::vec2 j = sampler.next2D();  // box filter: uniform in the pixel
@@ -379,12 +396,28 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         _lumSum[pixel] += lum;
                         _lumSqSum[pixel] += lum * lum;
                         ++_pixelSamples[pixel];
+                        passSum += lum;
+                        passSquares += lum * lum;
                     }
+                    if (budgetStats && batch >= 2)
+                        _passVariance[pixel] = std::max(0.0, (passSquares - passSum * passSum / batch) / (batch - 1));
                 }
-            rays += tileRays;
+            cameraRays += tileRays;
             invalid += tileInvalid;
             taken += tileSamples;
         });
+    rays += cameraRays;
+    if (causticPathsThisPass > 0) {
+        double varianceSum = 0.0;
+        uint64_t varianceCount = 0;
+        if (budgetStats)
+            for (double v : _passVariance)
+                if (v >= 0.0) {
+                    varianceSum += v;
+                    ++varianceCount;
+                }
+        _causticBudget.addCameraSamples(uint64_t(taken.load()), uint64_t(cameraRays.load()), varianceSum, varianceCount);
+    }
     if (causticPathsThisPass > 0) {
         const long paths = causticPathsThisPass;
         const float scale = float(batch) / float(paths);

@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "delegate/causticBudget.h"
 #include "delegate/hd/renderPass.h"
 #include "delegate/rayRecorder.h"
 
@@ -77,6 +78,8 @@ private:
     std::unique_ptr<CausticScene> _caustics;
     unsigned _causticContent = ~0u, _causticSettings = ~0u;
     uint64_t _causticPaths = 0;
+    CausticBudget _causticBudget;       ///< light paths per camera sample (causticAdaptive)
+    std::vector<double> _passVariance;  ///< per pixel, this pass's sample variance (the budget's)
 };
 
 }  // namespace principled::embree

@@ -286,6 +286,38 @@ TEST(Caustics, ScenesWithoutSharpLobesRenderExactlyAsWithout) {
     EXPECT_EQ(red(*on), red(*off));
 }
 
+TEST(Caustics, TheLightPathBudgetFollowsWhereTheNoiseIs) {
+    // delegate/causticBudget.h: a glass ball's caustic in view, on an otherwise smooth image,
+    // gets more light paths than causticPaths; the same ball seen by a camera that looks away
+    // from it gets the fewest (its light paths reach no pixel). Passes of 1, 2, 4, 8 samples:
+    // the budget is free from the third (the first two measure).
+    const std::string glass = R"(
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:roughness = 0
+        float inputs:specTrans = 1)";
+    const std::string skyCamera = R"(
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 5, 0)
+    float xformOp:rotateX = 90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+    auto paths = [&](const std::string& scene, const char* adaptive) {
+        host::SessionOptions o;
+        o.width = o.height = 24;
+        o.samplesPerPixel = 15;
+        o.settings = {{"causticAdaptive", adaptive}};
+        return run(scene, o)->stats().at("causticPaths");
+    };
+    const double P = 24 * 24, base = 0.125;
+    const double fixedInView = paths(ballOnFloor(glass), "0");
+    EXPECT_NEAR(fixedInView, base * P * (0.125 + 2 + 4 + 8), 4.0);
+    EXPECT_GT(paths(ballOnFloor(glass), "1"), 1.5 * fixedInView);
+    const double away = paths(ballOnFloor(glass, 45, skyCamera), "1");
+    EXPECT_NEAR(away, base * P * (0.125 + 2 + (4 + 8) / 16.0), 4.0);
+}
+
 TEST(CausticScene, EmittedRaysCountOverlappingTargetsOnce) {
     // A delta sun straight down on two mirror balls (r = 0.5, centres 0.6 apart): light paths
     // start uniformly in either ball's disc, and their weights must add up to the sun's

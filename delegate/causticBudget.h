@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: Apache-2.0
+// How many caustic light paths a pass traces per camera sample: the count that makes the
+// image's variance times its cost least, from what the passes before it measured.
+#pragma once
+
+#include <cstdint>
+
+namespace principled::embree {
+
+/// The light-traced share of a pixel is a mean over N light paths (variance A/N summed over the
+/// image, A = a path's squared splats); the rest is a mean over S camera samples (variance
+/// P v / S, v = the per-sample variance averaged over the P pixels). With n light paths per
+/// camera sample, N = n S P and the cost per camera sample is c + n d (c, d: rays per camera
+/// sample and per light path), so variance x cost ~ (P v + A / (n P)) (c + n d), least at
+/// n = sqrt(A c / (P^2 v d)) (the efficiency of an estimator sum, as in Grittmann et al. 2022,
+/// "Efficiency-aware multiple importance sampling for bidirectional rendering algorithms",
+/// section 4). Rays, not seconds, measure cost, so the choice and the image are the same on any
+/// machine and thread count.
+class CausticBudget {
+public:
+    /// Forgets every statistic (a restart).
+    void reset() { *this = CausticBudget(); }
+
+    /// A pass's light paths: how many, the rays they cast, and the sum over paths of the
+    /// squared luminance of each splat (in pixel units: a pixel's share is the mean of its
+    /// splats over the paths).
+    void addLightPaths(uint64_t paths, uint64_t rays, double splatSquares);
+    /// A pass's camera samples: how many and their rays; and the per-sample luminance variance
+    /// summed over the pixels that took two or more samples in the pass, with their count.
+    void addCameraSamples(uint64_t samples, uint64_t rays, double varianceSum, uint64_t varianceCount);
+
+    /// Light paths per camera sample for the next pass: `base` until both kinds of statistics
+    /// exist, then the optimum above kept within [base / 16, base * 4].
+    double pathsPerSample(double base, uint64_t pixels) const;
+
+    static constexpr double kMinFactor = 1.0 / 16.0, kMaxFactor = 4.0;
+
+private:
+    uint64_t _paths = 0, _lightRays = 0, _samples = 0, _cameraRays = 0, _varianceCount = 0;
+    double _splatSquares = 0.0, _varianceSum = 0.0;
+};
+
+}  // namespace principled::embree

@@ -28,7 +28,7 @@ double CausticBudget::pathsPerSample(double base, uint64_t pixels) const {
     const double A = _splatSquares / double(_paths);                 // per light path
     const double v = _varianceSum / double(_varianceCount);          // per camera sample and pixel
     const double c = double(_cameraRays) / double(_samples);         // rays per camera sample
-    const double d = double(_lightRays) / double(_paths);            // rays per light path
+    const double d = kLightRayCost * double(_lightRays) / double(_paths);  // per light path, in camera rays
     const double P = double(pixels);
     if (!(A > 0.0)) return lo;   // the light paths reached no pixel: keep them few
     if (!(v > 0.0)) return hi;   // nothing else is noisy

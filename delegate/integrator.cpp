@@ -9,6 +9,7 @@
 #include <tuple>
 #include <type_traits>
 
+#include "bsdf/frame.h"
 #include "delegate/cameraConnection.h"
 #include "delegate/causticScene.h"
 #include "delegate/hd/token.h"
@@ -23,18 +24,13 @@ constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInf = 1e30f;
 constexpr int kMaxPassThrough = 64;  // transparent layers a path may cross
 
-// Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1), listing 3.
-void orthonormalBasis(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
-    float sign = std::copysign(1.0f, n.z);
-    float a = -1.0f / (sign + n.z);
-    float c = n.x * n.y * a;
-    *t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-    *b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
-}
-
 struct Frame {
     glm::vec3 t, b, n;
-    explicit Frame(const glm::vec3& normal) : n(normal) { orthonormalBasis(n, &t, &b); }
+    explicit Frame(const glm::vec3& normal) : n(normal) {
+        const bsdf::Frame f = bsdf::Frame::fromZ(normal);  // Duff et al. 2017
+        t = f.x;
+        b = f.y;
+    }
     glm::vec3 toLocal(const glm::vec3& v) const {
         return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)};
     }

@@ -3,6 +3,7 @@
 
 #include "delegate/sphericalTriangle.h"
 
+#include "bsdf/frame.h"
 #include "bsdf/warp.h"
 
 #include <algorithm>
@@ -14,13 +15,11 @@ namespace {
 constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInf = 1e30f;
 
+// Tangents around a unit normal (Duff et al. 2017, via bsdf::Frame::fromZ).
 void basis(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
-    // Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1), listing 3.
-    float sign = std::copysign(1.0f, n.z);
-    float a = -1.0f / (sign + n.z);
-    float c = n.x * n.y * a;
-    *t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
-    *b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+    const bsdf::Frame f = bsdf::Frame::fromZ(n);
+    *t = f.x;
+    *b = f.y;
 }
 
 // Area-measure pdf of a point on a surface converted to solid angle at distance dist.

@@ -25,9 +25,12 @@ struct Photon {
 class PhotonGrid {
 public:
     PhotonGrid() = default;
-    /// Photons in the order given (kept: queries visit them in that order, so results do not
-    /// depend on thread scheduling).
-    PhotonGrid(std::vector<Photon> photons, float radius);
+    /// Photons in the order given (kept within a cell: queries visit them in that order, so
+    /// results do not depend on thread scheduling).
+    PhotonGrid(std::vector<Photon> photons, float radius) { rebuild(photons, radius); }
+    /// The same for a new set, reusing this grid's storage; `photons` is left empty (its
+    /// storage kept for the caller's next set).
+    void rebuild(std::vector<Photon>& photons, float radius);
 
     bool empty() const { return _photons.empty(); }
     float radius() const { return _radius; }
@@ -47,7 +50,7 @@ public:
             seen[c] = h;
             if (std::find(seen, seen + c, h) != seen + c) continue;  // two cells, one bucket
             for (uint32_t i = _start[h]; i < _start[h + 1]; ++i) {
-                const Photon& ph = _photons[_order[i]];
+                const Photon& ph = _photons[i];
                 const glm::vec3 d = ph.position - p;
                 if (glm::dot(d, d) <= r2) fn(ph);
             }
@@ -65,9 +68,9 @@ private:
         return h & _mask;
     }
 
-    std::vector<Photon> _photons;
-    std::vector<uint32_t> _order;  ///< photon indices sorted by cell hash (stable)
-    std::vector<uint32_t> _start;  ///< per hash bucket: first index into _order; size buckets + 1
+    std::vector<Photon> _photons;  ///< sorted by cell hash (stable: given order within a bucket)
+    std::vector<uint32_t> _start;  ///< per hash bucket: first index into _photons; size buckets + 1
+    std::vector<uint32_t> _key, _fill;  ///< build scratch, kept for the next rebuild
     glm::vec3 _lo{0.0f}, _hi{0.0f};  ///< the photons' bounds grown by the radius
     float _radius = 0.0f, _invCell = 0.0f;
     uint32_t _mask = 0;

@@ -280,8 +280,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     std::atomic<long> rays{0}, invalid{0}, taken{0}, lightRays{0}, cameraRays{0};
     auto start = std::chrono::steady_clock::now();
     // Caustic light paths first: their photons serve this pass's camera paths.
-    std::vector<float> splat, lobeSplat;
-    std::vector<Photon> photons;
+    std::vector<float>& splat = _causticStorage.splat;
+    std::vector<float>& lobeSplat = _causticStorage.lobeSplat;
+    std::vector<Photon>& photons = _causticStorage.photons;
+    photons.clear();
     const bool lobes = settings.splitLobes;
     if (integrator.causticsActive()) {
         // Caustic light paths: each is an estimate of every pixel's caustic share at once
@@ -308,8 +310,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         // any thread count (float sums depend on their order). Batches bound the memory.
         constexpr long kChunk = 256, kBatch = 128 * kChunk;
         double splatSquares = 0.0;  // for the budget, summed in path order
-        std::vector<std::vector<Integrator::Splat>> chunkSplats(size_t(kBatch / kChunk));
-        std::vector<std::vector<Photon>> chunkPhotons(size_t(kBatch / kChunk));
+        std::vector<std::vector<Integrator::Splat>>& chunkSplats = _causticStorage.chunkSplats;
+        std::vector<std::vector<Photon>>& chunkPhotons = _causticStorage.chunkPhotons;
+        chunkSplats.resize(size_t(kBatch / kChunk));
+        chunkPhotons.resize(size_t(kBatch / kChunk));
         for (long b0 = 0; b0 < paths; b0 += kBatch) {
             const long b1 = std::min(paths, b0 + kBatch);
             const long chunks = (b1 - b0 + kChunk - 1) / kChunk;
@@ -354,8 +358,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _causticBudget.addLightPaths(uint64_t(paths), uint64_t(lightRays.load()), splatSquares);
     }
     // The camera paths merge the photons within a radius that shrinks with the paths traced.
-    PhotonGrid photonGrid;
     if (!photons.empty()) {
+        PhotonGrid& photonGrid = _causticStorage.grid;
         const double perSample = std::max(1.0, double(settings.causticPaths) * double(pixels));
         const float r0 = settings.causticMergeRadius > 0.0f ? settings.causticMergeRadius
                                                             : 0.05f * _caustics->meanTargetRadius();
@@ -363,7 +367,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         const float rMax = 0.1f * _caustics->sceneRadius();
         const float r = std::clamp(r0 * float(std::pow(std::max(1.0, double(_causticPaths) / perSample), -1.0 / 6.0)),
                                    1e-6f * rMax, rMax);
-        photonGrid = PhotonGrid(std::move(photons), r);
+        photonGrid.rebuild(photons, r);
         if (!photonGrid.empty())
             integrator.usePhotons(&photonGrid, float(1.0 / (double(causticPathsThisPass) * 3.14159265358979 * double(r) * r)));
     }

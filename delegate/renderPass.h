@@ -14,6 +14,8 @@
 
 #include "delegate/causticBudget.h"
 #include "delegate/hd/renderPass.h"
+#include "delegate/integrator.h"
+#include "delegate/photonGrid.h"
 #include "delegate/rayRecorder.h"
 
 namespace principled::embree {
@@ -80,6 +82,14 @@ private:
     uint64_t _causticPaths = 0;
     CausticBudget _causticBudget;       ///< light paths per camera sample (causticAdaptive)
     std::vector<double> _passVariance;  ///< per pixel, this pass's sample variance (the budget's)
+    /// A pass's light-path results, kept between passes so their memory is reused.
+    struct CausticStorage {
+        std::vector<float> splat, lobeSplat;  ///< per pixel (and lobe): the splats' sums
+        std::vector<std::vector<Integrator::Splat>> chunkSplats;
+        std::vector<std::vector<Photon>> chunkPhotons;
+        std::vector<Photon> photons;  ///< all chunks' photons in path order
+        PhotonGrid grid;
+    } _causticStorage;
 };
 
 }  // namespace principled::embree

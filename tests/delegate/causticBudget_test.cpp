@@ -40,19 +40,19 @@ TEST(CausticBudget, PicksTheCountWithTheLeastVarianceTimesCost) {
         for (double v : {0.02, 0.1}) {
             const double c = 4.0, d = 3.0;
             CausticBudget b;
-            b.addLightPaths(1000, uint64_t(1000 * d), A * 1000);
+            b.addLightPaths(1000, uint64_t(1000 * d), A * 1000);  // d rays a path, each kLightRayCost
             b.addCameraSamples(2000, uint64_t(2000 * c), v * P, uint64_t(P));
             const double picked = b.pathsPerSample(1.0, uint64_t(P));
             double best = 0.0, bestCost = INFINITY;
             for (double n = 1.0 / 16; n <= 4.0; n *= 1.001) {
-                const double cost = varianceTimesCost(n, A, v, c, d, P);
+                const double cost = varianceTimesCost(n, A, v, c, d * CausticBudget::kLightRayCost, P);
                 if (cost < bestCost) {
                     bestCost = cost;
                     best = n;
                 }
             }
             EXPECT_NEAR(picked / best, 1.0, 2e-3) << "A " << A << " v " << v;
-            EXPECT_LE(varianceTimesCost(picked, A, v, c, d, P), bestCost * (1.0 + 1e-6));
+            EXPECT_LE(varianceTimesCost(picked, A, v, c, d * CausticBudget::kLightRayCost, P), bestCost * (1.0 + 1e-6));
         }
 }
 

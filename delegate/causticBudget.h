@@ -9,7 +9,8 @@ namespace principled::embree {
 
 /// The light-traced share of a pixel is a mean over N light paths (variance A/N summed over the
 /// image, A = a path's squared splats); the rest is a mean over S camera samples (variance
-/// P v / S, v = the per-sample variance averaged over the P pixels). With n light paths per
+/// P v / S, v = the per-sample variance averaged over the P pixels). Both are weighted per
+/// pixel by how much of its variance a display shows (displayWeight). With n light paths per
 /// camera sample, N = n S P and the cost per camera sample is c + n d (c, d: rays per camera
 /// sample and per light path), so variance x cost ~ (P v + A / (n P)) (c + n d), least at
 /// n = sqrt(A c / (P^2 v d)) (the efficiency of an estimator sum, as in Grittmann et al. 2022,
@@ -24,15 +25,25 @@ public:
 
     /// A pass's light paths: how many, the rays they cast, and the sum over paths of the
     /// squared luminance of each splat (in pixel units: a pixel's share is the mean of its
-    /// splats over the paths).
+    /// splats over the paths), each times its pixel's displayWeight.
     void addLightPaths(uint64_t paths, uint64_t rays, double splatSquares);
     /// A pass's camera samples: how many and their rays; and the per-sample luminance variance
-    /// summed over the pixels that took two or more samples in the pass, with their count.
+    /// times displayWeight summed over the pixels that took two or more samples in the pass,
+    /// with their count.
     void addCameraSamples(uint64_t samples, uint64_t rays, double varianceSum, uint64_t varianceCount);
 
     /// Light paths per camera sample for the next pass: `base` until both kinds of statistics
     /// exist, then the optimum above kept within [base / 16, base * 4].
     double pathsPerSample(double base, uint64_t pixels) const;
+
+    /// The weight of a pixel's variance: the error a display sees, through the tone curve
+    /// T(l) = l / (1 + l) (Reinhard et al. 2002, "Photographic Tone Reproduction for Digital
+    /// Images", eq. 3), by the delta method Var T(X) ~ T'(mean)^2 Var X. A glint of radiance
+    /// 3e4 in one pixel then weighs as a display shows it, not as 1e9 times a mid-grey pixel.
+    static double displayWeight(double mean) {
+        const double m = mean > 0.0 ? mean : 0.0;
+        return 1.0 / ((1.0 + m) * (1.0 + m));
+    }
 
     static constexpr double kMinFactor = 1.0 / 16.0, kMaxFactor = 4.0;
     /// CPU per light-path ray over CPU per camera-path ray, measured (1 thread, 96x96, 32 spp,

@@ -344,7 +344,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 for (const Integrator::Splat& sp : chunkSplats[size_t(c)]) {
                     const size_t p = size_t(sp.y) * size_t(state.width) + size_t(sp.x);
                     const double ls = luminance(sp.value);
-                    splatSquares += ls * ls;
+                    if (_pixelSamples[p] > 0)
+                        splatSquares += ls * ls * CausticBudget::displayWeight(_lumSum[p] / _pixelSamples[p]);
                     for (int k = 0; k < 3; ++k) splat[3 * p + k] += sp.value[k];
                     if (lobes)
                         for (int l = 0; l < bsdf::kLobeCount; ++l)
@@ -355,7 +356,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _causticPaths += uint64_t(paths);
         causticPathsThisPass = paths;
         rays += lightRays;
-        _causticBudget.addLightPaths(uint64_t(paths), uint64_t(lightRays.load()), splatSquares);
+        // The first pass after a restart has no pixel means to weight its splats with.
+        if (_samples > 0) _causticBudget.addLightPaths(uint64_t(paths), uint64_t(lightRays.load()), splatSquares);
     }
     // The camera paths merge the photons within a radius that shrinks with the paths traced.
     if (!photons.empty()) {
@@ -384,6 +386,9 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                     uint32_t pixel = uint32_t(y) * uint32_t(state.width) + uint32_t(x);
                     if (_pixelDone[pixel]) continue;  // adaptive sampling: converged
                     double passSum = 0.0, passSquares = 0.0;  // this pass's samples (caustic budget)
+                    const double weight = budgetStats && _pixelSamples[pixel] > 0
+                                              ? CausticBudget::displayWeight(_lumSum[pixel] / _pixelSamples[pixel])
+                                              : 1.0;
                     for (int s = first; s < first + batch; ++s) {
                         Sampler sampler(settings.sampler, seed, pixel, uint32_t(s));
                         glm::vec2 j = sampler.next2D();  // box filter: uniform in the pixel
@@ -403,8 +408,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         passSum += lum;
                         passSquares += lum * lum;
                     }
-                    if (budgetStats && batch >= 2)
-                        _passVariance[pixel] = std::max(0.0, (passSquares - passSum * passSum / batch) / (batch - 1));
+                    if (budgetStats)
+                        _passVariance[pixel] = weight * std::max(0.0, (passSquares - passSum * passSum / batch) / (batch - 1));
                 }
             cameraRays += tileRays;
             invalid += tileInvalid;
@@ -421,8 +426,6 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                     ++varianceCount;
                 }
         _causticBudget.addCameraSamples(uint64_t(taken.load()), uint64_t(cameraRays.load()), varianceSum, varianceCount);
-    }
-    if (causticPathsThisPass > 0) {
         const long paths = causticPathsThisPass;
         const float scale = float(batch) / float(paths);
         for (int y = 0; y < state.height; ++y)

@@ -195,6 +195,11 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _lumSum.assign(pixels, 0.0);
         _lumSqSum.assign(pixels, 0.0);
         _pixelSamples.assign(pixels, 0);
+        _ltSum.assign(pixels, 0.0);
+        _ltN1.assign(pixels, 0.0);
+        _ltN2.assign(pixels, 0.0);
+        _ltPaths = _ltSpread = 0.0;
+        _ltPasses = 0;
         for (const auto& b : state.aovBindings)
             if (auto* buf = dynamic_cast<EmbreeRenderBuffer*>(b.renderBuffer)) {
                 if (auto info = findAov(b.aovName.str())) buf->setClearValue(info->clear);
@@ -376,7 +381,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     // The caustic budget's per-pixel variance of this pass's samples (-1: none), summed after the
     // pass in pixel order so the budget, and the image, do not depend on the thread count.
     const bool budgetStats = causticPathsThisPass > 0 && settings.causticAdaptive && batch >= 2;
-    if (budgetStats) _passVariance.assign(pixels, -1.0);
+    if (budgetStats) _passVariance.assign(pixels, -1.0f);
     tbb::parallel_for(
         tbb::blocked_range2d<int>(0, state.height, kTileSize, 0, state.width, kTileSize),
         [&](const tbb::blocked_range2d<int>& tile) {
@@ -409,7 +414,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         passSquares += lum * lum;
                     }
                     if (budgetStats)
-                        _passVariance[pixel] = weight * std::max(0.0, (passSquares - passSum * passSum / batch) / (batch - 1));
+                        _passVariance[pixel] = float(weight * std::max(0.0, (passSquares - passSum * passSum / batch) / (batch - 1)));
                 }
             cameraRays += tileRays;
             invalid += tileInvalid;
@@ -420,13 +425,16 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         double varianceSum = 0.0;
         uint64_t varianceCount = 0;
         if (budgetStats)
-            for (double v : _passVariance)
-                if (v >= 0.0) {
+            for (float v : _passVariance)
+                if (v >= 0.0f) {
                     varianceSum += v;
                     ++varianceCount;
                 }
         _causticBudget.addCameraSamples(uint64_t(taken.load()), uint64_t(cameraRays.load()), varianceSum, varianceCount);
         const long paths = causticPathsThisPass;
+        _ltPaths += double(paths);
+        _ltSpread += double(batch) * batch / double(paths);
+        ++_ltPasses;
         const float scale = float(batch) / float(paths);
         for (int y = 0; y < state.height; ++y)
             for (int x = 0; x < state.width; ++x) {
@@ -447,7 +455,11 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 }
                 // The pixel's luminance statistics get the mean's share; the light paths' own
                 // variance is not in them.
-                _lumSum[p] += luminance(e);
+                const double le = luminance(e), m = le / batch;
+                _lumSum[p] += le;
+                _ltSum[p] += le;
+                _ltN1[p] += double(paths) * m;
+                _ltN2[p] += double(paths) * m * m;
             }
     }
     double seconds =
@@ -494,11 +506,20 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
 
 double EmbreeRenderPass::meanVariance(size_t p) const {
     // Unbiased sample variance of the luminance divided by n: the variance of the pixel mean.
-    long n = _pixelSamples[p];
+    // The light-traced share is not in the samples. Its passes' estimates m_k have variances
+    // t^2 / N_k; t^2 comes from their spread about the N-weighted mean over the K passes, and
+    // the image's sum over k of (b_k / n) m_k has variance t^2 (sum b_k^2 / N_k) / n^2.
+    // (A pixel that adaptive sampling stopped is counted as if it took part in every pass.)
+    const long n = _pixelSamples[p];
     if (n < 2) return 0.0;
-    double mean = _lumSum[p] / n;
-    double var = std::max(0.0, (_lumSqSum[p] - n * mean * mean) / (n - 1));
-    return var / n;
+    const double pt = _lumSum[p] - _ltSum[p];
+    const double mean = pt / n;
+    double var = std::max(0.0, (_lumSqSum[p] - n * mean * mean) / (n - 1)) / n;
+    if (_ltSum[p] != 0.0 && _ltPasses >= 2 && _ltPaths > 0.0) {
+        const double t2 = std::max(0.0, (_ltN2[p] - _ltN1[p] * _ltN1[p] / _ltPaths) / (_ltPasses - 1));
+        var += t2 * _ltSpread / (double(n) * n);
+    }
+    return var;
 }
 
 }  // namespace principled::embree
@@ -512,6 +533,12 @@ bool EmbreeRenderPass::setPixelStats(const PixelStats& stats, int completedSampl
     _lumSum = stats.lumSum;
     _lumSqSum = stats.lumSqSum;
     _pixelSamples = stats.samples;
+    // The light-traced share of the sums is not kept across processes: counted as samples'.
+    _ltSum.assign(_lumSum.size(), 0.0);
+    _ltN1.assign(_lumSum.size(), 0.0);
+    _ltN2.assign(_lumSum.size(), 0.0);
+    _ltPaths = _ltSpread = 0.0;
+    _ltPasses = 0;
     _samples = std::max(0, completedSamples);
     _passes = 5;  // resumed: full-size batches
     _converged = _samples >= _target;

@@ -70,6 +70,13 @@ private:
     // Per-pixel luminance statistics (variance AOV, convergence, adaptive sampling).
     std::vector<double> _lumSum, _lumSqSum;
     std::vector<int> _pixelSamples;
+    /// The light-traced share's own noise for meanVariance (its splats are not samples of the
+    /// pixel). Per pixel, over the passes k with N_k light paths, batch b_k and the pass's
+    /// estimate m_k of the share: sum b_k m_k (its part of _lumSum), sum N_k m_k and sum
+    /// N_k m_k^2; for the frame: sum N_k, sum b_k^2 / N_k and the count of such passes.
+    std::vector<double> _ltSum, _ltN1, _ltN2;
+    double _ltPaths = 0.0, _ltSpread = 0.0;
+    int _ltPasses = 0;
     std::set<std::string> _reported;
     std::vector<uint8_t> _pixelDone;
     size_t _active = 0;
@@ -81,7 +88,7 @@ private:
     unsigned _causticContent = ~0u, _causticSettings = ~0u;
     uint64_t _causticPaths = 0;
     CausticBudget _causticBudget;       ///< light paths per camera sample (causticAdaptive)
-    std::vector<double> _passVariance;  ///< per pixel, this pass's sample variance (the budget's)
+    std::vector<float> _passVariance;  ///< per pixel, this pass's sample variance (the budget's)
     /// A pass's light-path results, kept between passes so their memory is reused.
     struct CausticStorage {
         std::vector<float> splat, lobeSplat;  ///< per pixel (and lobe): the splats' sums

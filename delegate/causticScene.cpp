@@ -11,6 +11,7 @@
 #include "bsdf/frame.h"
 #include "bsdf/warp.h"
 #include "delegate/lightSampling.h"
+#include "delegate/rayOffset.h"
 #include "delegate/surfacePoint.h"
 
 namespace principled::embree {
@@ -46,7 +47,7 @@ glm::vec3 sampleCone(const glm::vec3& n, float omc, const glm::vec2& u) {
 
 bool isCausticLightKind(LightRecord::Kind k) {
     return k == LightRecord::Kind::Distant || k == LightRecord::Kind::Sphere || k == LightRecord::Kind::Rect ||
-           k == LightRecord::Kind::Disk || k == LightRecord::Kind::Cylinder;
+           k == LightRecord::Kind::Disk || k == LightRecord::Kind::Cylinder || k == LightRecord::Kind::Mesh;
 }
 
 struct Box {
@@ -87,7 +88,9 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const LightRecord& l = scene.lights[i];
         const glm::vec3 power = l.kind == LightRecord::Kind::Distant ? l.irradiance + l.radiance : l.radiance;
-        if (isCausticLightKind(l.kind) && luminance(power) > 0.0f && std::isfinite(luminance(power)) &&
+        // A textured mesh light's radiance is only an estimate of its mean: path tracing keeps it.
+        const bool meshOk = l.kind != LightRecord::Kind::Mesh || (!l.texturedEmission && l.meshWorld && l.meshAreaCdf);
+        if (isCausticLightKind(l.kind) && meshOk && luminance(power) > 0.0f && std::isfinite(luminance(power)) &&
             (l.kind == LightRecord::Kind::Distant || l.area > 0.0f)) {
             _lightFlag[i] = 1;
             anyLight = true;
@@ -330,13 +333,16 @@ bool CausticScene::sampleEmission(const SceneSnapshot& scene, float uLight, floa
         } else {
             d = sampleCone(toC / std::sqrt(d2), oneMinusCosMax(tg.radius, d2), uDir);
         }
-        const float cosL = glm::dot(n, d);
+        // Mesh lights emit from both sides; the others from the side n faces.
+        const bool twoSided = l.kind == LightRecord::Kind::Mesh;
+        const float cosL = twoSided ? std::abs(glm::dot(n, d)) : glm::dot(n, d);
         if (!(cosL > 0.0f)) return false;  // the emitting side faces away
         const glm::vec3 Le = emittedRadiance(l, p, d);
         if (Le == glm::vec3(0.0f)) return false;
         const float pdfDir = directionPdf(light, p, d, target);
         if (!(pdfDir > 0.0f)) return false;
-        out->origin = p;
+        // A mesh light is geometry: the ray leaves its surface as a bounce would.
+        out->origin = twoSided ? p + std::copysign(offsetScale(p), glm::dot(n, d)) * n : p;
         out->direction = d;
         out->weight = Le * (cosL * l.area / (pdfDir * pLight));
     }

@@ -14,6 +14,7 @@
 #include "delegate/causticScene.h"
 #include "delegate/hd/token.h"
 #include "delegate/lightSampling.h"
+#include "delegate/rayOffset.h"
 #include "delegate/shadingNormal.h"
 #include "delegate/surfacePoint.h"
 
@@ -64,10 +65,6 @@ struct Hit {
     float offset = 0.0f;  ///< how far ray origins leave the surface (offsetScale of p)
 };
 
-// About 16 float ulps of the position's magnitude (2^-23 relative each), with a floor for
-// positions near the origin: large enough for the reconstructed hit point's error, small
-// enough that contact shadows survive far from the origin. Once per hit, for all its rays.
-float offsetScale(const glm::vec3& p) { return std::max(1e-5f, 2e-6f * maxComponent(glm::abs(p))); }
 
 // Whether Embree accepts the ray: origin and direction components within its FLT_LARGE
 // (1.844e18; its RayK::valid() asserts on larger ones), distances not NaN. A scene with points
@@ -170,7 +167,7 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     if (glm::dot(ns, ng) < 0.0f) ns = -ns;
     hit->ng = ng;
     hit->ns = ns;
-    hit->offset = offsetScale(hit->p);
+    hit->offset = offsetScale(hit->p);  // once per hit, for all its rays
     return true;
 }
 
@@ -528,12 +525,14 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         if (mat->emission != glm::vec3(0.0f)) {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
             float lightPdf = 0.0f;
-            if (const LightRecord* ml = meshLightOf(_scene, rec, hit.instId, materialIndex))
-                lightPdf = ml->pickProbability * meshLightPdf(*ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
+            const LightRecord* ml = meshLightOf(_scene, rec, hit.instId, materialIndex);
+            if (ml) lightPdf = ml->pickProbability * meshLightPdf(*ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f
                           : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
             glm::vec3 c = beta * mat->emission * w;
+            // A mesh light that light tracing starts paths from: its caustic share is theirs.
+            if (caustic && ml && caustic->isCausticLight(uint32_t(ml - lights.data()))) c *= glm::vec3(1.0f) - causticCovered;
             if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                 c *= _settings.clampIndirect / maxComponent(c);
             credit(c);

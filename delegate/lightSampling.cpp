@@ -22,6 +22,27 @@ void basis(const glm::vec3& n, glm::vec3* t, glm::vec3* b) {
     *b = f.y;
 }
 
+// A point uniform in area on a mesh light: a triangle by the area CDF (u.x reused inside the
+// chosen cell), then a uniform point on it (Pharr et al. 2023, §6.5.4: b0 = 1 - sqrt(u0),
+// b1 = v sqrt(u0)). Returns the triangle's index in meshWorld (-1: a degenerate one), the
+// point and its barycentrics (b1, b2).
+int meshAreaPoint(const LightRecord& l, const glm::vec2& u, glm::vec3* q, glm::vec2* bary) {
+    const std::vector<MeshLightTriangle>& world = *l.meshWorld;
+    const auto& cdf = *l.meshAreaCdf;
+    size_t n = world.size();
+    if (n == 0) return -1;
+    size_t i = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, u.x) - (cdf.begin() + 1));
+    i = std::min(i, n - 1);
+    float cell = cdf[i + 1] - cdf[i];
+    float ux = cell > 0.0f ? std::clamp((u.x - cdf[i]) / cell, 0.0f, 1.0f) : 0.5f;
+    const MeshLightTriangle& t = world[i];
+    if (!(t.area > 0.0f)) return -1;
+    float su = std::sqrt(ux);
+    *q = (1.0f - su) * t.a + (u.y * su) * t.b + ((1.0f - u.y) * su) * t.c;
+    *bary = glm::vec2(u.y * su, (1.0f - u.y) * su);
+    return int(i);
+}
+
 // Area-measure pdf of a point on a surface converted to solid angle at distance dist.
 float toSolidAngle(float areaPdf, float dist, float cosLight) {
     return cosLight > 1e-7f ? areaPdf * dist * dist / cosLight : 0.0f;
@@ -272,18 +293,11 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
                 out->bary = barycentrics(p + dist * wi, t);
                 return true;
             }
-            // Pick a triangle by area (u.x reused inside the chosen cell), then a uniform point
-            // on it (Pharr et al. 2023, §6.5.4: b0 = 1 - sqrt(u0), b1 = v sqrt(u0)).
-            const auto& cdf = *l.meshAreaCdf;
-            size_t n = world.size();
-            size_t i = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, u.x) - (cdf.begin() + 1));
-            i = std::min(i, n - 1);
-            float cell = cdf[i + 1] - cdf[i];
-            float ux = cell > 0.0f ? std::clamp((u.x - cdf[i]) / cell, 0.0f, 1.0f) : 0.5f;
-            const MeshLightTriangle& t = world[i];
-            if (!(t.area > 0.0f)) return false;
-            float su = std::sqrt(ux);
-            glm::vec3 q = (1.0f - su) * t.a + (u.y * su) * t.b + ((1.0f - u.y) * su) * t.c;
+            glm::vec3 q;
+            glm::vec2 bary;
+            const int i = meshAreaPoint(l, u, &q, &bary);
+            if (i < 0) return false;
+            const MeshLightTriangle& t = world[size_t(i)];
             glm::vec3 toQ = q - p;
             float dist = glm::length(toQ);
             if (!(dist > 0.0f)) return false;
@@ -292,8 +306,8 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             out->pdf = toSolidAngle(1.0f / l.area, dist, cosL);
             out->distance = dist;
             out->Li = l.radiance;
-            out->meshTriangle = int((*l.meshTriangles)[i]);
-            out->bary = glm::vec2(u.y * su, (1.0f - u.y) * su);
+            out->meshTriangle = int((*l.meshTriangles)[size_t(i)]);
+            out->bary = bary;
             return out->pdf > 0.0f;
         }
         case LightRecord::Kind::Cylinder: {
@@ -404,6 +418,14 @@ bool lightSurfacePoint(const LightRecord& l, const glm::vec2& u, glm::vec3* p, g
             const glm::vec2 d = bsdf::squareToConcentricDisk(u);
             *p = l.center + d.x * l.axisU + d.y * l.axisV;
             *n = l.normal;
+            return true;
+        }
+        case LightRecord::Kind::Mesh: {
+            // Two-sided: n is the triangle's normal; the caller takes either side.
+            glm::vec2 bary;
+            const int i = l.meshWorld ? meshAreaPoint(l, u, p, &bary) : -1;
+            if (i < 0) return false;
+            *n = (*l.meshWorld)[size_t(i)].normal;
             return true;
         }
         case LightRecord::Kind::Cylinder: {

@@ -40,9 +40,10 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::ve
 
 bool isAreaLight(const LightRecord& l);
 
-/// A point of area light l (sphere, rect, disk, cylinder) uniform in its area from two uniform
-/// numbers, with the light's outward (emitting) normal there; false for other kinds. The rect,
-/// disk and cylinder points are the ones sampleLight() uses for the same numbers.
+/// A point of area light l (sphere, rect, disk, cylinder, mesh) uniform in its area from two
+/// uniform numbers, with the light's outward (emitting) normal there (a mesh light's triangle
+/// normal: it emits from both sides); false for other kinds. The rect, disk, cylinder and mesh
+/// points are the ones sampleLight()'s area sampling uses for the same numbers.
 bool lightSurfacePoint(const LightRecord& l, const glm::vec2& u, glm::vec3* p, glm::vec3* n);
 
 /// Radiance that area light l (sphere, rect, disk, cylinder) emits from its surface point q

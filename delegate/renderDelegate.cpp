@@ -561,7 +561,7 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
          "camera rays see the shapes of sphere, rect, disk and cylinder lights (0, as Cycles, Karma and hdEmbree: "
          "lights light the scene and show in reflections only)"},
         {"Caustics", Token("caustics"), Value(1),
-         "light tracing for caustics: light from sphere, rect, disk, cylinder and distant lights through sharp "
+         "light tracing for caustics: light from sphere, rect, disk, cylinder, distant and untextured mesh lights through sharp "
          "specular, clearcoat or glass lobes onto the surfaces the camera sees (0: path tracing only)"},
         {"Caustic roughness", Token("causticRoughness"), Value(0.1f),
          "lobes at most this rough carry caustics to light tracing"},

@@ -270,6 +270,28 @@ def Camera "Cam"
     EXPECT_LT(on.pixelVar, off.pixelVar) << on.pixelVar << " vs " << off.pixelVar;
 }
 
+TEST(Caustics, GlassCausticOfAMeshLightHasTheMeanOfPathTracing) {
+    // An emissive quad (a mesh light, two-sided) instead of the sun: light paths start on its
+    // triangles, and the path tracer leaves their share when its rays hit the quad.
+    std::string scene = ballOnFloor(R"(
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:roughness = 0
+        float inputs:specTrans = 1)");
+    const std::string sun = "float inputs:intensity = 20";
+    ASSERT_NE(scene.find(sun), std::string::npos);
+    scene.replace(scene.find(sun), sun.size(), "float inputs:intensity = 0");
+    scene += quad("Lamp", "(1.2, 1.8, -0.3), (1.8, 1.8, -0.3), (1.8, 1.8, 0.3), (1.2, 1.8, 0.3)", "LampLook",
+                  R"(        color3f inputs:diffuseColor = (0, 0, 0)
+        color3f inputs:emissiveColor = (40, 40, 40))");
+    host::SessionOptions o;
+    o.width = o.height = 16;
+    o.samplesPerPixel = 4;
+    EXPECT_EQ(run(scene, o)->stats().at("causticLights"), 1.0);
+    const auto [on, off] = onAndOff(scene, 64);
+    EXPECT_TRUE(sameMean(on, off));
+    EXPECT_LT(on.pixelVar, off.pixelVar) << on.pixelVar << " vs " << off.pixelVar;
+}
+
 TEST(Caustics, ScenesWithoutSharpLobesRenderExactlyAsWithout) {
     // A rough metal ball: nothing is sharp, light tracing has nothing to do and the image is
     // bit-identical (no sample streams change).

@@ -23,6 +23,17 @@ public:
     /// Forgets every statistic (a restart).
     void reset() { *this = CausticBudget(); }
 
+    /// Every statistic, to save with a checkpoint and restore on resume.
+    struct State {
+        uint64_t paths = 0, lightRays = 0, samples = 0, cameraRays = 0, varianceCount = 0;
+        double splatSquares = 0.0, varianceSum = 0.0;
+    };
+    State state() const { return {_paths, _lightRays, _samples, _cameraRays, _varianceCount, _splatSquares, _varianceSum}; }
+    void restore(const State& s) {
+        _paths = s.paths, _lightRays = s.lightRays, _samples = s.samples, _cameraRays = s.cameraRays;
+        _varianceCount = s.varianceCount, _splatSquares = s.splatSquares, _varianceSum = s.varianceSum;
+    }
+
     /// A pass's light paths: how many, the rays they cast, and the sum over paths of the
     /// squared luminance of each splat (in pixel units: a pixel's share is the mean of its
     /// splats over the paths), each times its pixel's displayWeight.

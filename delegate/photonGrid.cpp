@@ -31,18 +31,33 @@ void PhotonGrid::rebuild(std::vector<Photon>& photons, float radius) {
     _invCell = 1.0f / (2.0f * radius);
     const uint32_t buckets = std::bit_ceil(uint32_t(std::max<size_t>(64, 2 * photons.size())));
     _mask = buckets - 1;
-    // Counting sort by bucket, stable, straight into the grid's array (no index indirection).
-    _key.resize(photons.size());
+    // Counting sort by bucket, stable, in place (queries then need no index indirection, and
+    // no second photon array is held): _key[i] becomes photon i's place, then the permutation
+    // is applied by following its cycles.
+    const size_t n = photons.size();
+    _key.resize(n);
     _start.assign(size_t(buckets) + 1, 0);
-    for (size_t i = 0; i < photons.size(); ++i) {
+    for (size_t i = 0; i < n; ++i) {
         _key[i] = hash(cell(photons[i].position * _invCell));
         ++_start[_key[i] + 1];
     }
     for (uint32_t b = 0; b < buckets; ++b) _start[b + 1] += _start[b];
     _fill.assign(_start.begin(), _start.end() - 1);
-    _photons.resize(photons.size());
-    for (size_t i = 0; i < photons.size(); ++i) _photons[_fill[_key[i]]++] = photons[i];
+    for (size_t i = 0; i < n; ++i) _key[i] = _fill[_key[i]]++;
+    for (size_t i = 0; i < n; ++i)
+        while (_key[i] != i) {
+            const uint32_t j = _key[i];
+            std::swap(photons[i], photons[j]);
+            std::swap(_key[i], _key[j]);
+        }
+    _photons.swap(photons);
     photons.clear();
+}
+
+void PhotonGrid::release(std::vector<Photon>& into) {
+    into.swap(_photons);
+    into.clear();
+    _photons = std::vector<Photon>();
 }
 
 }  // namespace principled::embree

@@ -28,9 +28,11 @@ public:
     /// Photons in the order given (kept within a cell: queries visit them in that order, so
     /// results do not depend on thread scheduling).
     PhotonGrid(std::vector<Photon> photons, float radius) { rebuild(photons, radius); }
-    /// The same for a new set, reusing this grid's storage; `photons` is left empty (its
-    /// storage kept for the caller's next set).
+    /// The same for a new set, sorted in place and taken over; `photons` is left empty.
     void rebuild(std::vector<Photon>& photons, float radius);
+    /// Empties the grid, handing its photon storage to `into` (cleared, capacity kept), so
+    /// the next set is collected into it and one photon array serves every pass.
+    void release(std::vector<Photon>& into);
 
     bool empty() const { return _photons.empty(); }
     float radius() const { return _radius; }
@@ -70,7 +72,7 @@ private:
 
     std::vector<Photon> _photons;  ///< sorted by cell hash (stable: given order within a bucket)
     std::vector<uint32_t> _start;  ///< per hash bucket: first index into _photons; size buckets + 1
-    std::vector<uint32_t> _key, _fill;  ///< build scratch, kept for the next rebuild
+    std::vector<uint32_t> _key, _fill;  ///< build scratch (keys, then places), kept for the next rebuild
     glm::vec3 _lo{0.0f}, _hi{0.0f};  ///< the photons' bounds grown by the radius
     float _radius = 0.0f, _invCell = 0.0f;
     uint32_t _mask = 0;

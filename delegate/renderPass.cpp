@@ -195,9 +195,9 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _lumSum.assign(pixels, 0.0);
         _lumSqSum.assign(pixels, 0.0);
         _pixelSamples.assign(pixels, 0);
-        _ltSum.assign(pixels, 0.0);
-        _ltN1.assign(pixels, 0.0);
-        _ltN2.assign(pixels, 0.0);
+        _ltSum.clear();  // allocated by the first pass with light paths
+        _ltN1.clear();
+        _ltN2.clear();
         _ltPaths = _ltSpread = 0.0;
         _ltPasses = 0;
         for (const auto& b : state.aovBindings)
@@ -307,10 +307,10 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         const long paths = std::clamp(std::lround(share * perSample * batch * double(pixels)), 1L, 1L << 20);
         splat.assign(pixels * 3, 0.0f);
         lobeSplat.assign(lobes ? pixels * 3 * bsdf::kLobeCount : 0, 0.0f);
-        // Sample ranges rendered apart (distributed frames) trace disjoint light paths.
-        const uint64_t base =
-            _causticPaths + uint64_t(double(rangeFirst) * double(settings.causticPaths) * CausticBudget::kMaxFactor * double(pixels));
-        const uint32_t causticSeed = seed ^ 0xa511e9b3u;
+        // Sample ranges rendered apart (distributed frames) take their own scrambling of the
+        // sequence, independent of the others'; a whole render (range 0) keeps the plain one.
+        const uint64_t base = _causticPaths;
+        const uint32_t causticSeed = seed ^ 0xa511e9b3u ^ (uint32_t(rangeFirst) * 0x9e3779b9u);
         // Splats are collected per chunk of paths and added in path order: the same image for
         // any thread count (float sums depend on their order). Batches bound the memory.
         constexpr long kChunk = 256, kBatch = 128 * kChunk;
@@ -349,7 +349,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 for (const Integrator::Splat& sp : chunkSplats[size_t(c)]) {
                     const size_t p = size_t(sp.y) * size_t(state.width) + size_t(sp.x);
                     const double ls = luminance(sp.value);
-                    if (_pixelSamples[p] > 0)
+                    // (Pixels adaptive sampling stopped keep no splats: not counted either.)
+                    if (_pixelSamples[p] > 0 && !_pixelDone[p])
                         splatSquares += ls * ls * CausticBudget::displayWeight(_lumSum[p] / _pixelSamples[p]);
                     for (int k = 0; k < 3; ++k) splat[3 * p + k] += sp.value[k];
                     if (lobes)
@@ -432,6 +433,11 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 }
         _causticBudget.addCameraSamples(uint64_t(taken.load()), uint64_t(cameraRays.load()), varianceSum, varianceCount);
         const long paths = causticPathsThisPass;
+        if (_ltSum.size() != pixels) {
+            _ltSum.assign(pixels, 0.0);
+            _ltN1.assign(pixels, 0.0);
+            _ltN2.assign(pixels, 0.0);
+        }
         _ltPaths += double(paths);
         _ltSpread += double(batch) * batch / double(paths);
         ++_ltPasses;
@@ -464,6 +470,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     }
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // The photons served this pass only; their storage serves the next pass's light paths.
+    _causticStorage.grid.release(_causticStorage.photons);
     _delegate->addPassStats(rays.load(), taken.load(), invalid.load(), seconds);
     if (!causticsWanted || (settings.caustics && !integrator.causticsActive() && _caustics->active()))
         _delegate->setCausticStats(-1, 0, 0);  // turned off by the settings
@@ -482,7 +490,13 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 double mean = _lumSum[p] / _pixelSamples[p];
                 // 1e-3: an absolute floor so black pixels converge instead of dividing by ~0.
                 double rel = std::sqrt(meanVariance(p)) / std::max(mean, 1e-3);
-                if (rel < threshold) _pixelDone[p] = 1;
+                if (rel < threshold) {
+                    // Its estimate stops changing, and so does its variance (the light-traced
+                    // share's frame sums go on growing without it).
+                    if (_frozenVariance.size() != pixels) _frozenVariance.assign(pixels, 0.0f);
+                    _frozenVariance[p] = float(meanVariance(p));
+                    _pixelDone[p] = 1;
+                }
             }
             active += !_pixelDone[p];
         }
@@ -510,12 +524,13 @@ double EmbreeRenderPass::meanVariance(size_t p) const {
     // t^2 / N_k; t^2 comes from their spread about the N-weighted mean over the K passes, and
     // the image's sum over k of (b_k / n) m_k has variance t^2 (sum b_k^2 / N_k) / n^2.
     // (A pixel that adaptive sampling stopped is counted as if it took part in every pass.)
+    if (_pixelDone[p] && p < _frozenVariance.size()) return _frozenVariance[p];
     const long n = _pixelSamples[p];
     if (n < 2) return 0.0;
-    const double pt = _lumSum[p] - _ltSum[p];
+    const double lt = p < _ltSum.size() ? _ltSum[p] : 0.0, pt = _lumSum[p] - lt;
     const double mean = pt / n;
     double var = std::max(0.0, (_lumSqSum[p] - n * mean * mean) / (n - 1)) / n;
-    if (_ltSum[p] != 0.0 && _ltPasses >= 2 && _ltPaths > 0.0) {
+    if (lt != 0.0 && _ltPasses >= 2 && _ltPaths > 0.0) {
         const double t2 = std::max(0.0, (_ltN2[p] - _ltN1[p] * _ltN1[p] / _ltPaths) / (_ltPasses - 1));
         var += t2 * _ltSpread / (double(n) * n);
     }
@@ -533,14 +548,26 @@ bool EmbreeRenderPass::setPixelStats(const PixelStats& stats, int completedSampl
     _lumSum = stats.lumSum;
     _lumSqSum = stats.lumSqSum;
     _pixelSamples = stats.samples;
-    // The light-traced share of the sums is not kept across processes: counted as samples'.
-    _ltSum.assign(_lumSum.size(), 0.0);
-    _ltN1.assign(_lumSum.size(), 0.0);
-    _ltN2.assign(_lumSum.size(), 0.0);
-    _ltPaths = _ltSpread = 0.0;
-    _ltPasses = 0;
+    _ltSum = stats.ltSum;
+    _ltN1 = stats.ltN1;
+    _ltN2 = stats.ltN2;
+    _ltPaths = stats.ltPaths;
+    _ltSpread = stats.ltSpread;
+    _ltPasses = stats.ltPasses;
+    if (_ltSum.size() != _lumSum.size() || _ltN1.size() != _lumSum.size() || _ltN2.size() != _lumSum.size()) {
+        _ltSum.clear();  // none saved (no light paths, or an older checkpoint)
+        _ltN1.clear();
+        _ltN2.clear();
+        _ltPaths = _ltSpread = 0.0;
+        _ltPasses = 0;
+    }
     _samples = std::max(0, completedSamples);
-    _passes = 5;  // resumed: full-size batches
+    // Resumed: the saved pass count keeps the batch sizes (and so the light paths' passes) of
+    // an uninterrupted render; without one, full-size batches.
+    _passes = stats.passes > 0 ? stats.passes : 5;
+    // The light paths continue their sequence and their budget where the saved render stopped.
+    _causticPaths = stats.causticPaths;
+    _causticBudget.restore(stats.budget);
     _converged = _samples >= _target;
     return true;
 }

@@ -49,8 +49,20 @@ public:
     struct PixelStats {
         std::vector<double> lumSum, lumSqSum;
         std::vector<int> samples;
+        /// The light-traced share's statistics (see _ltSum below); empty without light paths.
+        std::vector<double> ltSum, ltN1, ltN2;
+        double ltPaths = 0.0, ltSpread = 0.0;
+        int ltPasses = 0;
+        /// Where the light paths' sequence and budget stand (a resumed render continues them).
+        uint64_t causticPaths = 0;
+        CausticBudget::State budget;
+        /// Passes run (their batch sizes follow it; light paths and photons go per pass).
+        int passes = 0;
     };
-    PixelStats pixelStats() const { return {_lumSum, _lumSqSum, _pixelSamples}; }
+    PixelStats pixelStats() const {
+        return {_lumSum, _lumSqSum, _pixelSamples, _ltSum, _ltN1, _ltN2, _ltPaths, _ltSpread, _ltPasses,
+                _causticPaths, _causticBudget.state(), _passes};
+    }
     bool setPixelStats(const PixelStats& stats, int completedSamples);
 
     /// Pixels still being sampled (adaptive sampling stops converged ones).
@@ -77,6 +89,7 @@ private:
     std::vector<double> _ltSum, _ltN1, _ltN2;
     double _ltPaths = 0.0, _ltSpread = 0.0;
     int _ltPasses = 0;
+    std::vector<float> _frozenVariance;  ///< meanVariance of pixels adaptive sampling stopped
     std::set<std::string> _reported;
     std::vector<uint8_t> _pixelDone;
     size_t _active = 0;

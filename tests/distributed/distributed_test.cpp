@@ -115,8 +115,8 @@ void expectEquivalent(const Image& ref, const Image& got, int spp, const std::st
 
 bool identical(const Image& a, const Image& b) { return !a.empty() && a == b; }
 
-std::string render(const std::string& extra, const fs::path& out) {
-    return binary() + " render " + scene() + kArgs + extra + " -o " + out.string();
+std::string render(const std::string& extra, const fs::path& out, const std::string& usda = scene()) {
+    return binary() + " render " + usda + kArgs + extra + " -o " + out.string();
 }
 
 }  // namespace
@@ -219,6 +219,22 @@ TEST(Checkpoint, ResumeEqualsUninterruptedSingleProcess) {
     EXPECT_FALSE(fs::exists(d / "out.exr"));
     ASSERT_TRUE(fs::exists(d / "out.exr.ckpt" / "rank0.exr")) << killed.output;
     Result resumed = shell(render(args + " --resume", d / "out.exr"));
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_TRUE(identical(readExr(d / "plain.exr"), readExr(d / "out.exr")));
+}
+
+TEST(Checkpoint, CausticSceneResumesToTheUninterruptedImage) {
+    // Light-traced caustics: the light paths' sequence, their budget and the light-traced
+    // share's statistics (in the variance AOV) must continue where the checkpoint left them.
+    const std::string caustic = std::string(PRINCIPLED_SOURCE_DIR) + "/tests/distributed/scenes/caustic.usda";
+    fs::path d = dir() / "resumeCaustic";
+    fs::remove_all(d);
+    std::string args = " --spp 40 --checkpoint-every 2";
+    ASSERT_EQ(shell(render(" --spp 40", d / "plain.exr", caustic)).status, 0);
+    Result killed = shell("PRINCIPLED_TEST_KILL_AFTER_CHECKPOINT=1 " + render(args, d / "out.exr", caustic));
+    EXPECT_NE(killed.status, 0) << killed.output;
+    ASSERT_TRUE(fs::exists(d / "out.exr.ckpt" / "rank0.exr")) << killed.output;
+    Result resumed = shell(render(args + " --resume", d / "out.exr", caustic));
     ASSERT_EQ(resumed.status, 0) << resumed.output;
     EXPECT_TRUE(identical(readExr(d / "plain.exr"), readExr(d / "out.exr")));
 }

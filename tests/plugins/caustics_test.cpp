@@ -280,7 +280,8 @@ TEST(Caustics, GlassCausticOfAMeshLightHasTheMeanOfPathTracing) {
     const std::string sun = "float inputs:intensity = 20";
     ASSERT_NE(scene.find(sun), std::string::npos);
     scene.replace(scene.find(sun), sun.size(), "float inputs:intensity = 0");
-    scene += quad("Lamp", "(1.2, 1.8, -0.3), (1.8, 1.8, -0.3), (1.8, 1.8, 0.3), (1.2, 1.8, 0.3)", "LampLook",
+    // Wound so that its normal points up, away from the ball: only its back lights the scene.
+    scene += quad("Lamp", "(1.2, 1.8, 0.3), (1.8, 1.8, 0.3), (1.8, 1.8, -0.3), (1.2, 1.8, -0.3)", "LampLook",
                   R"(        color3f inputs:diffuseColor = (0, 0, 0)
         color3f inputs:emissiveColor = (40, 40, 40))");
     host::SessionOptions o;
@@ -379,6 +380,39 @@ TEST(Caustics, TheVarianceAovCountsTheLightTracedShare) {
     // left is the photons' share: merged at camera vertices, it is in the samples, but
     // correlated within a pass (one photon map), which a per-sample variance does not see.
     EXPECT_NEAR(aov / empirical, 1.0, 0.25) << aov << " vs " << empirical;
+}
+
+TEST(Caustics, AStoppedPixelsVarianceStaysAsItWas) {
+    // Adaptive sampling stops pixels; their estimate, light-traced share included, no longer
+    // changes, and neither may the variance AOV they show (the light paths' frame statistics
+    // go on growing without them).
+    host::SessionOptions o;
+    o.width = o.height = 24;
+    o.samplesPerPixel = 256;
+    o.noiseThreshold = 0.05f;
+    o.aovs = {"variance", "sampleCount"};
+    auto s = host::RenderSession::openString(ballOnFloor(R"(
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:roughness = 0
+        float inputs:specTrans = 1)"), "caustics.usda", o);
+    std::vector<float> variance, count;
+    int stoppedChecked = 0;
+    while (!s->step()) {
+        const float *v = nullptr, *c = nullptr;
+        for (const auto& a : s->aovs()) {
+            if (a.name == "variance") v = static_cast<const float*>(a.pixels);
+            if (a.name == "sampleCount") c = static_cast<const float*>(a.pixels);
+        }
+        ASSERT_TRUE(v && c);
+        for (size_t p = 0; p < variance.size(); ++p)
+            if (c[p] == count[p] && c[p] >= 16) {  // stopped before this pass
+                EXPECT_EQ(v[p], variance[p]) << "pixel " << p;
+                ++stoppedChecked;
+            }
+        variance.assign(v, v + o.width * o.height);
+        count.assign(c, c + o.width * o.height);
+    }
+    EXPECT_GT(stoppedChecked, 100);
 }
 
 TEST(CausticScene, EmittedRaysCountOverlappingTargetsOnce) {

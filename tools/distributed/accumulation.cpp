@@ -55,6 +55,17 @@ Accumulation Accumulation::capture(const host::RenderSession& session) {
     acc.lumSum = stats.lumSum.size() == n ? stats.lumSum : std::vector<double>(n, 0.0);
     acc.lumSqSum = stats.lumSqSum.size() == n ? stats.lumSqSum : std::vector<double>(n, 0.0);
     acc.pixelSamples = stats.samples.size() == n ? stats.samples : std::vector<int>(n, 0);
+    if (stats.ltSum.size() == n && stats.ltN1.size() == n && stats.ltN2.size() == n) {
+        acc.ltSum = stats.ltSum;
+        acc.ltN1 = stats.ltN1;
+        acc.ltN2 = stats.ltN2;
+        acc.ltPaths = stats.ltPaths;
+        acc.ltSpread = stats.ltSpread;
+        acc.ltPasses = stats.ltPasses;
+    }
+    acc.causticPaths = stats.causticPaths;
+    acc.budget = stats.budget;
+    acc.passes = stats.passes;
     return acc;
 }
 
@@ -70,7 +81,8 @@ bool Accumulation::applyTo(host::RenderSession& session) const {
             buf->ints().size() != a.ints.size() || buf->counts().size() != a.counts.size())
             return false;
     }
-    embree::EmbreeRenderPass::PixelStats stats{lumSum, lumSqSum, pixelSamples};
+    embree::EmbreeRenderPass::PixelStats stats{lumSum, lumSqSum, pixelSamples, ltSum, ltN1, ltN2,
+                                               ltPaths, ltSpread, ltPasses, causticPaths, budget, passes};
     if (!session.pass()->setPixelStats(stats, completedSamples)) return false;
     for (const auto& a : aovs) {
         auto* buf = session.buffer(a.name);
@@ -128,6 +140,21 @@ bool Accumulation::merge(const Accumulation& next) {
         lumSqSum[p] += next.lumSqSum[p];
         pixelSamples[p] += next.pixelSamples[p];
     }
+    if (!next.ltSum.empty()) {
+        if (ltSum.empty()) {
+            ltSum.assign(n, 0.0);
+            ltN1.assign(n, 0.0);
+            ltN2.assign(n, 0.0);
+        }
+        for (size_t p = 0; p < n; ++p) {
+            ltSum[p] += next.ltSum[p];
+            ltN1[p] += next.ltN1[p];
+            ltN2[p] += next.ltN2[p];
+        }
+        ltPaths += next.ltPaths;
+        ltSpread += next.ltSpread;
+        ltPasses += next.ltPasses;
+    }
     completedSamples += next.completedSamples;
     return true;
 }
@@ -136,7 +163,8 @@ size_t Accumulation::packedSize() const {
     size_t bytes = sizeof(int);
     for (const auto& a : aovs)
         bytes += a.sums.size() * 8 + a.ints.size() * 4 + a.counts.size() * 4;
-    return bytes + lumSum.size() * 8 + lumSqSum.size() * 8 + pixelSamples.size() * sizeof(int);
+    bytes += lumSum.size() * 8 + lumSqSum.size() * 8 + pixelSamples.size() * sizeof(int);
+    return bytes + 2 * sizeof(int) + 2 * 8 + (ltSum.size() + ltN1.size() + ltN2.size()) * 8;
 }
 
 std::vector<char> Accumulation::pack() const {
@@ -151,6 +179,11 @@ std::vector<char> Accumulation::pack() const {
     append(out, lumSum);
     append(out, lumSqSum);
     append(out, pixelSamples);
+    append(out, std::vector<int>{ltSum.empty() ? 0 : 1, ltPasses});
+    append(out, std::vector<double>{ltPaths, ltSpread});
+    append(out, ltSum);
+    append(out, ltN1);
+    append(out, ltN2);
     return out;
 }
 
@@ -161,6 +194,17 @@ bool Accumulation::unpack(const std::vector<char>& in) {
     completedSamples = completed[0];
     for (auto& a : aovs) ok = ok && take(in, at, a.sums) && take(in, at, a.ints) && take(in, at, a.counts);
     ok = ok && take(in, at, lumSum) && take(in, at, lumSqSum) && take(in, at, pixelSamples);
+    std::vector<int> lt(2);
+    std::vector<double> ltFrame(2);
+    ok = ok && take(in, at, lt) && take(in, at, ltFrame);
+    const size_t n = lt[0] ? lumSum.size() : 0;
+    ltSum.assign(n, 0.0);
+    ltN1.assign(n, 0.0);
+    ltN2.assign(n, 0.0);
+    ltPasses = lt[1];
+    ltPaths = ltFrame[0];
+    ltSpread = ltFrame[1];
+    ok = ok && take(in, at, ltSum) && take(in, at, ltN1) && take(in, at, ltN2);
     return ok && at == in.size();
 }
 
@@ -203,6 +247,11 @@ bool writeCheckpoint(const std::string& path, const Accumulation& acc, const Che
     addDouble("stats.lumSum", acc.lumSum, 1, 0);
     addDouble("stats.lumSqSum", acc.lumSqSum, 1, 0);
     addInt("stats.samples", std::vector<int32_t>(acc.pixelSamples.begin(), acc.pixelSamples.end()));
+    if (!acc.ltSum.empty()) {
+        addDouble("stats.ltSum", acc.ltSum, 1, 0);
+        addDouble("stats.ltN1", acc.ltN1, 1, 0);
+        addDouble("stats.ltN2", acc.ltN2, 1, 0);
+    }
 
     imageio::ImageSpec spec;
     spec.width = acc.width;
@@ -216,6 +265,23 @@ bool writeCheckpoint(const std::string& path, const Accumulation& acc, const Che
     spec.strings["principled:settings"] = info.settings;
     spec.strings["principled:sampleRange"] = std::to_string(info.rangeFirst) + ":" + std::to_string(info.rangeEnd);
     spec.numbers["principled:completedSamples"] = acc.completedSamples;
+    spec.numbers["principled:passes"] = acc.passes;
+    if (!acc.ltSum.empty()) {
+        // Exact doubles as text (metadata numbers are read back as float).
+        char frame[96];
+        std::snprintf(frame, sizeof frame, "%.17g %.17g %d", acc.ltPaths, acc.ltSpread, acc.ltPasses);
+        spec.strings["principled:lightPathFrame"] = frame;
+    }
+    if (acc.causticPaths > 0) {
+        const embree::CausticBudget::State& b = acc.budget;
+        char state[256];
+        std::snprintf(state, sizeof state, "%llu %llu %llu %llu %llu %llu %.17g %.17g",
+                      (unsigned long long)acc.causticPaths, (unsigned long long)b.paths,
+                      (unsigned long long)b.lightRays, (unsigned long long)b.samples,
+                      (unsigned long long)b.cameraRays, (unsigned long long)b.varianceCount, b.splatSquares,
+                      b.varianceSum);
+        spec.strings["principled:lightPaths"] = state;
+    }
     std::string order;
     for (const auto& a : acc.aovs) order += (order.empty() ? "" : ",") + a.name;
     spec.strings["principled:aovs"] = order;
@@ -297,6 +363,7 @@ bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* 
     acc->width = spec.width;
     acc->height = spec.height;
     acc->completedSamples = int(spec.number("principled:completedSamples", 0));
+    acc->passes = int(spec.number("principled:passes", 0));
     // EXR sorts channels by name: the AOV order comes from principled:aovs.
     acc->aovs.clear();
     std::stringstream order(spec.string("principled:aovs"));
@@ -333,6 +400,40 @@ bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* 
     readDouble("stats.lumSqSum", acc->lumSqSum, 1, 0);
     auto samples = plane("stats.samples", &ok);
     acc->pixelSamples.assign(samples.begin(), samples.end());
+    // The light-traced share's statistics (checkpoints of renders with light paths; older
+    // checkpoints have none, and their caustic pixels' variance counts only the samples').
+    acc->ltSum.clear();
+    acc->ltN1.clear();
+    acc->ltN2.clear();
+    acc->ltPaths = acc->ltSpread = 0.0;
+    acc->ltPasses = 0;
+    const std::string frame = spec.string("principled:lightPathFrame");
+    if (!frame.empty() && index.count("stats.ltSum.lo")) {
+        if (std::sscanf(frame.c_str(), "%lf %lf %d", &acc->ltPaths, &acc->ltSpread, &acc->ltPasses) != 3) {
+            *error = path + ": checkpoint has an invalid principled:lightPathFrame";
+            return false;
+        }
+        acc->ltSum.resize(n);
+        acc->ltN1.resize(n);
+        acc->ltN2.resize(n);
+        readDouble("stats.ltSum", acc->ltSum, 1, 0);
+        readDouble("stats.ltN1", acc->ltN1, 1, 0);
+        readDouble("stats.ltN2", acc->ltN2, 1, 0);
+    }
+    acc->causticPaths = 0;
+    acc->budget = {};
+    const std::string lightPaths = spec.string("principled:lightPaths");
+    if (!lightPaths.empty()) {
+        unsigned long long v[6];
+        embree::CausticBudget::State& b = acc->budget;
+        if (std::sscanf(lightPaths.c_str(), "%llu %llu %llu %llu %llu %llu %lf %lf", &v[0], &v[1], &v[2], &v[3],
+                        &v[4], &v[5], &b.splatSquares, &b.varianceSum) != 8) {
+            *error = path + ": checkpoint has an invalid principled:lightPaths";
+            return false;
+        }
+        acc->causticPaths = v[0];
+        b.paths = v[1], b.lightRays = v[2], b.samples = v[3], b.cameraRays = v[4], b.varianceCount = v[5];
+    }
     if (!ok) {
         *error = path + ": checkpoint is missing channels";
         return false;

@@ -49,11 +49,13 @@ public:
 
     /// The weight of a pixel's variance: the error a display sees, through the tone curve
     /// T(l) = l / (1 + l) (Reinhard et al. 2002, "Photographic Tone Reproduction for Digital
-    /// Images", eq. 3), by the delta method Var T(X) ~ T'(mean)^2 Var X. A glint of radiance
-    /// 3e4 in one pixel then weighs as a display shows it, not as 1e9 times a mid-grey pixel.
+    /// Images", eq. 3), by the delta method Var T(X) ~ T'(mean)^2 Var X, T'(l) = 1 / (1 + l)^2.
+    /// A sun glint of mean radiance 300 in one pixel (3e4 on 1 % of it) then weighs 1e-3 instead
+    /// of 1e7 mid-grey pixels' worth.
     static double displayWeight(double mean) {
         const double m = mean > 0.0 ? mean : 0.0;
-        return 1.0 / ((1.0 + m) * (1.0 + m));
+        const double slope = 1.0 / ((1.0 + m) * (1.0 + m));
+        return slope * slope;
     }
 
     static constexpr double kMinFactor = 1.0 / 16.0, kMaxFactor = 4.0;

@@ -3,6 +3,7 @@
 // makes variance x cost least, checked against a direct scan of that product.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "delegate/causticBudget.h"
@@ -79,4 +80,15 @@ TEST(CausticBudget, StaysWithinItsRangeAndHandlesDegenerateStatistics) {
     broken.addLightPaths(1000, 3000, -1.0);
     broken.addCameraSamples(1000, 4000, INFINITY, 100);
     EXPECT_DOUBLE_EQ(broken.pathsPerSample(base, uint64_t(P)), base);
+}
+
+TEST(CausticBudget, DisplayWeightIsTheToneCurvesSlopeSquared) {
+    // Var T(X) ~ T'(mean)^2 Var X for T(l) = l / (1 + l): the slope by central differences.
+    auto tone = [](double l) { return l / (1.0 + l); };
+    for (double mean : {0.0, 0.1, 1.0, 3.0, 300.0}) {
+        const double h = 1e-4 * (1.0 + mean);
+        const double slope = (tone(mean + h) - tone(std::max(0.0, mean - h))) / (mean + h - std::max(0.0, mean - h));
+        EXPECT_NEAR(CausticBudget::displayWeight(mean) / (slope * slope), 1.0, 1e-3) << mean;
+    }
+    EXPECT_EQ(CausticBudget::displayWeight(-1.0), 1.0);  // a negative mean (noise) counts as black
 }

@@ -3,6 +3,7 @@
 // image's variance times its cost least, from what the passes before it measured.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 namespace principled::embree {
@@ -57,6 +58,12 @@ public:
         const double slope = 1.0 / ((1.0 + m) * (1.0 + m));
         return slope * slope;
     }
+
+    /// A weighted per-sample variance as a display sees it: no more than 1/4, the most any
+    /// quantity within [0, 1) (the tone curve's range) can vary. The delta method above holds
+    /// once a pixel's mean is known; before that (a glint's first hit on a pixel that had been
+    /// black) it can claim millions.
+    static double displayVariance(double weighted) { return std::min(weighted, 0.25); }
 
     static constexpr double kMinFactor = 1.0 / 16.0, kMaxFactor = 4.0;
     /// CPU per light-path ray over CPU per camera-path ray, measured (1 thread, 96x96, 32 spp,

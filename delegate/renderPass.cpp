@@ -415,7 +415,8 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         passSquares += lum * lum;
                     }
                     if (budgetStats)
-                        _passVariance[pixel] = float(weight * std::max(0.0, (passSquares - passSum * passSum / batch) / (batch - 1)));
+                        _passVariance[pixel] = float(CausticBudget::displayVariance(
+                            weight * std::max(0.0, (passSquares - passSum * passSum / batch) / (batch - 1))));
                 }
             cameraRays += tileRays;
             invalid += tileInvalid;

@@ -92,3 +92,9 @@ TEST(CausticBudget, DisplayWeightIsTheToneCurvesSlopeSquared) {
     }
     EXPECT_EQ(CausticBudget::displayWeight(-1.0), 1.0);  // a negative mean (noise) counts as black
 }
+
+TEST(CausticBudget, ADisplaySeesNoMoreThanAQuarterOfVariance) {
+    // A pixel's first glint hit (mean 0 before it) must not claim millions.
+    EXPECT_EQ(CausticBudget::displayVariance(3e6), 0.25);
+    EXPECT_EQ(CausticBudget::displayVariance(0.01), 0.01);
+}

@@ -523,8 +523,8 @@ double EmbreeRenderPass::meanVariance(size_t p) const {
     // Unbiased sample variance of the luminance divided by n: the variance of the pixel mean.
     // The light-traced share is not in the samples. Its passes' estimates m_k have variances
     // t^2 / N_k; t^2 comes from their spread about the N-weighted mean over the K passes, and
-    // the image's sum over k of (b_k / n) m_k has variance t^2 (sum b_k^2 / N_k) / n^2.
-    // (A pixel that adaptive sampling stopped is counted as if it took part in every pass.)
+    // the image's sum over k of (b_k / n) m_k has variance t^2 (sum b_k^2 / N_k) / n^2. A pixel
+    // that adaptive sampling stopped keeps the variance it had then (_frozenVariance).
     if (_pixelDone[p] && p < _frozenVariance.size()) return _frozenVariance[p];
     const long n = _pixelSamples[p];
     if (n < 2) return 0.0;

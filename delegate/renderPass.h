@@ -16,6 +16,7 @@
 #include "delegate/hd/renderPass.h"
 #include "delegate/integrator.h"
 #include "delegate/photonGrid.h"
+#include "delegate/pixelStats.h"
 #include "delegate/rayRecorder.h"
 
 namespace principled::embree {
@@ -44,21 +45,9 @@ public:
     void setSampleRange(int first, int end);
     /// Receives every ray the integrator casts (null: none).
     void setRayRecorder(RayRecorder* recorder) { _recorder = recorder; }
-    /// Per-pixel luminance statistics (sum, sum of squares, sample count) behind the variance
-    /// AOV and adaptive sampling, for merging partial renders; set them to resume.
-    struct PixelStats {
-        std::vector<double> lumSum, lumSqSum;
-        std::vector<int> samples;
-        /// The light-traced share's statistics (see _ltSum below); empty without light paths.
-        std::vector<double> ltSum, ltN1, ltN2;
-        double ltPaths = 0.0, ltSpread = 0.0;
-        int ltPasses = 0;
-        /// Where the light paths' sequence and budget stand (a resumed render continues them).
-        uint64_t causticPaths = 0;
-        CausticBudget::State budget;
-        /// Passes run (their batch sizes follow it; light paths and photons go per pass).
-        int passes = 0;
-    };
+    /// The per-pixel statistics and pass state (delegate/pixelStats.h), for merging partial
+    /// renders; set them to resume.
+    using PixelStats = embree::PixelStats;
     PixelStats pixelStats() const {
         return {_lumSum, _lumSqSum, _pixelSamples, _ltSum, _ltN1, _ltN2, _ltPaths, _ltSpread, _ltPasses,
                 _causticPaths, _causticBudget.state(), _passes};

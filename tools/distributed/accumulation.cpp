@@ -51,21 +51,18 @@ Accumulation Accumulation::capture(const host::RenderSession& session) {
         a.counts = buf->counts();
         acc.aovs.push_back(std::move(a));
     }
-    auto stats = session.pass()->pixelStats();
-    acc.lumSum = stats.lumSum.size() == n ? stats.lumSum : std::vector<double>(n, 0.0);
-    acc.lumSqSum = stats.lumSqSum.size() == n ? stats.lumSqSum : std::vector<double>(n, 0.0);
-    acc.pixelSamples = stats.samples.size() == n ? stats.samples : std::vector<int>(n, 0);
-    if (stats.ltSum.size() == n && stats.ltN1.size() == n && stats.ltN2.size() == n) {
-        acc.ltSum = stats.ltSum;
-        acc.ltN1 = stats.ltN1;
-        acc.ltN2 = stats.ltN2;
-        acc.ltPaths = stats.ltPaths;
-        acc.ltSpread = stats.ltSpread;
-        acc.ltPasses = stats.ltPasses;
+    acc.stats = session.pass()->pixelStats();
+    embree::PixelStats& st = acc.stats;
+    if (st.lumSum.size() != n) st.lumSum.assign(n, 0.0);
+    if (st.lumSqSum.size() != n) st.lumSqSum.assign(n, 0.0);
+    if (st.samples.size() != n) st.samples.assign(n, 0);
+    if (st.ltSum.size() != n || st.ltN1.size() != n || st.ltN2.size() != n) {
+        st.ltSum.clear();  // no light paths
+        st.ltN1.clear();
+        st.ltN2.clear();
+        st.ltPaths = st.ltSpread = 0.0;
+        st.ltPasses = 0;
     }
-    acc.causticPaths = stats.causticPaths;
-    acc.budget = stats.budget;
-    acc.passes = stats.passes;
     return acc;
 }
 
@@ -73,7 +70,7 @@ bool Accumulation::applyTo(host::RenderSession& session) const {
     // Same shape as the session's buffers, checked without copying them.
     size_t n = size_t(width) * height;
     if (width != session.width() || height != session.height() || aovs.size() != session.aovs().size() ||
-        lumSum.size() != n || lumSqSum.size() != n || pixelSamples.size() != n)
+        stats.lumSum.size() != n || stats.lumSqSum.size() != n || stats.samples.size() != n)
         return false;
     for (const auto& a : aovs) {
         const auto* buf = session.buffer(a.name);
@@ -81,8 +78,6 @@ bool Accumulation::applyTo(host::RenderSession& session) const {
             buf->ints().size() != a.ints.size() || buf->counts().size() != a.counts.size())
             return false;
     }
-    embree::EmbreeRenderPass::PixelStats stats{lumSum, lumSqSum, pixelSamples, ltSum, ltN1, ltN2,
-                                               ltPaths, ltSpread, ltPasses, causticPaths, budget, passes};
     if (!session.pass()->setPixelStats(stats, completedSamples)) return false;
     for (const auto& a : aovs) {
         auto* buf = session.buffer(a.name);
@@ -93,7 +88,7 @@ bool Accumulation::applyTo(host::RenderSession& session) const {
                 for (int x = 0; x < width; ++x) {
                     size_t p = size_t(y) * width + x;
                     float v = a.name == "variance" ? float(session.pass()->meanVariance(p))
-                                                   : float(pixelSamples[p]);
+                                                   : float(stats.samples[p]);
                     buf->setPixel(x, y, &v);
                 }
         }
@@ -104,8 +99,8 @@ bool Accumulation::applyTo(host::RenderSession& session) const {
 
 bool Accumulation::sameShape(const Accumulation& o) const {
     if (width != o.width || height != o.height || aovs.size() != o.aovs.size() ||
-        lumSum.size() != o.lumSum.size() || lumSqSum.size() != o.lumSqSum.size() ||
-        pixelSamples.size() != o.pixelSamples.size())
+        stats.lumSum.size() != o.stats.lumSum.size() || stats.lumSqSum.size() != o.stats.lumSqSum.size() ||
+        stats.samples.size() != o.stats.samples.size())
         return false;
     for (size_t i = 0; i < aovs.size(); ++i) {
         const auto &a = aovs[i], &b = o.aovs[i];
@@ -135,25 +130,25 @@ bool Accumulation::merge(const Accumulation& next) {
             a.counts[p] += b.counts[p];
         }
     }
-    for (size_t p = 0; p < lumSum.size(); ++p) {
-        lumSum[p] += next.lumSum[p];
-        lumSqSum[p] += next.lumSqSum[p];
-        pixelSamples[p] += next.pixelSamples[p];
+    for (size_t p = 0; p < stats.lumSum.size(); ++p) {
+        stats.lumSum[p] += next.stats.lumSum[p];
+        stats.lumSqSum[p] += next.stats.lumSqSum[p];
+        stats.samples[p] += next.stats.samples[p];
     }
-    if (!next.ltSum.empty()) {
-        if (ltSum.empty()) {
-            ltSum.assign(n, 0.0);
-            ltN1.assign(n, 0.0);
-            ltN2.assign(n, 0.0);
+    if (!next.stats.ltSum.empty()) {
+        if (stats.ltSum.empty()) {
+            stats.ltSum.assign(n, 0.0);
+            stats.ltN1.assign(n, 0.0);
+            stats.ltN2.assign(n, 0.0);
         }
         for (size_t p = 0; p < n; ++p) {
-            ltSum[p] += next.ltSum[p];
-            ltN1[p] += next.ltN1[p];
-            ltN2[p] += next.ltN2[p];
+            stats.ltSum[p] += next.stats.ltSum[p];
+            stats.ltN1[p] += next.stats.ltN1[p];
+            stats.ltN2[p] += next.stats.ltN2[p];
         }
-        ltPaths += next.ltPaths;
-        ltSpread += next.ltSpread;
-        ltPasses += next.ltPasses;
+        stats.ltPaths += next.stats.ltPaths;
+        stats.ltSpread += next.stats.ltSpread;
+        stats.ltPasses += next.stats.ltPasses;
     }
     completedSamples += next.completedSamples;
     return true;
@@ -163,8 +158,8 @@ size_t Accumulation::packedSize() const {
     size_t bytes = sizeof(int);
     for (const auto& a : aovs)
         bytes += a.sums.size() * 8 + a.ints.size() * 4 + a.counts.size() * 4;
-    bytes += lumSum.size() * 8 + lumSqSum.size() * 8 + pixelSamples.size() * sizeof(int);
-    return bytes + 2 * sizeof(int) + 2 * 8 + (ltSum.size() + ltN1.size() + ltN2.size()) * 8;
+    bytes += stats.lumSum.size() * 8 + stats.lumSqSum.size() * 8 + stats.samples.size() * sizeof(int);
+    return bytes + 2 * sizeof(int) + 2 * 8 + (stats.ltSum.size() + stats.ltN1.size() + stats.ltN2.size()) * 8;
 }
 
 std::vector<char> Accumulation::pack() const {
@@ -176,14 +171,14 @@ std::vector<char> Accumulation::pack() const {
         append(out, a.ints);
         append(out, a.counts);
     }
-    append(out, lumSum);
-    append(out, lumSqSum);
-    append(out, pixelSamples);
-    append(out, std::vector<int>{ltSum.empty() ? 0 : 1, ltPasses});
-    append(out, std::vector<double>{ltPaths, ltSpread});
-    append(out, ltSum);
-    append(out, ltN1);
-    append(out, ltN2);
+    append(out, stats.lumSum);
+    append(out, stats.lumSqSum);
+    append(out, stats.samples);
+    append(out, std::vector<int>{stats.ltSum.empty() ? 0 : 1, stats.ltPasses});
+    append(out, std::vector<double>{stats.ltPaths, stats.ltSpread});
+    append(out, stats.ltSum);
+    append(out, stats.ltN1);
+    append(out, stats.ltN2);
     return out;
 }
 
@@ -193,18 +188,18 @@ bool Accumulation::unpack(const std::vector<char>& in) {
     bool ok = take(in, at, completed);
     completedSamples = completed[0];
     for (auto& a : aovs) ok = ok && take(in, at, a.sums) && take(in, at, a.ints) && take(in, at, a.counts);
-    ok = ok && take(in, at, lumSum) && take(in, at, lumSqSum) && take(in, at, pixelSamples);
+    ok = ok && take(in, at, stats.lumSum) && take(in, at, stats.lumSqSum) && take(in, at, stats.samples);
     std::vector<int> lt(2);
     std::vector<double> ltFrame(2);
     ok = ok && take(in, at, lt) && take(in, at, ltFrame);
-    const size_t n = lt[0] ? lumSum.size() : 0;
-    ltSum.assign(n, 0.0);
-    ltN1.assign(n, 0.0);
-    ltN2.assign(n, 0.0);
-    ltPasses = lt[1];
-    ltPaths = ltFrame[0];
-    ltSpread = ltFrame[1];
-    ok = ok && take(in, at, ltSum) && take(in, at, ltN1) && take(in, at, ltN2);
+    const size_t n = lt[0] ? stats.lumSum.size() : 0;
+    stats.ltSum.assign(n, 0.0);
+    stats.ltN1.assign(n, 0.0);
+    stats.ltN2.assign(n, 0.0);
+    stats.ltPasses = lt[1];
+    stats.ltPaths = ltFrame[0];
+    stats.ltSpread = ltFrame[1];
+    ok = ok && take(in, at, stats.ltSum) && take(in, at, stats.ltN1) && take(in, at, stats.ltN2);
     return ok && at == in.size();
 }
 
@@ -244,13 +239,13 @@ bool writeCheckpoint(const std::string& path, const Accumulation& acc, const Che
         }
         addInt(a.name + ".count", a.counts);
     }
-    addDouble("stats.lumSum", acc.lumSum, 1, 0);
-    addDouble("stats.lumSqSum", acc.lumSqSum, 1, 0);
-    addInt("stats.samples", std::vector<int32_t>(acc.pixelSamples.begin(), acc.pixelSamples.end()));
-    if (!acc.ltSum.empty()) {
-        addDouble("stats.ltSum", acc.ltSum, 1, 0);
-        addDouble("stats.ltN1", acc.ltN1, 1, 0);
-        addDouble("stats.ltN2", acc.ltN2, 1, 0);
+    addDouble("stats.lumSum", acc.stats.lumSum, 1, 0);
+    addDouble("stats.lumSqSum", acc.stats.lumSqSum, 1, 0);
+    addInt("stats.samples", std::vector<int32_t>(acc.stats.samples.begin(), acc.stats.samples.end()));
+    if (!acc.stats.ltSum.empty()) {
+        addDouble("stats.ltSum", acc.stats.ltSum, 1, 0);
+        addDouble("stats.ltN1", acc.stats.ltN1, 1, 0);
+        addDouble("stats.ltN2", acc.stats.ltN2, 1, 0);
     }
 
     imageio::ImageSpec spec;
@@ -265,18 +260,18 @@ bool writeCheckpoint(const std::string& path, const Accumulation& acc, const Che
     spec.strings["principled:settings"] = info.settings;
     spec.strings["principled:sampleRange"] = std::to_string(info.rangeFirst) + ":" + std::to_string(info.rangeEnd);
     spec.numbers["principled:completedSamples"] = acc.completedSamples;
-    spec.numbers["principled:passes"] = acc.passes;
-    if (!acc.ltSum.empty()) {
+    spec.numbers["principled:passes"] = acc.stats.passes;
+    if (!acc.stats.ltSum.empty()) {
         // Exact doubles as text (metadata numbers are read back as float).
         char frame[96];
-        std::snprintf(frame, sizeof frame, "%.17g %.17g %d", acc.ltPaths, acc.ltSpread, acc.ltPasses);
+        std::snprintf(frame, sizeof frame, "%.17g %.17g %d", acc.stats.ltPaths, acc.stats.ltSpread, acc.stats.ltPasses);
         spec.strings["principled:lightPathFrame"] = frame;
     }
-    if (acc.causticPaths > 0) {
-        const embree::CausticBudget::State& b = acc.budget;
+    if (acc.stats.causticPaths > 0) {
+        const embree::CausticBudget::State& b = acc.stats.budget;
         char state[256];
         std::snprintf(state, sizeof state, "%llu %llu %llu %llu %llu %llu %.17g %.17g",
-                      (unsigned long long)acc.causticPaths, (unsigned long long)b.paths,
+                      (unsigned long long)acc.stats.causticPaths, (unsigned long long)b.paths,
                       (unsigned long long)b.lightRays, (unsigned long long)b.samples,
                       (unsigned long long)b.cameraRays, (unsigned long long)b.varianceCount, b.splatSquares,
                       b.varianceSum);
@@ -363,7 +358,7 @@ bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* 
     acc->width = spec.width;
     acc->height = spec.height;
     acc->completedSamples = int(spec.number("principled:completedSamples", 0));
-    acc->passes = int(spec.number("principled:passes", 0));
+    acc->stats.passes = int(spec.number("principled:passes", 0));
     // EXR sorts channels by name: the AOV order comes from principled:aovs.
     acc->aovs.clear();
     std::stringstream order(spec.string("principled:aovs"));
@@ -394,44 +389,44 @@ bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* 
         }
         acc->aovs.push_back(std::move(a));
     }
-    acc->lumSum.resize(n);
-    acc->lumSqSum.resize(n);
-    readDouble("stats.lumSum", acc->lumSum, 1, 0);
-    readDouble("stats.lumSqSum", acc->lumSqSum, 1, 0);
+    acc->stats.lumSum.resize(n);
+    acc->stats.lumSqSum.resize(n);
+    readDouble("stats.lumSum", acc->stats.lumSum, 1, 0);
+    readDouble("stats.lumSqSum", acc->stats.lumSqSum, 1, 0);
     auto samples = plane("stats.samples", &ok);
-    acc->pixelSamples.assign(samples.begin(), samples.end());
+    acc->stats.samples.assign(samples.begin(), samples.end());
     // The light-traced share's statistics (checkpoints of renders with light paths; older
     // checkpoints have none, and their caustic pixels' variance counts only the samples').
-    acc->ltSum.clear();
-    acc->ltN1.clear();
-    acc->ltN2.clear();
-    acc->ltPaths = acc->ltSpread = 0.0;
-    acc->ltPasses = 0;
+    acc->stats.ltSum.clear();
+    acc->stats.ltN1.clear();
+    acc->stats.ltN2.clear();
+    acc->stats.ltPaths = acc->stats.ltSpread = 0.0;
+    acc->stats.ltPasses = 0;
     const std::string frame = spec.string("principled:lightPathFrame");
     if (!frame.empty() && index.count("stats.ltSum.lo")) {
-        if (std::sscanf(frame.c_str(), "%lf %lf %d", &acc->ltPaths, &acc->ltSpread, &acc->ltPasses) != 3) {
+        if (std::sscanf(frame.c_str(), "%lf %lf %d", &acc->stats.ltPaths, &acc->stats.ltSpread, &acc->stats.ltPasses) != 3) {
             *error = path + ": checkpoint has an invalid principled:lightPathFrame";
             return false;
         }
-        acc->ltSum.resize(n);
-        acc->ltN1.resize(n);
-        acc->ltN2.resize(n);
-        readDouble("stats.ltSum", acc->ltSum, 1, 0);
-        readDouble("stats.ltN1", acc->ltN1, 1, 0);
-        readDouble("stats.ltN2", acc->ltN2, 1, 0);
+        acc->stats.ltSum.resize(n);
+        acc->stats.ltN1.resize(n);
+        acc->stats.ltN2.resize(n);
+        readDouble("stats.ltSum", acc->stats.ltSum, 1, 0);
+        readDouble("stats.ltN1", acc->stats.ltN1, 1, 0);
+        readDouble("stats.ltN2", acc->stats.ltN2, 1, 0);
     }
-    acc->causticPaths = 0;
-    acc->budget = {};
+    acc->stats.causticPaths = 0;
+    acc->stats.budget = {};
     const std::string lightPaths = spec.string("principled:lightPaths");
     if (!lightPaths.empty()) {
         unsigned long long v[6];
-        embree::CausticBudget::State& b = acc->budget;
+        embree::CausticBudget::State& b = acc->stats.budget;
         if (std::sscanf(lightPaths.c_str(), "%llu %llu %llu %llu %llu %llu %lf %lf", &v[0], &v[1], &v[2], &v[3],
                         &v[4], &v[5], &b.splatSquares, &b.varianceSum) != 8) {
             *error = path + ": checkpoint has an invalid principled:lightPaths";
             return false;
         }
-        acc->causticPaths = v[0];
+        acc->stats.causticPaths = v[0];
         b.paths = v[1], b.lightRays = v[2], b.samples = v[3], b.cameraRays = v[4], b.varianceCount = v[5];
     }
     if (!ok) {

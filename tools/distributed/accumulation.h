@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "delegate/causticBudget.h"
+#include "delegate/pixelStats.h"
 
 namespace principled::host {
 class RenderSession;
@@ -31,17 +31,8 @@ struct Accumulation {
     int width = 0, height = 0;
     int completedSamples = 0;  ///< samples per pixel accumulated
     std::vector<AovAccumulation> aovs;
-    std::vector<double> lumSum, lumSqSum;
-    std::vector<int> pixelSamples;
-    /// The light-traced share's statistics (EmbreeRenderPass::PixelStats); empty when the
-    /// render traced no light paths. All sums: ranges merge by adding them.
-    std::vector<double> ltSum, ltN1, ltN2;
-    double ltPaths = 0.0, ltSpread = 0.0;
-    int ltPasses = 0;
-    /// The light paths' sequence position and budget (for --resume; a merge keeps *this's).
-    uint64_t causticPaths = 0;
-    embree::CausticBudget::State budget;
-    int passes = 0;  ///< progressive passes run (for --resume; 0: unknown)
+    /// The render pass's per-pixel statistics and pass state (delegate/pixelStats.h).
+    embree::PixelStats stats;
 
     /// Takes the session's accumulation (after at least one step(), or zeros before).
     static Accumulation capture(const host::RenderSession& session);

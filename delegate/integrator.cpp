@@ -463,6 +463,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     // sampled directions); causticCovered = the share taken from the light the last sampled
     // direction reaches (causticOpen before that vertex times its sharp share).
     const CausticScene* caustic = causticsActive() ? _settings.caustics : nullptr;
+    // MIS compensation needs both strategies and their MIS weights (delegate/sceneData.h).
+    const bool compensate = _settings.misCompensation && _settings.mis && _settings.nee;
     const bool merging = caustic && _settings.photons && !_settings.photons->empty();
     glm::vec3 causticOpen(0.0f), causticCovered(0.0f);
 
@@ -500,7 +502,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 if (depth == 0 && (light.kind == LightRecord::Kind::Distant || !_settings.domeVisible)) continue;
                 glm::vec3 Le;
                 float pdf;
-                if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf))
+                if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf, compensate))
                     addEmitter(Le, pdf * light.pickProbability, li);
             }
             break;
@@ -621,7 +623,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             li = _scene.neeAllLights ? nee : std::min(li, lights.size() - 1);
             const float lightPick = lights[li].pickProbability;
             LightSample ls;
-            if (sampleLight(lights[li], hit.p, hit.ng, u, &ls) && ls.pdf > 0.0f &&
+            if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate) && ls.pdf > 0.0f &&
                 lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough) &&
                 (!lights[li].texturedEmission || texturedEmission(lights[li], &ls))) {
                 float bsdfPdf = 0.0f;

@@ -30,6 +30,9 @@ struct IntegratorSettings {
     SamplerKind sampler = SamplerKind::Sobol;
     bool mis = true;          ///< false: lights are found by next-event estimation only
     bool nee = true;          ///< false: lights are found only by BSDF sampling (no shadow rays)
+    /// With MIS, a textured dome's next-event estimation samples the part of it above its mean
+    /// radiance only, and BSDF sampling covers the rest (EnvironmentMap::compensated).
+    bool misCompensation = true;
     RayRecorder* recorder = nullptr;  ///< receives every ray cast (bench/ replay); usually null
     std::vector<hd::Token> aovPrimvars;  ///< primvars the first hit records (at most 4)
     int maxDepth = 8;         ///< path vertices after the camera hit (0 = direct light only)

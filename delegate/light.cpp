@@ -79,7 +79,30 @@ std::shared_ptr<EnvironmentMap> loadImage(const std::string& path, const std::st
     glm::dvec3 sum(0.0);
     for (const auto& t : env->texels) sum += glm::dvec3(t);
     env->mean = glm::vec3(sum / double(env->texels.size()));
-    if (latLong) env->distribution = Distribution2D(weights, spec.width, spec.height);
+    if (latLong) {
+        env->distribution = Distribution2D(weights, spec.width, spec.height);
+        // MIS compensation (Karlik et al. 2019, eq. 8 with the environment's mean radiance):
+        // texels at or below the mean luminance over the sphere are left to BSDF sampling.
+        double lumSinSum = 0.0, sinSum = 0.0;
+        for (int y = 0; y < spec.height; ++y) {
+            const double sinTheta = std::sin(kPi * (y + 0.5f) / spec.height);
+            sinSum += sinTheta * spec.width;
+            for (int x = 0; x < spec.width; ++x) lumSinSum += weights[size_t(y) * spec.width + x];
+        }
+        const float meanLum = sinSum > 0.0 ? float(lumSinSum / sinSum) : 0.0f;
+        double kept = 0.0;
+        for (int y = 0; y < spec.height; ++y) {
+            const float sinTheta = std::sin(kPi * (y + 0.5f) / spec.height);
+            for (int x = 0; x < spec.width; ++x) {
+                float& w = weights[size_t(y) * spec.width + x];
+                w = std::max(0.0f, w - meanLum * sinTheta);
+                kept += w;
+            }
+        }
+        // A near-constant map keeps almost nothing above its mean: sampling that remnant would
+        // only add noise, so the plain distribution stays in use.
+        if (kept > 1e-3 * lumSinSum) env->compensated = Distribution2D(weights, spec.width, spec.height);
+    }
     return env;
 }
 

@@ -71,13 +71,13 @@ glm::vec3 rectTexel(const LightRecord& l, float a, float b) {
     return nearestTexel(*l.rectTexture, 0.5f * (1.0f - a), 0.5f * (1.0f - b));
 }
 
-float envPdf(const EnvironmentMap& env, const glm::vec3& dWorld) {
+float envPdf(const EnvironmentMap& env, const glm::vec3& dWorld, bool misCompensation) {
     glm::vec3 d = env.worldToLocal * dWorld;
     glm::vec2 uv = directionToLatLong(d);
     float sinTheta = std::sqrt(std::max(0.0f, 1.0f - d.y * d.y));
     if (sinTheta <= 1e-6f) return 0.0f;
     // Pharr et al. 2023, PBR 4th ed. §12.5.2: p(w) = p(u,v) / (2 pi^2 sin theta).
-    return env.distribution.pdf(uv) / (2.0f * kPi * kPi * sinTheta);
+    return env.sampling(misCompensation).pdf(uv) / (2.0f * kPi * kPi * sinTheta);
 }
 
 // Ray-sphere, nearest t > 1e-4 (Pharr et al. 2023, §6.2.2, the numerically careful quadratic).
@@ -180,7 +180,7 @@ glm::vec2 barycentrics(const glm::vec3& q, const MeshLightTriangle& t) {
 }
 
 bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
-                    LightSample* out) {
+                    LightSample* out, bool misCompensation) {
     *out = LightSample();
     switch (l.kind) {
         case LightRecord::Kind::Distant: {
@@ -205,7 +205,7 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             if (l.environment && !l.environment->distribution.empty()) {
                 const EnvironmentMap& env = *l.environment;
                 float mapPdf = 0.0f;
-                glm::vec2 uv = env.distribution.sample(u, &mapPdf);
+                glm::vec2 uv = env.sampling(misCompensation).sample(u, &mapPdf);
                 glm::vec3 dLocal = latLongToDirection(uv);
                 float sinTheta = std::sqrt(std::max(0.0f, 1.0f - dLocal.y * dLocal.y));
                 if (sinTheta <= 1e-6f || mapPdf <= 0.0f) return false;
@@ -331,8 +331,8 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
 }  // namespace
 
 bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
-                 LightSample* out) {
-    if (!sampleUnshaped(l, p, ng, u, out)) return false;
+                 LightSample* out, bool misCompensation) {
+    if (!sampleUnshaped(l, p, ng, u, out, misCompensation)) return false;
     if (l.shaping.enabled) {
         // The emission direction is from the sampled point toward p: -wi (the pdf is unchanged).
         out->Li *= shapingFactor(l.shaping, -out->wi);
@@ -462,11 +462,11 @@ bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec
 }
 
 bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::vec3& ng,
-                         glm::vec3* Le, float* pdf) {
+                         glm::vec3* Le, float* pdf, bool misCompensation) {
     if (l.kind == LightRecord::Kind::Dome) {
         if (l.environment && !l.environment->distribution.empty()) {
             *Le = envLookup(*l.environment, d);
-            *pdf = envPdf(*l.environment, d);
+            *pdf = envPdf(*l.environment, d, misCompensation);
         } else {
             *Le = l.radiance;
             *pdf = std::max(0.0f, glm::dot(ng, d)) / kPi;

@@ -23,9 +23,10 @@ struct LightSample {
 
 /// Samples light `l` as seen from point p with geometric normal ng (used by the dome's cosine
 /// fallback). Returns false when the light cannot contribute (behind a one-sided emitter, p inside
-/// a sphere light...).
+/// a sphere light...). misCompensation: a textured dome samples its MIS-compensated distribution
+/// (EnvironmentMap::compensated), for callers that combine the sample with BSDF sampling by MIS.
 bool sampleLight(const LightRecord& l, const glm::vec3& p, const glm::vec3& ng, const glm::vec2& u,
-                 LightSample* out);
+                 LightSample* out, bool misCompensation = false);
 
 /// For a ray from o along unit d whose nearest geometry is at tmax: if it reaches the emitting
 /// surface of area light l first, returns its radiance and the solid-angle pdf sampleLight()
@@ -34,9 +35,10 @@ bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec
                         glm::vec3* Le, float* pdf);
 
 /// Radiance of an escaped ray along d from environment light l (dome or distant disc), and the
-/// pdf sampleLight() gives that direction from a point with normal ng.
+/// pdf sampleLight() gives that direction from a point with normal ng (with the same
+/// misCompensation).
 bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::vec3& ng,
-                         glm::vec3* Le, float* pdf);
+                         glm::vec3* Le, float* pdf, bool misCompensation = false);
 
 bool isAreaLight(const LightRecord& l);
 

@@ -538,6 +538,7 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
+        {"MIS compensation", Token("misCompensation"), Value(1), "with MIS, a textured dome light samples only what lies above its mean radiance; BSDF sampling takes the rest (0: the whole map)"},
         {"NEE all lights", Token("neeAllLights"), Value(4), "next-event estimation samples every light when the scene has at most this many (0: always pick one)"},
         {"Light pick uniform", Token("lightPickUniform"), Value(0.1f), "next-event estimation light pick: this fraction uniform, the rest by power"},
         {"Light solid angle", Token("lightSolidAngle"), Value(1), "small mesh lights (<= 8 triangles) sampled by solid angle (Arvo 1995); 0: by area"},
@@ -652,6 +653,7 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.bsdf.model = (model && *model == "ue4") ? bsdf::Model::UE4 : bsdf::Model::Disney;
     s.mis = intSetting("mis", 1) != 0;
     s.nee = intSetting("nee", 1) != 0;
+    s.misCompensation = intSetting("misCompensation", 1) != 0;
     s.bsdf.pruneLobes = intSetting("lobePruning", 1) != 0;
     s.bsdf.vndfSampling = intSetting("vndf", 1) != 0;
     s.bsdf.deltaRoughness = std::clamp(floatSetting("deltaRoughness", 1e-3f), 0.0f, 1.0f);

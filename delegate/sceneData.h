@@ -123,6 +123,16 @@ struct EnvironmentMap {
     std::vector<glm::vec3> texels;  ///< linear RGB, row 0 = top (+Y pole)
     glm::vec3 mean{0.0f};           ///< mean texel (light power estimates), set at load
     Distribution2D distribution;    ///< over (u, v) by luminance * sin(theta)
+    /// Over (u, v) by max(0, luminance - its mean over the sphere) * sin(theta): next-event
+    /// estimation's distribution when MIS pairs it with BSDF sampling (Karlik et al. 2019, "MIS
+    /// compensation", section 4, the environment map case). Empty when nothing lies above the mean
+    /// by more than a trace (a near-constant map): `distribution` is used then.
+    Distribution2D compensated;
+    /// The distribution next-event estimation samples: compensated with MIS, else the plain one
+    /// (without MIS, directions it never picks would be lost).
+    const Distribution2D& sampling(bool misCompensation) const {
+        return misCompensation && !compensated.empty() ? compensated : distribution;
+    }
     glm::mat3 worldToLocal{1.0f};   ///< the dome's rotation (its frame: +Y up)
     glm::mat3 localToWorld{1.0f};
     glm::vec3 scale{1.0f};          ///< color * intensity * 2^exposure

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "delegate/colorTemperature.h"
+#include "delegate/environmentSampling.h"
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
 #include "delegate/imageio/imageIO.h"
@@ -31,7 +32,7 @@ glm::vec3 vector(const glm::dmat4& m, double x, double y, double z) {
 }
 
 // Reads an image as linear RGB; null on failure (with *error naming `what`). A lat-long image
-// also gets its luminance sampling distribution.
+// also gets its sampling distributions (delegate/environmentSampling.h).
 std::shared_ptr<EnvironmentMap> loadImage(const std::string& path, const std::string& what, bool latLong,
                                           std::string* error) {
     std::string reason;
@@ -63,46 +64,19 @@ std::shared_ptr<EnvironmentMap> loadImage(const std::string& path, const std::st
     env->width = spec.width;
     env->height = spec.height;
     env->texels.resize(size_t(spec.width) * spec.height);
-    std::vector<float> weights(env->texels.size());
     for (int y = 0; y < spec.height; ++y) {
-        // Pharr et al. 2023, PBR 4th ed. §12.5.2: weight texels by sin(theta) of their row.
-        float sinTheta = std::sin(kPi * (y + 0.5f) / spec.height);
         for (int x = 0; x < spec.width; ++x) {
             size_t i = size_t(y) * spec.width + x;
             const float* p = &px[i * channels];
             glm::vec3 c = channels >= 3 ? glm::vec3(decode(p[0]), decode(p[1]), decode(p[2]))
                                         : glm::vec3(decode(p[0]));
             env->texels[i] = c;
-            weights[i] = (0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z) * sinTheta;
         }
     }
     glm::dvec3 sum(0.0);
     for (const auto& t : env->texels) sum += glm::dvec3(t);
     env->mean = glm::vec3(sum / double(env->texels.size()));
-    if (latLong) {
-        env->distribution = Distribution2D(weights, spec.width, spec.height);
-        // MIS compensation (Karlik et al. 2019, eq. 8 with the environment's mean radiance):
-        // texels at or below the mean luminance over the sphere are left to BSDF sampling.
-        double lumSinSum = 0.0, sinSum = 0.0;
-        for (int y = 0; y < spec.height; ++y) {
-            const double sinTheta = std::sin(kPi * (y + 0.5f) / spec.height);
-            sinSum += sinTheta * spec.width;
-            for (int x = 0; x < spec.width; ++x) lumSinSum += weights[size_t(y) * spec.width + x];
-        }
-        const float meanLum = sinSum > 0.0 ? float(lumSinSum / sinSum) : 0.0f;
-        double kept = 0.0;
-        for (int y = 0; y < spec.height; ++y) {
-            const float sinTheta = std::sin(kPi * (y + 0.5f) / spec.height);
-            for (int x = 0; x < spec.width; ++x) {
-                float& w = weights[size_t(y) * spec.width + x];
-                w = std::max(0.0f, w - meanLum * sinTheta);
-                kept += w;
-            }
-        }
-        // A near-constant map keeps almost nothing above its mean: sampling that remnant would
-        // only add noise, so the plain distribution stays in use.
-        if (kept > 1e-3 * lumSinSum) env->compensated = Distribution2D(weights, spec.width, spec.height);
-    }
+    if (latLong) prepareEnvironmentSampling(*env);
     return env;
 }
 

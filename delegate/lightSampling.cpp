@@ -202,7 +202,7 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             return true;
         }
         case LightRecord::Kind::Dome: {
-            if (l.environment && !l.environment->distribution.empty()) {
+            if (l.environment && l.environment->latLong) {
                 const EnvironmentMap& env = *l.environment;
                 float mapPdf = 0.0f;
                 glm::vec2 uv = env.sampling(misCompensation).sample(u, &mapPdf);
@@ -464,7 +464,7 @@ bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec
 bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::vec3& ng,
                          glm::vec3* Le, float* pdf, bool misCompensation) {
     if (l.kind == LightRecord::Kind::Dome) {
-        if (l.environment && !l.environment->distribution.empty()) {
+        if (l.environment && l.environment->latLong) {
             *Le = envLookup(*l.environment, d);
             *pdf = envPdf(*l.environment, d, misCompensation);
         } else {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -122,20 +123,29 @@ struct EnvironmentMap {
     int width = 0, height = 0;
     std::vector<glm::vec3> texels;  ///< linear RGB, row 0 = top (+Y pole)
     glm::vec3 mean{0.0f};           ///< mean texel (light power estimates), set at load
-    Distribution2D distribution;    ///< over (u, v) by luminance * sin(theta)
+    /// A lat-long map whose sampling distributions are prepared (prepareEnvironmentSampling,
+    /// delegate/environmentSampling.h); false for images that are not sampled (rect lights).
+    bool latLong = false;
     /// Over (u, v) by max(0, luminance - its mean over the sphere) * sin(theta): next-event
     /// estimation's distribution when MIS pairs it with BSDF sampling (Karlik et al. 2019, "MIS
     /// compensation", section 4, the environment map case). Empty when nothing lies above the mean
-    /// by more than a trace (a near-constant map): `distribution` is used then.
+    /// by more than a trace (a near-constant map): plain() is used then.
     Distribution2D compensated;
+    /// Over (u, v) by luminance * sin(theta), built on first use (thread-safe): only renders
+    /// without MIS or compensation, and near-constant maps, need it (8 bytes per texel).
+    const Distribution2D& plain() const;
     /// The distribution next-event estimation samples: compensated with MIS, else the plain one
-    /// (without MIS, directions it never picks would be lost).
+    /// (without MIS, the directions it never picks would be left to BSDF sampling alone).
     const Distribution2D& sampling(bool misCompensation) const {
-        return misCompensation && !compensated.empty() ? compensated : distribution;
+        return misCompensation && !compensated.empty() ? compensated : plain();
     }
     glm::mat3 worldToLocal{1.0f};   ///< the dome's rotation (its frame: +Y up)
     glm::mat3 localToWorld{1.0f};
     glm::vec3 scale{1.0f};          ///< color * intensity * 2^exposure
+
+private:
+    mutable Distribution2D _plain;
+    mutable std::unique_ptr<std::once_flag> _plainOnce = std::make_unique<std::once_flag>();
 };
 
 /// One emitting triangle of a mesh light in world space, with its unit normal ((b - a) x (c - a)

@@ -166,10 +166,13 @@ TEST(Lights, DomeMisCompensationKeepsTheMeanAndCutsTheNoise) {
     const std::string scene = planeScene(a, light);
     // The mean: compensated (the default), the whole map with MIS, NEE alone (which must sample
     // the whole map) and BSDF sampling alone.
-    EXPECT_NEAR(render(scene, 1024), expected, 0.02 * expected);
-    EXPECT_NEAR(render(scene, 1024, {{"misCompensation", "0"}}), expected, 0.02 * expected);
-    EXPECT_NEAR(render(scene, 1024, {{"mis", "0"}}), expected, 0.02 * expected);
-    EXPECT_NEAR(render(scene, 8192, {{"nee", "0"}}), expected, 0.03 * expected);
+    // Tolerances: over seeds 0-9 the first three came within +0.017 % to +0.047 % of the texel
+    // sum and BSDF sampling alone within 0.55 %; a light pdf that differs between NEE and the
+    // MIS weight of escaped rays is biased by about 0.9 % here.
+    EXPECT_NEAR(render(scene, 1024), expected, 0.003 * expected);
+    EXPECT_NEAR(render(scene, 4096, {{"misCompensation", "0"}}), expected, 0.004 * expected);
+    EXPECT_NEAR(render(scene, 4096, {{"mis", "0"}}), expected, 0.004 * expected);
+    EXPECT_NEAR(render(scene, 16384, {{"nee", "0"}}), expected, 0.03 * expected);
     // The noise: per-pixel variance over 16 pixels x 8 seeds at 16 spp. The sky, below the mean,
     // is left to cosine sampling, which fits it exactly; NEE spends its samples on the sun.
     auto variance = [&](std::map<std::string, std::string> settings) {

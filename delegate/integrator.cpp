@@ -440,13 +440,21 @@ bool Integrator::texturedEmission(const LightRecord& light, LightSample* ls) con
 PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     PathSample out;
     out.lobes.fill(glm::vec3(0.0f));
-    int pathLobe = -1;  // the lobe sampled at the first hit
-    // Credits a contribution found after the first bounce (or emission seen directly).
+    // Where light found after the first hit goes: before it, to emission seen directly; after a
+    // delta sample (or without the lobe split), all to one lobe; after a rough sample, to each
+    // lobe k in proportion f_k / f at the sampled direction (per channel). That split keeps each
+    // lobe's AOV unbiased: E[f_k / p L] = integral of f_k L, whatever lobe the sample came from.
+    int pathLobe = -1;
+    bool pathSplit = false;
+    bsdf::LobeValues pathShare;
     auto credit = [&](const glm::vec3& c) {
-        if (pathLobe < 0)
+        if (pathSplit) {
+            for (int i = 0; i < bsdf::kLobeCount; ++i) out.lobes[i] += c * pathShare[i];
+        } else if (pathLobe < 0) {
             out.emission += c;
-        else
+        } else {
             out.lobes[pathLobe] += c;
+        }
     };
     const auto& lights = _scene.lights;
     glm::vec3 L(0.0f), beta(1.0f);
@@ -673,7 +681,17 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             out.invalid = true;
             return out;
         }
-        if (depth == 0) pathLobe = _settings.splitLobes ? static_cast<int>(s->lobe) : 0;
+        if (depth == 0) {
+            pathLobe = _settings.splitLobes ? static_cast<int>(s->lobe) : 0;
+            if (_settings.splitLobes && !s->delta) {
+                bsdf::LobeValues perLobe;
+                bsdf.eval(view, s->wi, nullptr, &perLobe);  // sums to s->f (the same evaluation)
+                for (int i = 0; i < bsdf::kLobeCount; ++i)
+                    for (int c = 0; c < 3; ++c)
+                        pathShare[i][c] = s->f[c] > 0.0f ? std::clamp(perLobe[i][c] / s->f[c], 0.0f, 1.0f) : 0.0f;
+                pathSplit = true;
+            }
+        }
         if (caustic && (depth == 0 || merging || anyPositive(causticOpen))) {
             // Lobe shares at the sampled direction: a delta sample goes through a sharp lobe of a
             // caster (delta lobes are sharp) or through neither class (not a caster).

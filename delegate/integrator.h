@@ -88,8 +88,9 @@ struct FirstHit {
 };
 
 /// What a camera path returns for one sample. radiance = sum(lobes) + emission: the light that
-/// left the first hit through each lobe (NEE there split by lobe, later bounces credited to the
-/// lobe sampled at the first hit), and emission seen directly (emitters and visible lights).
+/// left the first hit through each lobe (NEE there split by lobe; light found through the
+/// direction sampled at the first hit split by each lobe's share of f there, or all to the
+/// sampled lobe after a delta sample), and emission seen directly (emitters and visible lights).
 struct PathSample {
     glm::vec3 radiance{0.0f};
     float alpha = 0.0f;     ///< 1 when the camera ray hit geometry

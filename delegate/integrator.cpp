@@ -53,10 +53,10 @@ float maxComponent(const glm::vec3& v) { return std::max({v.x, v.y, v.z}); }
 // The probability that Russian roulette lets a path of throughput beta go on: min(1, sqrt(max
 // component)), the rule of Cycles 3.4. A path whose throughput is >= 1 is never cut (a 0.95 cap
 // killed 5 % of the bright paths at every bounce for nothing). The square root keeps dim paths
-// longer than q = max(beta) did: on the sun-lit fig_specular0 that had half the pixel variance in
-// paths past the third bounce, which carry 0.5 % of the light; the square root cut the variance
-// by 13 % for 1 % more rays, and on the closed Cornell box variance x time by 3 % (64 spp, 16
-// seeds; docs/performance.md, "Eighth session").
+// longer than q = max(beta) did: on the sun-lit fig_specular0 that had 43 % of the pixel variance
+// in light from the fourth path vertex on, which carries 0.25 % of the light; the square root cut
+// the variance by 13 % for 1 % more rays, and on the closed Cornell box variance x time by 3 %
+// (64 spp, 16 seeds; docs/performance.md section 5f).
 float rouletteSurvival(const glm::vec3& beta) { return std::min(1.0f, std::sqrt(maxComponent(beta))); }
 
 struct Hit {

@@ -405,7 +405,7 @@ bool anyPositive(const glm::vec3& v) { return v.x > 0.0f || v.y > 0.0f || v.z > 
 }  // namespace
 
 Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings)
-    : _scene(scene), _settings(settings) {
+    : _scene(scene), _settings(settings), _lightPick(scene, settings.spatialLightPick) {
     for (uint32_t i = 0; i < scene.lights.size(); ++i) {
         const LightRecord::Kind k = scene.lights[i].kind;
         if (isAreaLight(scene.lights[i]))
@@ -462,6 +462,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     bool prevDelta = true;     // the camera "lobe" is a delta: no MIS on direct hits
     float prevBsdfPdf = 0.0f;
     glm::vec3 prevNg(0.0f);
+    // The light pick at the vertex the current ray left (for the MIS weights of lights it hits).
+    glm::vec3 prevP(0.0f);
+    float prevPickTotal = 0.0f;
     int passThrough = 0;
     // Caustic split (delegate/causticScene.h). Of a path x1..xk that ends on a caustic light,
     // light tracing (x1 connected to the camera) and photon merging (x2 on, when photons are
@@ -502,7 +505,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             glm::vec3 Le;
             float pdf;
             if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf))
-                addEmitter(Le, pdf * light.pickProbability, li);
+                addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickTotal), li);
         }
         if (!found) {
             for (uint32_t li : _environmentLights) {
@@ -511,7 +514,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::vec3 Le;
                 float pdf;
                 if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf, compensate))
-                    addEmitter(Le, pdf * light.pickProbability, li);
+                    addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickTotal), li);
             }
             break;
         }
@@ -545,7 +548,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
             float lightPdf = 0.0f;
             const LightRecord* ml = meshLightOf(_scene, rec, hit.instId, materialIndex);
-            if (ml) lightPdf = ml->pickProbability * meshLightPdf(*ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
+            if (ml)
+                lightPdf = _lightPick.probability(uint32_t(ml - lights.data()), prevP, prevPickTotal) *
+                           meshLightPdf(*ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f
                           : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
@@ -623,13 +628,24 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // glass): those samples go through the surface, on the side their shading-frame
         // direction says, as BSDF samples must (no leaks between the two normals).
         const bool neeThrough = bsdf.hasRoughTransmission();
+        // The spatial pick's weights at this point (delegate/lightPick.h); a total that is not
+        // positive and finite falls back to the global pick, here and in the MIS weights.
+        float pickWeights[LightPick::kMaxLights];
+        float pickTotal = 0.0f;
+        bool spatialPick = _lightPick.spatial() && _settings.nee && !bsdf.isDeltaOnly();
+        if (spatialPick) {
+            pickTotal = _lightPick.weigh(hit.p, pickWeights);
+            spatialPick = pickTotal > 0.0f && std::isfinite(pickTotal);
+            if (!spatialPick) pickTotal = 0.0f;
+        }
         for (size_t nee = 0; nee < neeCount && _settings.nee && !lights.empty() && !bsdf.isDeltaOnly(); ++nee) {
             glm::vec2 u = sampler.next2D();  // dimensions (0, 1) of a fresh Sobol group
             float ul = sampler.next1D();      // dimension 2: the pick, stratified with u
             const auto& cdf = _scene.lightCdf;
             size_t li = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, ul) - (cdf.begin() + 1));
             li = _scene.neeAllLights ? nee : std::min(li, lights.size() - 1);
-            const float lightPick = lights[li].pickProbability;
+            if (spatialPick) li = _lightPick.pick(pickWeights, pickTotal, ul);
+            const float lightPick = spatialPick ? pickWeights[li] / pickTotal : lights[li].pickProbability;
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate) && ls.pdf > 0.0f &&
                 lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough) &&
@@ -715,6 +731,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         prevDelta = s->delta || (transmit && !neeThrough);
         prevBsdfPdf = s->pdf;
         prevNg = hit.ng;
+        prevP = hit.p;
+        prevPickTotal = pickTotal;
         ray.origin = offsetOrigin(hit, wi);
         ray.direction = wi;
         ray.tnear = 0.0f;

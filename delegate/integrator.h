@@ -14,6 +14,7 @@
 
 #include "bsdf/bsdf.h"
 #include "delegate/rayRecorder.h"
+#include "delegate/lightPick.h"
 #include "delegate/photonGrid.h"
 #include "delegate/sampler.h"
 #include "delegate/sceneData.h"
@@ -33,6 +34,9 @@ struct IntegratorSettings {
     /// With MIS, a textured dome's next-event estimation samples the part of it above its mean
     /// radiance only, and BSDF sampling covers the rest (EnvironmentMap::compensated).
     bool misCompensation = true;
+    /// Next-event estimation picks a light by its power scaled by 1 / distance^2 from the
+    /// shading point (delegate/lightPick.h), when it picks one among at most 64.
+    bool spatialLightPick = true;
     RayRecorder* recorder = nullptr;  ///< receives every ray cast (bench/ replay); usually null
     std::vector<hd::Token> aovPrimvars;  ///< primvars the first hit records (at most 4)
     int maxDepth = 8;         ///< path vertices after the camera hit (0 = direct light only)
@@ -165,6 +169,7 @@ private:
     /// Indices into the scene's lights: those a ray can hit (sphere, rect, disk, cylinder) and
     /// those an escaping ray sees (dome, distant); mesh lights are hit as geometry.
     std::vector<uint32_t> _areaLights, _environmentLights;
+    LightPick _lightPick;  ///< which light next-event estimation samples when it samples one
 };
 
 }  // namespace principled::embree

@@ -429,6 +429,7 @@ void EmbreeRenderDelegate::buildLightDistribution() {
     // Next-event estimation picks lights in proportion to the power they can deliver to the
     // scene (its bounding sphere of radius R), mixed with 10% uniform so no light starves.
     const float R = _lightRadius;
+    _snapshot.lightSceneRadius = R;
     auto& lights = _snapshot.lights;
     std::vector<float> power(lights.size());
     double total = 0.0;
@@ -539,6 +540,7 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
         {"MIS compensation", Token("misCompensation"), Value(1), "with MIS, a textured dome light samples only what lies above its mean radiance; BSDF sampling takes the rest (0: the whole map)"},
+        {"Spatial light pick", Token("spatialLightPick"), Value(1), "with more lights than neeAllLights (up to 64), next-event estimation weighs each light's power by 1 / distance^2 from the point (0: by power alone)"},
         {"NEE all lights", Token("neeAllLights"), Value(4), "next-event estimation samples every light when the scene has at most this many (0: always pick one)"},
         {"Light pick uniform", Token("lightPickUniform"), Value(0.1f), "next-event estimation light pick: this fraction uniform, the rest by power"},
         {"Light solid angle", Token("lightSolidAngle"), Value(1), "small mesh lights (<= 8 triangles) sampled by solid angle (Arvo 1995); 0: by area"},
@@ -654,6 +656,7 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.mis = intSetting("mis", 1) != 0;
     s.nee = intSetting("nee", 1) != 0;
     s.misCompensation = intSetting("misCompensation", 1) != 0;
+    s.spatialLightPick = intSetting("spatialLightPick", 1) != 0;
     s.bsdf.pruneLobes = intSetting("lobePruning", 1) != 0;
     s.bsdf.vndfSampling = intSetting("vndf", 1) != 0;
     s.bsdf.deltaRoughness = std::clamp(floatSetting("deltaRoughness", 1e-3f), 0.0f, 1.0f);

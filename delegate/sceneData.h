@@ -206,6 +206,9 @@ struct SceneSnapshot {
     std::vector<MaterialRecord> materials;
     std::vector<LightRecord> lights;                  ///< sorted by prim path (determinism)
     std::vector<float> lightCdf;                      ///< lights.size() + 1 entries, by power
+    /// The scene's bounding radius the light powers were taken against (distant and dome lights
+    /// deliver power in proportion to its square; delegate/lightPick.h).
+    float lightSceneRadius = 0.0f;
     bool usingDefaultLight = false;                   ///< the scene had no light
     /// Some material can be partly present (opacity, cutouts): shadow rays then look at
     /// each surface they cross instead of stopping at the first.

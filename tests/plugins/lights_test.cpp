@@ -190,6 +190,95 @@ TEST(Lights, DomeMisCompensationKeepsTheMeanAndCutsTheNoise) {
     EXPECT_LT(compensated, 0.7 * whole) << "compensated " << compensated << ", whole map " << whole;
 }
 
+TEST(Lights, SpatialPickKeepsTheMeanAndCutsTheNoiseAmongManyLamps) {
+    // Sixteen sphere lamps (radius 0.3, three strengths) 0.6 above a Lambertian floor on a 4 x 4
+    // grid of pitch 5, seen from above. Picked by power alone, a floor point mostly samples
+    // lamps far away; weighed by 1 / d^2 (delegate/lightPick.h) it samples the ones next to it.
+    std::string lamps;
+    for (int k = 0; k < 16; ++k) {
+        char buf[512];
+        std::snprintf(buf, sizeof buf, R"(def SphereLight "L%d"
+{
+    float inputs:radius = 0.3
+    float inputs:intensity = %d
+    double3 xformOp:translate = (%g, 0.6, %g)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)",
+                      k, 20 * (1 + k % 3), -7.5 + 5.0 * (k / 4), -7.5 + 5.0 * (k % 4));
+        lamps += buf;
+    }
+    const std::string usda = std::string(R"(#usda 1.0
+def Mesh "Floor" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
+    rel material:binding = </Mat>
+}
+def Material "Mat"
+{
+    token outputs:surface.connect = </Mat/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0.5, 0.5, 0.5)
+        float inputs:roughness = 0.6
+        token outputs:surface
+    }
+}
+def Camera "Cam"
+{
+    token projection = "orthographic"
+    float horizontalAperture = 200
+    float verticalAperture = 200
+    float2 clippingRange = (0.001, 1000)
+    double3 xformOp:translate = (0, 20, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)") + lamps;
+    // The image's red values (32 x 32) for a seed, spp and pick.
+    auto image = [&](int spp, int seed, const char* spatial) {
+        host::SessionOptions o;
+        o.width = o.height = 32;
+        o.samplesPerPixel = spp;
+        o.seed = seed;
+        o.settings = {{"spatialLightPick", spatial}, {"maxDepth", "0"}};
+        auto session = host::RenderSession::openString(usda, "lamps.usda", o);
+        while (!session->step()) {
+        }
+        std::vector<double> v(32 * 32);
+        for (int i = 0; i < 32 * 32; ++i) v[i] = session->color()[4 * i];
+        return v;
+    };
+    auto mean = [](const std::vector<double>& v) {
+        double m = 0.0;
+        for (double x : v) m += x / double(v.size());
+        return m;
+    };
+    // The means agree; the power-only pick is the noisy one (its image mean's standard error at
+    // 1024 spp is about 0.4 %), so the tolerance is 1.5 %.
+    const double spatialMean = mean(image(256, 1, "1")), globalMean = mean(image(1024, 2, "0"));
+    EXPECT_NEAR(spatialMean, globalMean, 0.015 * globalMean);
+    // Per-pixel variance over 6 seeds at 8 spp.
+    auto variance = [&](const char* spatial) {
+        std::vector<std::vector<double>> runs;
+        for (int seed = 0; seed < 6; ++seed) runs.push_back(image(8, seed, spatial));
+        double sum = 0.0;
+        for (int i = 0; i < 32 * 32; ++i) {
+            double m = 0.0, q = 0.0;
+            for (const auto& r : runs) m += r[i] / 6.0;
+            for (const auto& r : runs) q += (r[i] - m) * (r[i] - m) / 5.0;
+            sum += q / (32.0 * 32.0);
+        }
+        return sum;
+    };
+    const double spatialVar = variance("1"), globalVar = variance("0");
+    EXPECT_LT(spatialVar, 0.2 * globalVar) << "spatial " << spatialVar << ", by power " << globalVar;
+}
+
 TEST(Lights, BlackbodyHasUnitLuminanceAndTheRightHue) {
     for (float k : {2000.0f, 3000.0f, 6500.0f, 10000.0f}) {
         glm::vec3 c = embree::blackbodyColor(k);

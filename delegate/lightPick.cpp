@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/lightPick.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace principled::embree {
+namespace {
+
+// The radius of a sphere around l.center that holds the whole emitter.
+float boundingRadius(const LightRecord& l) {
+    switch (l.kind) {
+        case LightRecord::Kind::Sphere:
+        case LightRecord::Kind::Mesh:
+            return l.radius;
+        case LightRecord::Kind::Rect:
+            return std::sqrt(glm::dot(l.axisU, l.axisU) + glm::dot(l.axisV, l.axisV));
+        case LightRecord::Kind::Disk:
+            return std::max(glm::length(l.axisU), glm::length(l.axisV));
+        case LightRecord::Kind::Cylinder:
+            return std::sqrt(glm::dot(l.axisU, l.axisU) + l.radius * l.radius);
+        default:
+            return 0.0f;
+    }
+}
+
+}  // namespace
+
+LightPick::LightPick(const SceneSnapshot& scene, bool enabled) : _scene(scene) {
+    const auto& lights = scene.lights;
+    _spatial = enabled && !scene.neeAllLights && lights.size() > 1 && lights.size() <= kMaxLights &&
+               scene.lightSceneRadius > 0.0f && std::isfinite(scene.lightSceneRadius);
+    if (!_spatial) return;
+    _sceneRadius2 = scene.lightSceneRadius * scene.lightSceneRadius;
+    _bounds.resize(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const LightRecord& l = lights[i];
+        const bool local = l.kind != LightRecord::Kind::Distant && l.kind != LightRecord::Kind::Dome;
+        const float r = boundingRadius(l);
+        // A point light's radius may be ~0: 1e-4 of the scene keeps 1/d^2 bounded next to it.
+        const float r2 = std::max(r * r, 1e-8f * _sceneRadius2);
+        _bounds[i] = local && std::isfinite(r2) ? glm::vec4(l.center, r2) : glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    }
+}
+
+float LightPick::weight(uint32_t i, const glm::vec3& p) const {
+    const float base = _scene.lights[i].pickProbability;
+    const glm::vec4& b = _bounds[i];
+    if (b.w < 0.0f) return base;
+    const glm::vec3 d = glm::vec3(b) - p;
+    const float w = base * (_sceneRadius2 / std::max(glm::dot(d, d), b.w));
+    return std::isfinite(w) ? w : base;
+}
+
+float LightPick::weigh(const glm::vec3& p, float* w) const {
+    float sum = 0.0f;
+    for (uint32_t i = 0; i < _bounds.size(); ++i) sum += (w[i] = weight(i, p));
+    return sum;
+}
+
+uint32_t LightPick::pick(const float* w, float total, float u) const {
+    const float target = u * total;
+    float sum = 0.0f;
+    const uint32_t n = uint32_t(_bounds.size());
+    for (uint32_t i = 0; i < n; ++i) {
+        sum += w[i];
+        if (target < sum && w[i] > 0.0f) return i;
+    }
+    // Rounding left u * total at or above the last partial sum: the last light that can be picked.
+    for (uint32_t i = n; i-- > 0;)
+        if (w[i] > 0.0f) return i;
+    return n - 1;
+}
+
+float LightPick::probability(uint32_t i, const glm::vec3& p, float total) const {
+    // total 0: the point fell back to the global pick (see the integrator).
+    if (!_spatial || !(total > 0.0f)) return _scene.lights[i].pickProbability;
+    return weight(i, p) / total;
+}
+
+}  // namespace principled::embree

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: Apache-2.0
+// LightPick: which light next-event estimation samples at a shading point, when it samples one
+// (SceneSnapshot::neeAllLights off). Each light's global pick probability (by power delivered to
+// the scene, 10 % uniform; renderDelegate.cpp) is scaled by how much of it reaches the point:
+// R^2 / max(d^2, r^2) for a light of bounding radius r whose centre is d away (R: the scene's
+// bounding radius, against which the global probabilities of distant and dome lights were
+// taken), 1 for distant and dome lights. So a lamp next to the point is picked before an equally
+// strong one across the scene, in proportion to the irradiance each can deliver (inverse square
+// law; Shirley, Wang & Zimmerman 1996, "Monte Carlo Techniques for Direct Lighting
+// Calculations", section 4.1, weights by estimated contribution). Every probability stays above
+// zero wherever the global one is, so the estimate is unbiased. Scenes with more than
+// kMaxLights lights keep the global pick (the weights cost a pass over the lights per vertex).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "delegate/sceneData.h"
+
+namespace principled::embree {
+
+class LightPick {
+public:
+    static constexpr size_t kMaxLights = 64;
+
+    /// enabled: the render setting (spatialLightPick); inactive without lights to choose among.
+    LightPick(const SceneSnapshot& scene, bool enabled);
+
+    /// Weighs the lights at p: picks then depend on the point (else on power alone).
+    bool spatial() const { return _spatial; }
+
+    /// The lights' weights at p into w (kMaxLights entries; spatial() only), and their sum: once
+    /// per shading point.
+    float weigh(const glm::vec3& p, float* w) const;
+    /// The light for u in [0, 1), with probability w[i] / total (w and total from weigh()).
+    uint32_t pick(const float* w, float total, float u) const;
+    /// The probability that pick() at p returns light i (total from weigh() at p); the global
+    /// pick probability when not spatial() or when total is 0 (a point that used the global pick).
+    float probability(uint32_t i, const glm::vec3& p, float total) const;
+
+private:
+    float weight(uint32_t i, const glm::vec3& p) const;
+
+    const SceneSnapshot& _scene;
+    bool _spatial = false;
+    /// Per light: its bounding sphere (centre, radius^2) for local lights; radius^2 < 0 marks a
+    /// distant or dome light (weight = its global probability).
+    std::vector<glm::vec4> _bounds;
+    float _sceneRadius2 = 1.0f;
+};
+
+}  // namespace principled::embree

@@ -465,6 +465,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     // The light pick at the vertex the current ray left (for the MIS weights of lights it hits).
     glm::vec3 prevP(0.0f);
     float prevPickTotal = 0.0f;
+    // The ray has passed through a partly present (or culled) surface since prevP: its origin
+    // is no longer the vertex whose light sampling the MIS weights must match.
+    bool passedThrough = false;
     int passThrough = 0;
     // Caustic split (delegate/causticScene.h). Of a path x1..xk that ends on a caustic light,
     // light tracing (x1 connected to the camera) and photon merging (x2 on, when photons are
@@ -504,8 +507,13 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             if (depth == 0 && !(light.visibleToCamera && _settings.lightsVisible)) continue;
             glm::vec3 Le;
             float pdf;
-            if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf))
+            if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf)) {
+                // The density NEE had at prevP (the light lies beyond the surfaces crossed, so
+                // the ray from prevP meets it at the same point).
+                glm::vec3 LeFromVertex;
+                if (passedThrough && !intersectAreaLight(light, prevP, ray.direction, kInf, &LeFromVertex, &pdf)) pdf = 0.0f;
                 addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickTotal), li);
+            }
         }
         if (!found) {
             for (uint32_t li : _environmentLights) {
@@ -540,6 +548,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             if (presence <= 0.0f || sampler.next1D() >= presence) {
                 ++passThrough;
                 ray.origin = offsetOrigin(hit, ray.direction);
+                passedThrough = passedThrough || depth > 0;  // camera rays need no MIS origin
                 --depth;  // not a bounce
                 continue;
             }
@@ -548,9 +557,12 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
             float lightPdf = 0.0f;
             const LightRecord* ml = meshLightOf(_scene, rec, hit.instId, materialIndex);
-            if (ml)
+            if (ml) {
+                const glm::vec3 from = passedThrough ? prevP : ray.origin;
+                const float distance = passedThrough ? glm::length(hit.p - prevP) : hit.t;
                 lightPdf = _lightPick.probability(uint32_t(ml - lights.data()), prevP, prevPickTotal) *
-                           meshLightPdf(*ml, ray.origin, hit.t, glm::dot(ray.direction, hit.ng));
+                           meshLightPdf(*ml, from, distance, glm::dot(ray.direction, hit.ng));
+            }
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f
                           : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
@@ -645,7 +657,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             size_t li = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, ul) - (cdf.begin() + 1));
             li = _scene.neeAllLights ? nee : std::min(li, lights.size() - 1);
             if (spatialPick) li = _lightPick.pick(pickWeights, pickTotal, ul);
-            const float lightPick = spatialPick ? pickWeights[li] / pickTotal : lights[li].pickProbability;
+            const float lightPick = _lightPick.probability(uint32_t(li), hit.p, pickTotal);
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate) && ls.pdf > 0.0f &&
                 lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough) &&
@@ -733,6 +745,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         prevNg = hit.ng;
         prevP = hit.p;
         prevPickTotal = pickTotal;
+        passedThrough = false;
         ray.origin = offsetOrigin(hit, wi);
         ray.direction = wi;
         ray.tnear = 0.0f;

@@ -59,9 +59,16 @@ float LightPick::weigh(const glm::vec3& p, float* w) const {
 }
 
 uint32_t LightPick::pick(const float* w, float total, float u) const {
-    const float target = u * total;
-    float sum = 0.0f;
     const uint32_t n = uint32_t(_bounds.size());
+    if (u < kGlobalShare) {
+        // The global share: by the snapshot's CDF, with u rescaled to [0, 1).
+        const auto& cdf = _scene.lightCdf;
+        const float v = std::min(u / kGlobalShare, 0.99999994f);
+        const size_t i = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, v) - (cdf.begin() + 1));
+        return uint32_t(std::min(i, size_t(n - 1)));
+    }
+    const float target = std::min((u - kGlobalShare) / (1.0f - kGlobalShare), 0.99999994f) * total;
+    float sum = 0.0f;
     for (uint32_t i = 0; i < n; ++i) {
         sum += w[i];
         if (target < sum && w[i] > 0.0f) return i;
@@ -74,8 +81,9 @@ uint32_t LightPick::pick(const float* w, float total, float u) const {
 
 float LightPick::probability(uint32_t i, const glm::vec3& p, float total) const {
     // total 0: the point fell back to the global pick (see the integrator).
-    if (!_spatial || !(total > 0.0f)) return _scene.lights[i].pickProbability;
-    return weight(i, p) / total;
+    const float global = _scene.lights[i].pickProbability;
+    if (!_spatial || !(total > 0.0f)) return global;
+    return (1.0f - kGlobalShare) * (weight(i, p) / total) + kGlobalShare * global;
 }
 
 }  // namespace principled::embree

@@ -7,8 +7,10 @@
 // taken), 1 for distant and dome lights. So a lamp next to the point is picked before an equally
 // strong one across the scene, in proportion to the irradiance each can deliver (inverse square
 // law; Shirley, Wang & Zimmerman 1996, "Monte Carlo Techniques for Direct Lighting
-// Calculations", section 4.1, weights by estimated contribution). Every probability stays above
-// zero wherever the global one is, so the estimate is unbiased. Scenes with more than
+// Calculations", section 4.1, weights by estimated contribution). A share kGlobalShare of the
+// picks stays with the global probabilities, so a weak lamp next to the point (blocked, or
+// facing away) cannot take every pick; every probability is then at least kGlobalShare times
+// the global one, and the estimate is unbiased wherever that is. Scenes with more than
 // kMaxLights lights keep the global pick (the weights cost a pass over the lights per vertex).
 #pragma once
 
@@ -24,6 +26,7 @@ namespace principled::embree {
 class LightPick {
 public:
     static constexpr size_t kMaxLights = 64;
+    static constexpr float kGlobalShare = 0.1f;
 
     /// enabled: the render setting (spatialLightPick); inactive without lights to choose among.
     LightPick(const SceneSnapshot& scene, bool enabled);
@@ -34,7 +37,8 @@ public:
     /// The lights' weights at p into w (kMaxLights entries; spatial() only), and their sum: once
     /// per shading point.
     float weigh(const glm::vec3& p, float* w) const;
-    /// The light for u in [0, 1), with probability w[i] / total (w and total from weigh()).
+    /// The light for u in [0, 1), with probability probability(i, p, total) (w and total from
+    /// weigh() at p; total > 0).
     uint32_t pick(const float* w, float total, float u) const;
     /// The probability that pick() at p returns light i (total from weigh() at p); the global
     /// pick probability when not spatial() or when total is 0 (a point that used the global pick).

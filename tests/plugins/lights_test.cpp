@@ -279,6 +279,46 @@ def Camera "Cam"
     EXPECT_LT(spatialVar, 0.2 * globalVar) << "spatial " << spatialVar << ", by power " << globalVar;
 }
 
+TEST(Lights, MisWeightsOfLightsBehindAPartlyPresentSheetAreTakenFromTheVertex) {
+    // A floor lit by a sphere lamp through a sheet of opacity 0.5. A BSDF sample from the floor
+    // that passes through the sheet and hits the lamp must be MIS-weighted with the density NEE
+    // had at the floor point, not at the sheet (where the ray restarted): measured, that mistake
+    // made the MIS image 15 % brighter than NEE alone (5.12 against 4.47).
+    const std::string lamp = R"(
+def SphereLight "Lamp"
+{
+    float inputs:radius = 0.3
+    float inputs:intensity = 40
+    double3 xformOp:translate = (0, 0.6, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Mesh "Sheet" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-3, 0.3, -3), (-3, 0.3, 3), (3, 0.3, 3), (3, 0.3, -3)]
+    rel material:binding = </Veil>
+}
+def Material "Veil"
+{
+    token outputs:surface.connect = </Veil/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0.2, 0.2, 0.2)
+        float inputs:opacity = 0.5
+        token outputs:surface
+    }
+}
+)";
+    // planeScene's tiny camera looks at the floor's origin, under the lamp, through the sheet.
+    const std::string scene = planeScene(0.5, lamp, 30.0);
+    const double mis = render(scene, 2048, {{"maxDepth", "1"}}), nee = render(scene, 2048, {{"maxDepth", "1"}, {"mis", "0"}});
+    ASSERT_GT(nee, 0.0);
+    EXPECT_NEAR(mis, nee, 0.02 * nee);
+}
+
 TEST(Lights, BlackbodyHasUnitLuminanceAndTheRightHue) {
     for (float k : {2000.0f, 3000.0f, 6500.0f, 10000.0f}) {
         glm::vec3 c = embree::blackbodyColor(k);

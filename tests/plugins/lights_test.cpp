@@ -192,9 +192,23 @@ TEST(Lights, DomeMisCompensationKeepsTheMeanAndCutsTheNoise) {
 
 TEST(Lights, SpatialPickKeepsTheMeanAndCutsTheNoiseAmongManyLamps) {
     // Sixteen sphere lamps (radius 0.3, three strengths) 0.6 above a Lambertian floor on a 4 x 4
-    // grid of pitch 5, seen from above. Picked by power alone, a floor point mostly samples
-    // lamps far away; weighed by 1 / d^2 (delegate/lightPick.h) it samples the ones next to it.
-    std::string lamps;
+    // grid of pitch 5, seen from above, with a dim dome and a white wall across the middle (so
+    // paths bounce: the MIS weights of later vertices use their own picks). Picked by power
+    // alone, a floor point mostly samples lamps far away; weighed by 1 / d^2
+    // (delegate/lightPick.h) it samples the ones next to it.
+    std::string lamps = R"(def DomeLight "Sky"
+{
+    float inputs:intensity = 0.05
+}
+def Mesh "Wall"
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-10, 0, 0.5), (10, 0, 0.5), (10, 1.5, 0.5), (-10, 1.5, 0.5)]
+    uniform bool doubleSided = 1
+}
+)";
     for (int k = 0; k < 16; ++k) {
         char buf[512];
         std::snprintf(buf, sizeof buf, R"(def SphereLight "L%d"
@@ -245,7 +259,7 @@ def Camera "Cam"
         o.width = o.height = 32;
         o.samplesPerPixel = spp;
         o.seed = seed;
-        o.settings = {{"spatialLightPick", spatial}, {"maxDepth", "0"}};
+        o.settings = {{"spatialLightPick", spatial}, {"maxDepth", "2"}};
         auto session = host::RenderSession::openString(usda, "lamps.usda", o);
         while (!session->step()) {
         }

@@ -465,7 +465,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     // The light pick at the vertex the current ray left (for the MIS weights of lights it hits).
     glm::vec3 prevP(0.0f);
     float prevPickTotal = 0.0f;
-    // The ray has passed through a partly present (or culled) surface since prevP: its origin
+    // The ray has passed through a partly present surface since prevP (after the camera ray): its origin
     // is no longer the vertex whose light sampling the MIS weights must match.
     bool passedThrough = false;
     int passThrough = 0;

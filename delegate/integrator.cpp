@@ -465,8 +465,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     // The light pick at the vertex the current ray left (for the MIS weights of lights it hits).
     glm::vec3 prevP(0.0f);
     float prevPickTotal = 0.0f;
-    // The ray has passed through a partly present surface since prevP (after the camera ray): its origin
-    // is no longer the vertex whose light sampling the MIS weights must match.
+    // The ray has passed through a partly present surface since prevP (camera rays aside): its
+    // origin is no longer the vertex whose light sampling the MIS weights must match.
     bool passedThrough = false;
     int passThrough = 0;
     // Caustic split (delegate/causticScene.h). Of a path x1..xk that ends on a caustic light,

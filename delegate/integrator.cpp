@@ -653,10 +653,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         for (size_t nee = 0; nee < neeCount && _settings.nee && !lights.empty() && !bsdf.isDeltaOnly(); ++nee) {
             glm::vec2 u = sampler.next2D();  // dimensions (0, 1) of a fresh Sobol group
             float ul = sampler.next1D();      // dimension 2: the pick, stratified with u
-            const auto& cdf = _scene.lightCdf;
-            size_t li = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, ul) - (cdf.begin() + 1));
-            li = _scene.neeAllLights ? nee : std::min(li, lights.size() - 1);
-            if (spatialPick) li = _lightPick.pick(pickWeights, pickTotal, ul);
+            const size_t li = _scene.neeAllLights ? nee
+                              : spatialPick       ? _lightPick.pick(pickWeights, pickTotal, ul)
+                                                  : _lightPick.globalPick(ul);
             const float lightPick = _lightPick.probability(uint32_t(li), hit.p, pickTotal);
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate) && ls.pdf > 0.0f &&

@@ -60,13 +60,7 @@ float LightPick::weigh(const glm::vec3& p, float* w) const {
 
 uint32_t LightPick::pick(const float* w, float total, float u) const {
     const uint32_t n = uint32_t(_bounds.size());
-    if (u < kGlobalShare) {
-        // The global share: by the snapshot's CDF, with u rescaled to [0, 1).
-        const auto& cdf = _scene.lightCdf;
-        const float v = std::min(u / kGlobalShare, 0.99999994f);
-        const size_t i = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, v) - (cdf.begin() + 1));
-        return uint32_t(std::min(i, size_t(n - 1)));
-    }
+    if (u < kGlobalShare) return globalPick(std::min(u / kGlobalShare, 0.99999994f));  // u rescaled
     const float target = std::min((u - kGlobalShare) / (1.0f - kGlobalShare), 0.99999994f) * total;
     float sum = 0.0f;
     for (uint32_t i = 0; i < n; ++i) {
@@ -77,6 +71,12 @@ uint32_t LightPick::pick(const float* w, float total, float u) const {
     for (uint32_t i = n; i-- > 0;)
         if (w[i] > 0.0f) return i;
     return n - 1;
+}
+
+uint32_t LightPick::globalPick(float u) const {
+    const auto& cdf = _scene.lightCdf;
+    const size_t i = size_t(std::upper_bound(cdf.begin() + 1, cdf.end() - 1, u) - (cdf.begin() + 1));
+    return uint32_t(std::min(i, _scene.lights.size() - 1));
 }
 
 float LightPick::probability(uint32_t i, const glm::vec3& p, float total) const {

@@ -40,6 +40,8 @@ public:
     /// The light for u in [0, 1), with probability probability(i, p, total) (w and total from
     /// weigh() at p; total > 0).
     uint32_t pick(const float* w, float total, float u) const;
+    /// The light for u in [0, 1) by the global probabilities alone (the snapshot's CDF).
+    uint32_t globalPick(float u) const;
     /// The probability that pick() at p returns light i (total from weigh() at p); the global
     /// pick probability when not spatial() or when total is 0 (a point that used the global pick).
     float probability(uint32_t i, const glm::vec3& p, float total) const;

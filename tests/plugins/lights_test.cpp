@@ -119,27 +119,6 @@ TEST(Lights, DomeTextureIsImportanceSampledAndMatchesTheConstantDome) {
     EXPECT_NEAR(nee, 2.0 * a, 0.02 * 2.0 * a);
 }
 
-namespace {
-
-// The 16 red pixel values of planeScene's 4 x 4 camera (each an independent estimate of the
-// plane's radiance), rendered with the UE4 model.
-std::vector<double> planePixels(const std::string& usda, int spp, int seed, std::map<std::string, std::string> settings) {
-    host::SessionOptions o;
-    o.width = o.height = 4;
-    o.samplesPerPixel = spp;
-    o.seed = seed;
-    o.settings = std::move(settings);
-    o.settings["shadingModel"] = "ue4";
-    auto s = host::RenderSession::openString(usda, "plane.usda", o);
-    while (!s->step()) {
-    }
-    std::vector<double> v(16);
-    for (int i = 0; i < 16; ++i) v[i] = s->color()[4 * i];
-    return v;
-}
-
-}  // namespace
-
 TEST(Lights, DomeMisCompensationKeepsTheMeanAndCutsTheNoise) {
     // A lat-long sky of radiance 0.5 over a ground of 0.1, with a 2 x 2-texel sun of 400.
     // The plane's radiance is a E / pi with E summed exactly over the texels (nearest-texel
@@ -179,7 +158,7 @@ TEST(Lights, DomeMisCompensationKeepsTheMeanAndCutsTheNoise) {
         double sum = 0.0, squares = 0.0;
         int n = 0;
         for (int seed = 0; seed < 8; ++seed)
-            for (double v : planePixels(scene, 16, seed, settings)) {
+            for (double v : test::planePixels(scene, 16, settings, 0, seed)) {
                 sum += v;
                 squares += v * v;
                 ++n;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "plugins/renderSession.h"
 
@@ -55,13 +56,16 @@ def Camera "Cam"
     return std::string(head) + lights;
 }
 
-/// The mean red radiance over the 4 x 4 pixels of planeScene's camera, rendered with the UE4
-/// model (exactly Lambertian diffuse); maxDepth > 0 overrides the session's path depth.
-inline double planeRadiance(const std::string& usda, int spp,
-                            std::map<std::string, std::string> settings = {}, int maxDepth = 0) {
+/// The red values of the 4 x 4 pixels of planeScene's camera (each an independent estimate of
+/// the plane's radiance), rendered with the UE4 model (exactly Lambertian diffuse) and the given
+/// seed; maxDepth > 0 overrides the session's path depth.
+inline std::vector<double> planePixels(const std::string& usda, int spp,
+                                       std::map<std::string, std::string> settings = {}, int maxDepth = 0,
+                                       int seed = 0) {
     host::SessionOptions o;
     o.width = o.height = 4;
     o.samplesPerPixel = spp;
+    o.seed = seed;
     if (maxDepth > 0) o.maxDepth = maxDepth;
     o.settings = std::move(settings);
     o.settings["shadingModel"] = "ue4";
@@ -69,8 +73,16 @@ inline double planeRadiance(const std::string& usda, int spp,
     while (!s->step()) {
     }
     const float* c = s->color();
+    std::vector<double> v(16);
+    for (int i = 0; i < 16; ++i) v[i] = c[4 * i];
+    return v;
+}
+
+/// The mean of planePixels(): the plane's radiance.
+inline double planeRadiance(const std::string& usda, int spp,
+                            std::map<std::string, std::string> settings = {}, int maxDepth = 0) {
     double sum = 0.0;
-    for (int i = 0; i < 16; ++i) sum += c[4 * i];
+    for (double v : planePixels(usda, spp, std::move(settings), maxDepth)) sum += v;
     return sum / 16.0;
 }
 

@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Writes the many-lamp scene of docs/performance.md section 5f (spatial light pick):
 
-    bench/lamps_scene.py [OUTDIR]      (default build/bench/lamps)
+    bench/lamps_scene.py [OUTDIR] [--side N --pitch P]     (default build/bench/lamps, 4, 5)
 
-OUTDIR/lamps.usda: a grey floor under 16 sphere lamps (radius 0.1, intensities 200/400/600)
-0.6 above it on a 4 x 4 grid of pitch 5, seen from above by an orthographic camera (20 x 20 units).
+OUTDIR/lamps.usda (lamps_N.usda for another side): a grey floor under N x N sphere lamps
+(radius 0.1, intensities 200/400/600) 0.6 above it on a grid of pitch P centred on the origin,
+seen from above by an orthographic camera (20 x 20 units). With more than 64 lamps the spatial
+pick goes through the light tree (delegate/lightTree.h).
 """
+import argparse
 import os
-import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -48,15 +50,21 @@ def Camera "Cam"
 
 
 def main():
-    out = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build", "bench", "lamps"))
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("outdir", nargs="?", default=os.path.join(ROOT, "build", "bench", "lamps"))
+    ap.add_argument("--side", type=int, default=4, help="lamps per side of the grid")
+    ap.add_argument("--pitch", type=float, default=5.0, help="grid spacing in scene units")
+    a = ap.parse_args()
+    out = os.path.abspath(a.outdir)
     os.makedirs(out, exist_ok=True)
     lamps = []
-    for k in range(16):
-        x, z = -7.5 + 5 * (k // 4), -7.5 + 5 * (k % 4)
+    first = -0.5 * a.pitch * (a.side - 1)
+    for k in range(a.side * a.side):
+        x, z = first + a.pitch * (k // a.side), first + a.pitch * (k % a.side)
         lamps.append('def SphereLight "L%d"\n{\n    float inputs:radius = 0.1\n    float inputs:intensity = %g\n'
                      '    double3 xformOp:translate = (%g, 0.6, %g)\n    uniform token[] xformOpOrder = ["xformOp:translate"]\n}\n'
                      % (k, 200 * (1 + k % 3), x, z))
-    path = os.path.join(out, "lamps.usda")
+    path = os.path.join(out, "lamps.usda" if a.side == 4 else "lamps_%d.usda" % a.side)
     open(path, "w").write(HEAD + "".join(lamps))
     print(path)
 

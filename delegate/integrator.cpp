@@ -413,6 +413,18 @@ Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& set
         else if (k == LightRecord::Kind::Dome || k == LightRecord::Kind::Distant)
             _environmentLights.push_back(i);
     }
+    if (_areaLights.size() > kLinearAreaLights) {
+        std::vector<LightTree::Item> items;
+        for (uint32_t i : _areaLights) {
+            const LightRecord& l = scene.lights[i];
+            const float r = lightBoundingRadius(l);
+            if (std::isfinite(r) && r > 0.0f && finite(l.center))
+                items.push_back({l.center, r * r, 1.0f, i});
+            else
+                _unboundedAreaLights.push_back(i);
+        }
+        _areaLightTree = LightTree(std::move(items), 1.0f);
+    }
     _constantBsdfs.reserve(scene.materials.size());
     for (const MaterialRecord& m : scene.materials) {
         if (m.program)
@@ -502,9 +514,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             credit(c);
         };
         float tHit = found ? hit.t : kInf;
-        for (uint32_t li : _areaLights) {  // not every light: a scene may hold thousands of mesh lights
+        auto reachAreaLight = [&](uint32_t li) {
             const LightRecord& light = lights[li];
-            if (depth == 0 && !(light.visibleToCamera && _settings.lightsVisible)) continue;
+            if (depth == 0 && !(light.visibleToCamera && _settings.lightsVisible)) return;
             glm::vec3 Le;
             float pdf;
             if (intersectAreaLight(light, ray.origin, ray.direction, tHit, &Le, &pdf)) {
@@ -514,6 +526,14 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 if (passedThrough && !intersectAreaLight(light, prevP, ray.direction, kInf, &LeFromVertex, &pdf)) pdf = 0.0f;
                 addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickTotal), li);
             }
+        };
+        // Not every light: a scene may hold thousands of mesh lights (hit as geometry), and
+        // many analytic ones are found through their tree.
+        if (_areaLightTree.empty()) {
+            for (uint32_t li : _areaLights) reachAreaLight(li);
+        } else {
+            _areaLightTree.forEachAlong(ray.origin, ray.direction, tHit, reachAreaLight);
+            for (uint32_t li : _unboundedAreaLights) reachAreaLight(li);
         }
         if (!found) {
             for (uint32_t li : _environmentLights) {
@@ -654,7 +674,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             glm::vec2 u = sampler.next2D();  // dimensions (0, 1) of a fresh Sobol group
             float ul = sampler.next1D();      // dimension 2: the pick, stratified with u
             const size_t li = _scene.neeAllLights ? nee
-                              : spatialPick       ? _lightPick.pick(pickWeights, pickTotal, ul)
+                              : spatialPick       ? _lightPick.pick(hit.p, pickWeights, pickTotal, ul)
                                                   : _lightPick.globalPick(ul);
             const float lightPick = _lightPick.probability(uint32_t(li), hit.p, pickTotal);
             LightSample ls;

@@ -169,6 +169,12 @@ private:
     /// Indices into the scene's lights: those a ray can hit (sphere, rect, disk, cylinder) and
     /// those an escaping ray sees (dome, distant); mesh lights are hit as geometry.
     std::vector<uint32_t> _areaLights, _environmentLights;
+    /// With more than kLinearAreaLights area lights, rays find them through a tree of their
+    /// bounding boxes (O(log n) per ray instead of a test per light); _unboundedAreaLights keeps
+    /// those without finite bounds, tested one by one.
+    static constexpr size_t kLinearAreaLights = 8;
+    LightTree _areaLightTree;
+    std::vector<uint32_t> _unboundedAreaLights;
     LightPick _lightPick;  ///< which light next-event estimation samples when it samples one
 };
 

@@ -10,8 +10,10 @@
 // Calculations", section 4.1, weights by estimated contribution). A share kGlobalShare of the
 // picks stays with the global probabilities, so a weak lamp next to the point (blocked, or
 // facing away) cannot take every pick; every probability is then at least kGlobalShare times
-// the global one, and the estimate is unbiased wherever that is. Scenes with more than
-// kMaxLights lights keep the global pick (the weights cost a pass over the lights per vertex).
+// the global one, and the estimate is unbiased wherever that is. Up to kMaxLights lights are
+// weighed one by one at each point; more local lights go into a LightTree (delegate/lightTree.h),
+// whose clusters are weighed the same way, so a pick costs O(log n) (distant and dome lights
+// stay in a flat list beside the tree's root).
 #pragma once
 
 #include <cstdint>
@@ -19,6 +21,7 @@
 
 #include <glm/glm.hpp>
 
+#include "delegate/lightTree.h"
 #include "delegate/sceneData.h"
 
 namespace principled::embree {
@@ -34,12 +37,12 @@ public:
     /// Weighs the lights at p: picks then depend on the point (else on power alone).
     bool spatial() const { return _spatial; }
 
-    /// The lights' weights at p into w (kMaxLights entries; spatial() only), and their sum: once
-    /// per shading point.
+    /// The lights' weights at p into w (kMaxLights entries; written only when the lights are
+    /// weighed one by one), and their sum: once per shading point (spatial() only).
     float weigh(const glm::vec3& p, float* w) const;
     /// The light for u in [0, 1), with probability probability(i, p, total) (w and total from
     /// weigh() at p; total > 0).
-    uint32_t pick(const float* w, float total, float u) const;
+    uint32_t pick(const glm::vec3& p, const float* w, float total, float u) const;
     /// The light for u in [0, 1) by the global probabilities alone (the snapshot's CDF).
     uint32_t globalPick(float u) const;
     /// The probability that pick() at p returns light i (total from weigh() at p); the global
@@ -55,6 +58,12 @@ private:
     /// distant or dome light (weight = its global probability).
     std::vector<glm::vec4> _bounds;
     float _sceneRadius2 = 1.0f;
+    /// More than kMaxLights lights: the local ones in a tree, the others (distant, dome, or
+    /// without finite bounds) listed with the sum of their global probabilities.
+    bool _many = false;
+    LightTree _tree;
+    std::vector<uint32_t> _flat;
+    float _flatSum = 0.0f;
 };
 
 }  // namespace principled::embree

@@ -401,6 +401,22 @@ bool intersectUnshaped(const LightRecord& l, const glm::vec3& o, const glm::vec3
 
 }  // namespace
 
+float lightBoundingRadius(const LightRecord& l) {
+    switch (l.kind) {
+        case LightRecord::Kind::Sphere:
+        case LightRecord::Kind::Mesh:
+            return l.radius;
+        case LightRecord::Kind::Rect:  // axisU, axisV: half extents
+            return std::sqrt(glm::dot(l.axisU, l.axisU) + glm::dot(l.axisV, l.axisV));
+        case LightRecord::Kind::Disk:
+            return std::max(glm::length(l.axisU), glm::length(l.axisV));
+        case LightRecord::Kind::Cylinder:  // axisU: half the length
+            return std::sqrt(glm::dot(l.axisU, l.axisU) + l.radius * l.radius);
+        default:
+            return 0.0f;
+    }
+}
+
 bool lightSurfacePoint(const LightRecord& l, const glm::vec2& u, glm::vec3* p, glm::vec3* n) {
     switch (l.kind) {
         case LightRecord::Kind::Sphere: {

@@ -42,6 +42,10 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::ve
 
 bool isAreaLight(const LightRecord& l);
 
+/// The radius of a sphere around l.center that holds the whole emitter (sphere, rect, disk,
+/// cylinder, mesh); 0 for point, distant and dome lights.
+float lightBoundingRadius(const LightRecord& l);
+
 /// A point of area light l (sphere, rect, disk, cylinder, mesh) uniform in its area from two
 /// uniform numbers, with the light's outward (emitting) normal there (a mesh light's triangle
 /// normal: it emits from both sides); false for other kinds. The rect, disk, cylinder and mesh

@@ -3,6 +3,7 @@
 // preferred in proportion to 1 / d^2.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -55,7 +56,7 @@ TEST(LightPick, ProbabilitiesSumToOneAndPickFollowsThem) {
         // pick() over a fine grid of u: each light's share of the grid is its probability.
         const int n = 1 << 18;
         std::vector<int> hits(scene.lights.size(), 0);
-        for (int k = 0; k < n; ++k) ++hits[pick.pick(w, total, (k + 0.5f) / n)];
+        for (int k = 0; k < n; ++k) ++hits[pick.pick(p, w, total, (k + 0.5f) / n)];
         for (uint32_t i = 0; i < scene.lights.size(); ++i)
             EXPECT_NEAR(double(hits[i]) / n, pick.probability(i, p, total), 1e-4) << "light " << i;
     }
@@ -77,11 +78,69 @@ TEST(LightPick, NearerLampsOfEqualPowerArePreferredByInverseSquare) {
     EXPECT_EQ(off.probability(8, p, 0.0f), scene.lights[8].pickProbability);
 }
 
-TEST(LightPick, FewLightsOrTooManyKeepTheGlobalPick) {
+TEST(LightPick, FewLightsKeepTheGlobalPick) {
     SceneSnapshot scene = lampsOnALine();
     scene.neeAllLights = true;  // every light sampled at every vertex: nothing to pick
     EXPECT_FALSE(LightPick(scene, true).spatial());
     scene = lampsOnALine();
-    scene.lights.resize(LightPick::kMaxLights + 1, scene.lights[0]);
+    scene.lights.resize(1);
     EXPECT_FALSE(LightPick(scene, true).spatial());
+}
+
+TEST(LightPick, ManyLightsArePickedThroughTheTreeWithTheProbabilitiesItReports) {
+    // 300 sphere lamps scattered over a 40 x 40 x 4 box with powers over two decades, two distant
+    // lights: more than kMaxLights, so the local lamps go into a LightTree.
+    SceneSnapshot s;
+    uint32_t state = 12345u;
+    auto next = [&state]() {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    std::vector<float> power;
+    for (int i = 0; i < 300; ++i) {
+        LightRecord l;
+        l.kind = LightRecord::Kind::Sphere;
+        l.center = glm::vec3(40.0f * next() - 20.0f, 4.0f * next(), 40.0f * next() - 20.0f);
+        l.radius = 0.05f + 0.2f * next();
+        s.lights.push_back(l);
+        power.push_back(std::pow(10.0f, 2.0f * next()));
+    }
+    for (int i = 0; i < 2; ++i) {
+        LightRecord sun;
+        sun.kind = i == 0 ? LightRecord::Kind::Distant : LightRecord::Kind::Dome;
+        s.lights.push_back(sun);
+        power.push_back(500.0f);
+    }
+    float total = 0.0f;
+    for (float x : power) total += x;
+    s.lightCdf.assign(1, 0.0f);
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        s.lights[i].pickProbability = power[i] / total;
+        s.lightCdf.push_back(s.lightCdf.back() + s.lights[i].pickProbability);
+    }
+    s.lightCdf.back() = 1.0f;
+    s.lightSceneRadius = 30.0f;
+    s.neeAllLights = false;
+    const LightPick pick(s, true);
+    ASSERT_TRUE(pick.spatial());
+    float w[LightPick::kMaxLights];
+    for (uint32_t near : {7u, 150u, 299u}) {
+        // Just beside lamp `near`, on the floor below it.
+        const glm::vec3 p = s.lights[near].center + glm::vec3(0.3f, -0.5f, 0.0f);
+        const float t = pick.weigh(p, w);
+        double sum = 0.0;
+        for (uint32_t i = 0; i < s.lights.size(); ++i) sum += pick.probability(i, p, t);
+        EXPECT_NEAR(sum, 1.0, 1e-4);
+        const int n = 1 << 20;
+        std::vector<int> hits(s.lights.size(), 0);
+        for (int k = 0; k < n; ++k) ++hits[pick.pick(p, w, t, (k + 0.5f) / n)];
+        double worst = 0.0;
+        for (uint32_t i = 0; i < s.lights.size(); ++i)
+            worst = std::max(worst, std::abs(double(hits[i]) / n - pick.probability(i, p, t)));
+        EXPECT_LT(worst, 2e-5) << "at lamp " << near;
+        // The lamp next to the point is picked far more often than its power alone would have it.
+        EXPECT_GT(pick.probability(near, p, t), 10.0f * s.lights[near].pickProbability) << "lamp " << near;
+        // The distant lights keep the share of their power among the weights.
+        EXPECT_GT(pick.probability(300, p, t), LightPick::kGlobalShare * s.lights[300].pickProbability);
+    }
 }

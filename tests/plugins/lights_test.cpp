@@ -169,12 +169,13 @@ TEST(Lights, DomeMisCompensationKeepsTheMeanAndCutsTheNoise) {
     EXPECT_LT(compensated, 0.7 * whole) << "compensated " << compensated << ", whole map " << whole;
 }
 
-TEST(Lights, SpatialPickKeepsTheMeanAndCutsTheNoiseAmongManyLamps) {
-    // Sixteen sphere lamps (radius 0.3, three strengths) 0.6 above a Lambertian floor on a 4 x 4
-    // grid of pitch 5, seen from above, with a dim dome and a white wall across the middle (so
-    // paths bounce: the MIS weights of later vertices use their own picks). Picked by power
-    // alone, a floor point mostly samples lamps far away; weighed by 1 / d^2
-    // (delegate/lightPick.h) it samples the ones next to it.
+namespace {
+
+// side x side sphere lamps (radius 0.3, three strengths) 0.6 above a Lambertian floor on a grid
+// of the given pitch centred on the origin, seen from above by an orthographic camera of the
+// given width, with a dim dome and a white wall across the middle (so paths bounce: the MIS
+// weights of later vertices use their own picks).
+std::string lampGridScene(int side, double pitch, double width) {
     std::string lamps = R"(def DomeLight "Sky"
 {
     float inputs:intensity = 0.05
@@ -184,11 +185,12 @@ def Mesh "Wall"
     uniform token subdivisionScheme = "none"
     int[] faceVertexCounts = [4]
     int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-10, 0, 0.5), (10, 0, 0.5), (10, 1.5, 0.5), (-10, 1.5, 0.5)]
+    point3f[] points = [(-100, 0, 0.5), (100, 0, 0.5), (100, 1.5, 0.5), (-100, 1.5, 0.5)]
     uniform bool doubleSided = 1
 }
 )";
-    for (int k = 0; k < 16; ++k) {
+    const double first = -0.5 * pitch * (side - 1);
+    for (int k = 0; k < side * side; ++k) {
         char buf[512];
         std::snprintf(buf, sizeof buf, R"(def SphereLight "L%d"
 {
@@ -198,16 +200,29 @@ def Mesh "Wall"
     uniform token[] xformOpOrder = ["xformOp:translate"]
 }
 )",
-                      k, 20 * (1 + k % 3), -7.5 + 5.0 * (k / 4), -7.5 + 5.0 * (k % 4));
+                      k, 20 * (1 + k % 3), first + pitch * (k / side), first + pitch * (k % side));
         lamps += buf;
     }
-    const std::string usda = std::string(R"(#usda 1.0
+    char camera[512];
+    std::snprintf(camera, sizeof camera, R"(def Camera "Cam"
+{
+    token projection = "orthographic"
+    float horizontalAperture = %g
+    float verticalAperture = %g
+    float2 clippingRange = (0.001, 1000)
+    double3 xformOp:translate = (0, 20, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)",
+                  width * 10.0, width * 10.0);  // apertures in tenths of a scene unit
+    return std::string(R"(#usda 1.0
 def Mesh "Floor" (prepend apiSchemas = ["MaterialBindingAPI"])
 {
     uniform token subdivisionScheme = "none"
     int[] faceVertexCounts = [4]
     int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
+    point3f[] points = [(-100, 0, -100), (-100, 0, 100), (100, 0, 100), (100, 0, -100)]
     rel material:binding = </Mat>
 }
 def Material "Mat"
@@ -221,17 +236,12 @@ def Material "Mat"
         token outputs:surface
     }
 }
-def Camera "Cam"
-{
-    token projection = "orthographic"
-    float horizontalAperture = 200
-    float verticalAperture = 200
-    float2 clippingRange = (0.001, 1000)
-    double3 xformOp:translate = (0, 20, 0)
-    float xformOp:rotateX = -90
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+)") + camera + lamps;
 }
-)") + lamps;
+
+// The spatial pick against the power-only pick on a lamp grid: the same image mean, and per-pixel
+// variance at most maxVarianceRatio of the power-only pick's.
+void expectSpatialPickKeepsTheMeanAndCutsTheNoise(const std::string& usda, double maxVarianceRatio) {
     // The image's red values (32 x 32) for a seed, spp and pick.
     auto image = [&](int spp, int seed, const char* spatial) {
         host::SessionOptions o;
@@ -269,7 +279,22 @@ def Camera "Cam"
         return sum;
     };
     const double spatialVar = variance("1"), globalVar = variance("0");
-    EXPECT_LT(spatialVar, 0.2 * globalVar) << "spatial " << spatialVar << ", by power " << globalVar;
+    EXPECT_LT(spatialVar, maxVarianceRatio * globalVar) << "spatial " << spatialVar << ", by power " << globalVar;
+}
+
+}  // namespace
+
+TEST(Lights, SpatialPickKeepsTheMeanAndCutsTheNoiseAmongManyLamps) {
+    // Sixteen lamps on a 4 x 4 grid of pitch 5. Picked by power alone, a floor point mostly
+    // samples lamps far away; weighed by 1 / d^2 (delegate/lightPick.h) it samples the ones next
+    // to it.
+    expectSpatialPickKeepsTheMeanAndCutsTheNoise(lampGridScene(4, 5.0, 20.0), 0.2);
+}
+
+TEST(Lights, TreePickKeepsTheMeanAndCutsTheNoiseAmongHundredsOfLamps) {
+    // 144 lamps (12 x 12, pitch 4): more than LightPick::kMaxLights, so the local lamps are
+    // picked through a LightTree (delegate/lightTree.h); the camera sees the middle 20 x 20.
+    expectSpatialPickKeepsTheMeanAndCutsTheNoise(lampGridScene(12, 4.0, 20.0), 0.1);
 }
 
 TEST(Lights, MisWeightsOfLightsBehindAPartlyPresentSheetAreTakenFromTheVertex) {

@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "delegate/lightTree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace principled::embree {
+
+LightTree::LightTree(std::vector<Item> items, float sceneRadius2) : _sceneRadius2(sceneRadius2) {
+    if (items.empty()) return;
+    uint32_t maxLight = 0;
+    for (const Item& it : items) maxLight = std::max(maxLight, it.light);
+    _leafOf.assign(size_t(maxLight) + 1, -1);
+    _nodes.reserve(2 * items.size() - 1);  // no reallocation: build() keeps node references
+    _nodes.push_back(Node{});
+    _nodes[0].parent = -1;
+    build(items, 0, items.size(), 0);
+}
+
+void LightTree::build(std::vector<Item>& items, size_t begin, size_t end, int32_t self) {
+    // `self` is allocated (and its parent set) by the caller: siblings side by side.
+    if (end - begin == 1) {
+        const Item& it = items[begin];
+        Node& n = _nodes[size_t(self)];
+        n.center = it.center;
+        n.radius2 = it.radius2;
+        const float r = std::sqrt(it.radius2);
+        n.lo = it.center - r;
+        n.hi = it.center + r;
+        n.floor2 = it.radius2;  // inner nodes: the least of their lights'
+
+        n.power = it.power;
+        n.left = -1;
+        n.light = it.light;
+        _leafOf[it.light] = self;
+        return;
+    }
+    // Split at the median along the longest axis of the centres' bounds.
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (size_t i = begin; i < end; ++i) {
+        lo = glm::min(lo, items[i].center);
+        hi = glm::max(hi, items[i].center);
+    }
+    const glm::vec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const size_t mid = begin + (end - begin) / 2;
+    std::nth_element(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(mid),
+                     items.begin() + std::ptrdiff_t(end),
+                     [axis](const Item& a, const Item& b) { return a.center[axis] < b.center[axis]; });
+    const int32_t left = int32_t(_nodes.size());
+    _nodes.resize(_nodes.size() + 2);
+    _nodes[size_t(left)].parent = _nodes[size_t(left) + 1].parent = self;
+    build(items, begin, mid, left);
+    build(items, mid, end, left + 1);
+    // The cluster's box holds both children's; its sphere is around the box.
+    const Node& a = _nodes[size_t(left)];
+    const Node& b = _nodes[size_t(left) + 1];
+    Node& n = _nodes[size_t(self)];
+    n.lo = glm::min(a.lo, b.lo);
+    n.hi = glm::max(a.hi, b.hi);
+    n.center = 0.5f * (n.lo + n.hi);
+    const float diagonal2 = glm::dot(n.hi - n.lo, n.hi - n.lo);
+    n.radius2 = 0.25f * diagonal2;
+    n.floor2 = std::min(a.floor2, b.floor2);  // > 0: every light's radius^2 is
+    n.power = _nodes[size_t(left)].power + _nodes[size_t(left) + 1].power;
+    n.left = left;
+    n.light = 0;
+}
+
+float LightTree::sphereWeight(const Node& n, const glm::vec3& p) const {
+    const glm::vec3 d = n.center - p;
+    const float w = n.power * (_sceneRadius2 / std::max(glm::dot(d, d), n.radius2));
+    return std::isfinite(w) ? w : n.power;
+}
+
+float LightTree::weight(const Node& n, const glm::vec3& p) const {
+    const glm::vec3 d = glm::max(glm::max(n.lo - p, p - n.hi), glm::vec3(0.0f));  // to the box
+    const float w = n.power * (_sceneRadius2 / std::max(glm::dot(d, d), n.floor2));
+    return std::isfinite(w) ? w : n.power;
+}
+
+bool LightTree::segmentMeetsBox(const Node& n, const glm::vec3& o, const glm::vec3& d, float tmax) {
+    // Slabs (Kay & Kajiya 1986, "Ray Tracing Complex Scenes", section 3), padded by a relative
+    // 1e-5 so that rounding cannot drop an emitter the exact test would hit.
+    float t0 = 0.0f, t1 = tmax;
+    for (int a = 0; a < 3; ++a) {
+        const float pad = 1e-5f * (n.hi[a] - n.lo[a]) + 1e-7f * std::abs(o[a]);
+        const float lo = n.lo[a] - pad, hi = n.hi[a] + pad;
+        if (d[a] == 0.0f) {
+            if (o[a] < lo || o[a] > hi) return false;
+            continue;
+        }
+        const float inv = 1.0f / d[a];
+        float ta = (lo - o[a]) * inv, tb = (hi - o[a]) * inv;
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb * 1.00001f);
+        if (!(t0 <= t1)) return false;
+    }
+    return true;
+}
+
+float LightTree::leftChance(const Node& n, const glm::vec3& p) const {
+    const Node& a = _nodes[size_t(n.left)];
+    const Node& b = _nodes[size_t(n.left) + 1];
+    const float wa = weight(a, p), wb = weight(b, p);
+    const float sum = wa + wb;
+    // Weights are positive and finite; a sum that is not (overflow) falls back to power.
+    return sum > 0.0f && std::isfinite(sum) ? wa / sum : a.power / (a.power + b.power);
+}
+
+float LightTree::rootWeight(const glm::vec3& p) const { return _nodes.empty() ? 0.0f : sphereWeight(_nodes[0], p); }
+
+uint32_t LightTree::pick(const glm::vec3& p, float u) const {
+    size_t n = 0;
+    while (_nodes[n].left >= 0) {
+        const float a = leftChance(_nodes[n], p);
+        if (u < a) {
+            u = u / a;
+            n = size_t(_nodes[n].left);
+        } else {
+            u = (u - a) / (1.0f - a);
+            n = size_t(_nodes[n].left) + 1;
+        }
+        u = std::min(std::max(u, 0.0f), 0.99999994f);  // the rescaled u stays in [0, 1)
+    }
+    return _nodes[n].light;
+}
+
+float LightTree::probability(uint32_t light, const glm::vec3& p) const {
+    if (light >= _leafOf.size() || _leafOf[light] < 0) return 0.0f;
+    int32_t n = _leafOf[light];
+    float prob = 1.0f;
+    while (_nodes[size_t(n)].parent >= 0) {
+        const Node& parent = _nodes[size_t(_nodes[size_t(n)].parent)];
+        const float a = leftChance(parent, p);
+        prob *= n == parent.left ? a : 1.0f - a;
+        n = _nodes[size_t(n)].parent;
+    }
+    return prob;
+}
+
+}  // namespace principled::embree

@@ -402,13 +402,24 @@ bool intersectUnshaped(const LightRecord& l, const glm::vec3& o, const glm::vec3
 }  // namespace
 
 float lightBoundingRadius(const LightRecord& l) {
+    // A rect or disk placed by a shearing transform (a non-uniform scale above a rotation) has
+    // axes that are not perpendicular to each other or to its normal; the region the exact
+    // intersection accepts is then not held by these spheres: unbounded.
+    auto sheared = [&l]() {
+        const glm::vec3 u = glm::normalize(l.axisU), v = glm::normalize(l.axisV);
+        const float tolerance = 1e-4f;
+        return !(std::abs(glm::dot(u, v)) <= tolerance && std::abs(glm::dot(u, l.normal)) <= tolerance &&
+                 std::abs(glm::dot(v, l.normal)) <= tolerance);
+    };
     switch (l.kind) {
         case LightRecord::Kind::Sphere:
         case LightRecord::Kind::Mesh:
             return l.radius;
         case LightRecord::Kind::Rect:  // axisU, axisV: half extents
+            if (sheared()) return INFINITY;
             return std::sqrt(glm::dot(l.axisU, l.axisU) + glm::dot(l.axisV, l.axisV));
         case LightRecord::Kind::Disk:
+            if (sheared()) return INFINITY;
             return std::max(glm::length(l.axisU), glm::length(l.axisV));
         case LightRecord::Kind::Cylinder:  // axisU: half the length
             return std::sqrt(glm::dot(l.axisU, l.axisU) + l.radius * l.radius);

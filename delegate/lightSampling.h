@@ -43,7 +43,8 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::ve
 bool isAreaLight(const LightRecord& l);
 
 /// The radius of a sphere around l.center that holds the whole emitter (sphere, rect, disk,
-/// cylinder, mesh); 0 for point, distant and dome lights.
+/// cylinder, mesh); 0 for point, distant and dome lights; infinite for a rect or disk whose axes a
+/// shearing transform left oblique (no finite sphere holds what intersectAreaLight() accepts).
 float lightBoundingRadius(const LightRecord& l);
 
 /// A point of area light l (sphere, rect, disk, cylinder, mesh) uniform in its area from two

@@ -540,7 +540,7 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
         {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
         {"MIS compensation", Token("misCompensation"), Value(1), "with MIS, a textured dome light samples only what lies above its mean radiance; BSDF sampling takes the rest (0: the whole map)"},
-        {"Spatial light pick", Token("spatialLightPick"), Value(1), "with more lights than neeAllLights (up to 64), next-event estimation weighs each light's power by 1 / distance^2 from the point (0: by power alone)"},
+        {"Spatial light pick", Token("spatialLightPick"), Value(1), "with more lights than neeAllLights, next-event estimation weighs each light's power by 1 / distance^2 from the point (beyond 64 lights through a light tree; 0: by power alone)"},
         {"NEE all lights", Token("neeAllLights"), Value(4), "next-event estimation samples every light when the scene has at most this many (0: always pick one)"},
         {"Light pick uniform", Token("lightPickUniform"), Value(0.1f), "next-event estimation light pick: this fraction uniform, the rest by power"},
         {"Light solid angle", Token("lightSolidAngle"), Value(1), "small mesh lights (<= 8 triangles) sampled by solid angle (Arvo 1995); 0: by area"},

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "delegate/lightSampling.h"
 #include "delegate/lightTree.h"
 
 using namespace principled::embree;
@@ -83,4 +84,23 @@ TEST(LightTree, RaysFindEverySphereTheyCrossAmongTheCandidates) {
         }
     }
     EXPECT_GT(crossings, 1000);
+}
+
+TEST(LightTree, ShearedRectAndDiskLightsHaveNoFiniteBound) {
+    // The trees hold lights by lightBoundingRadius(); a rect under a shearing transform (axes
+    // not perpendicular) reaches beyond sqrt(|U|^2 + |V|^2), so it must stay out of them.
+    LightRecord rect;
+    rect.kind = LightRecord::Kind::Rect;
+    rect.axisU = glm::vec3(1, 0, 0);
+    rect.axisV = glm::vec3(0, 2, 0);
+    rect.normal = glm::vec3(0, 0, -1);
+    EXPECT_NEAR(lightBoundingRadius(rect), std::sqrt(5.0f), 1e-6f);
+    rect.axisV = glm::vec3(1, 1, 0);  // 45 degrees to U
+    EXPECT_TRUE(std::isinf(lightBoundingRadius(rect)));
+    LightRecord disk = rect;
+    disk.kind = LightRecord::Kind::Disk;
+    EXPECT_TRUE(std::isinf(lightBoundingRadius(disk)));
+    disk.axisV = glm::vec3(0, 1, 0);
+    disk.normal = glm::normalize(glm::vec3(0, 1, -1));  // normal not perpendicular to V
+    EXPECT_TRUE(std::isinf(lightBoundingRadius(disk)));
 }

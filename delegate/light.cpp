@@ -200,8 +200,10 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
             auto authored = [&](const char* name) {
                 return getFloat(delegate->getLightParamValue(id(), Token(name))).has_value();
             };
+            const auto iesFile = getString(delegate->getLightParamValue(id(), Token("shaping:ies:file")));
+            const bool iesAuthored = iesFile && !iesFile->empty();
             if (authored("shaping:cone:angle") || authored("shaping:cone:softness") ||
-                authored("shaping:focus")) {
+                authored("shaping:focus") || iesAuthored) {
                 LightShaping& sh = _record.shaping;
                 sh.enabled = true;
                 sh.axis = _record.normal;
@@ -211,6 +213,24 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 sh.focusTint = finiteNonNegative(
                     getVec3(delegate->getLightParamValue(id(), Token("shaping:focusTint")))
                         .value_or(glm::vec3(0.0f)));
+                if (iesAuthored) {
+                    std::string error;
+                    sh.ies = loadIes(*iesFile, &error);
+                    if (!sh.ies) param->warn(id(), error + "; the light emits without its IES profile");
+                    const float angleScale = scalar("shaping:ies:angleScale", 0.0f);
+                    sh.iesAngleScale = angleScale > -1.0f ? angleScale : 0.0f;
+                    if (!(angleScale > -1.0f))
+                        param->warn(id(), "shaping:ies:angleScale must be greater than -1; 0 used");
+                    // Unnormalized, the profile's peak is the light's authored radiance; with
+                    // ies:normalize, its mean over the sphere is (the power stays the light's).
+                    const bool iesNormalize = scalar("shaping:ies:normalize", 0.0f) > 0.5f;
+                    if (sh.ies)
+                        sh.iesScale = 1.0f / (iesNormalize ? sh.ies->meanCandela : sh.ies->maxCandela);
+                    // Horizontal angle 0 along the light's +X, made orthogonal to the axis.
+                    glm::vec3 t = vector(xf, 1, 0, 0);
+                    t -= glm::dot(t, sh.axis) * sh.axis;
+                    sh.tangent = glm::length(t) > 0.0f ? glm::normalize(t) : glm::vec3(1, 0, 0);
+                }
             }
             // normalize: the power no longer depends on the size (divide by the world area).
             _record.radiance = normalize && _record.area > 0.0f ? scaled / _record.area : scaled;

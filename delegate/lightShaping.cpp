@@ -25,6 +25,15 @@ glm::vec3 shapingFactor(const LightShaping& s, const glm::vec3& w) {
         float f = std::pow(std::max(0.0f, c), s.focus);
         focus = s.focusTint + (glm::vec3(1.0f) - s.focusTint) * f;
     }
+    if (s.ies) {
+        constexpr float kPi = 3.14159265358979323846f;
+        const float theta = (std::acos(c) - kPi) / (1.0f + s.iesAngleScale) + kPi;
+        if (!(theta >= 0.0f)) return glm::vec3(0.0f);
+        // Local +Y of the light: its -Z (the axis) crossed with +X is -Y, so +Y = tangent x axis.
+        const glm::vec3 bitangent = glm::cross(s.tangent, s.axis);
+        const float phi = std::atan2(glm::dot(w, bitangent), glm::dot(w, s.tangent)) * (180.0f / kPi);
+        focus *= s.ies->evaluate(theta * (180.0f / kPi), phi) * s.iesScale;
+    }
     return cone * focus;
 }
 

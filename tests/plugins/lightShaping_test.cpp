@@ -4,7 +4,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
+
+#include <unistd.h>
 
 #include "delegate/lightShaping.h"
 #include "plugins/renderSession.h"
@@ -78,4 +82,32 @@ TEST(LightShaping, ShapedSphereLightOnAPlane) {
     // focus 2 (cone fallback 90 degrees): cos^2 of the off-axis angle.
     double focused = shaped("float inputs:shaping:focus = 2");
     EXPECT_NEAR(focused, unshaped * std::cos(th) * std::cos(th), 0.02 * unshaped);
+}
+
+TEST(LightShaping, IesProfileShapesTheSphereLightOnAPlane) {
+    // The same set-up; the point seen is 22.5 degrees off the axis, toward the light's local -X
+    // (the light at +x0, aimed down by rotateX -90, keeps world +X as its +X): horizontal angle
+    // 180. The profile's plane 180 falls from 100 cd on the axis to 50 at 45 degrees and 0 at 90;
+    // every other plane is a fifth of that, so a wrong azimuth reads 0.2 of the expected factor.
+    double a = 0.5, h = 3.0, R = 0.05, L = 4000.0, th = 22.5 * kDeg;
+    double x0 = h * std::tan(th), d = h / std::cos(th);
+    double unshaped = a * L * (R / d) * (R / d) * std::cos(th);
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / ("principled_ies_" + std::to_string(::getpid()) + ".ies");
+    std::ofstream(file) << "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 4 5 1 2 0 0 0\n1 1 10\n0 45 90 180\n"
+                           "0 90 180 270 360\n20 10 0 0\n20 10 0 0\n100 50 0 0\n20 10 0 0\n20 10 0 0\n";
+    auto shaped = [&](const std::string& more) {
+        return render(scene(a, x0, h, R, L, "asset inputs:shaping:ies:file = @" + file.string() + "@\n    " + more));
+    };
+    // Unnormalized, the profile's peak (100 cd) is the light's own radiance: 75 / 100 here.
+    EXPECT_NEAR(shaped(""), 0.75 * unshaped, 0.02 * unshaped);
+    // Normalized, its mean over the sphere is. Plane 180 holds a quarter of the azimuths by the
+    // bilinear rule (it fades to the neighbouring planes over 90 degrees each way): the mean is
+    // the axial profile's, 100 (1 - 2/pi) / 2 on the hemisphere, times (1/4 + 3/4 * 1/5).
+    const double mean = 100.0 * (1.0 - 2.0 / kPi) / 2.0 * (0.25 + 0.75 * 0.2);
+    EXPECT_NEAR(shaped("bool inputs:shaping:ies:normalize = 1"), 75.0 / mean * unshaped, 0.03 * 75.0 / mean * unshaped);
+    // angleScale 0.1: theta_ies = (22.5 - 180) / 1.1 + 180 = 36.82 degrees, I = 59.09 cd.
+    const double scaled = 100.0 - 50.0 * ((22.5 - 180.0) / 1.1 + 180.0) / 45.0;
+    EXPECT_NEAR(shaped("float inputs:shaping:ies:angleScale = 0.1"), scaled / 100.0 * unshaped, 0.02 * unshaped);
+    std::filesystem::remove(file);
 }

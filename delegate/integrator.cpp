@@ -477,6 +477,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     // The light pick at the vertex the current ray left (for the MIS weights of lights it hits).
     glm::vec3 prevP(0.0f);
     float prevPickTotal = 0.0f;
+    glm::vec3 prevPickNormal(0.0f);
     // The ray has passed through a partly present surface since prevP (camera rays aside): its
     // origin is no longer the vertex whose light sampling the MIS weights must match.
     bool passedThrough = false;
@@ -524,7 +525,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 // the ray from prevP meets it at the same point).
                 glm::vec3 LeFromVertex;
                 if (passedThrough && !intersectAreaLight(light, prevP, ray.direction, kInf, &LeFromVertex, &pdf)) pdf = 0.0f;
-                addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickTotal), li);
+                addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickNormal, prevPickTotal), li);
             }
         };
         // Not every light: a scene may hold thousands of mesh lights (hit as geometry), and
@@ -542,7 +543,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::vec3 Le;
                 float pdf;
                 if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf, compensate))
-                    addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickTotal), li);
+                    addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickNormal, prevPickTotal), li);
             }
             break;
         }
@@ -580,7 +581,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             if (ml) {
                 const glm::vec3 from = passedThrough ? prevP : ray.origin;
                 const float distance = passedThrough ? glm::length(hit.p - prevP) : hit.t;
-                lightPdf = _lightPick.probability(uint32_t(ml - lights.data()), prevP, prevPickTotal) *
+                lightPdf = _lightPick.probability(uint32_t(ml - lights.data()), prevP, prevPickNormal, prevPickTotal) *
                            meshLightPdf(*ml, from, distance, glm::dot(ray.direction, hit.ng));
             }
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
@@ -664,9 +665,12 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // positive and finite falls back to the global pick, here and in the MIS weights.
         float pickWeights[LightPick::kMaxLights];
         float pickTotal = 0.0f;
+        // Lights wholly behind the surface cannot light it unless it transmits (NEE then samples
+        // both sides): the pick leaves them out (delegate/lightPick.h).
+        const glm::vec3 pickNormal = neeThrough ? glm::vec3(0.0f) : hit.ng;
         bool spatialPick = _lightPick.spatial() && _settings.nee && !bsdf.isDeltaOnly();
         if (spatialPick) {
-            pickTotal = _lightPick.weigh(hit.p, pickWeights);
+            pickTotal = _lightPick.weigh(hit.p, pickNormal, pickWeights);
             spatialPick = pickTotal > 0.0f && std::isfinite(pickTotal);
             if (!spatialPick) pickTotal = 0.0f;
         }
@@ -674,9 +678,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             glm::vec2 u = sampler.next2D();  // dimensions (0, 1) of a fresh Sobol group
             float ul = sampler.next1D();      // dimension 2: the pick, stratified with u
             const size_t li = _scene.neeAllLights ? nee
-                              : spatialPick       ? _lightPick.pick(hit.p, pickWeights, pickTotal, ul)
+                              : spatialPick       ? _lightPick.pick(hit.p, pickNormal, pickWeights, pickTotal, ul)
                                                   : _lightPick.globalPick(ul);
-            const float lightPick = _lightPick.probability(uint32_t(li), hit.p, pickTotal);
+            const float lightPick = _lightPick.probability(uint32_t(li), hit.p, pickNormal, pickTotal);
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate) && ls.pdf > 0.0f &&
                 lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough) &&
@@ -764,6 +768,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         prevNg = hit.ng;
         prevP = hit.p;
         prevPickTotal = pickTotal;
+        prevPickNormal = pickNormal;
         passedThrough = false;
         ray.origin = offsetOrigin(hit, wi);
         ray.direction = wi;

@@ -69,13 +69,21 @@ void LightTree::build(std::vector<Item>& items, size_t begin, size_t end, int32_
     n.light = 0;
 }
 
-float LightTree::sphereWeight(const Node& n, const glm::vec3& p) const {
+bool LightTree::behind(const Node& n, const glm::vec3& p, const glm::vec3& nrm) {
+    // The box's farthest extent along nrm (centre plus half extents weighed by |nrm|).
+    const glm::vec3 c = 0.5f * (n.lo + n.hi), e = 0.5f * (n.hi - n.lo);
+    return glm::dot(c - p, nrm) + glm::dot(e, glm::abs(nrm)) < 0.0f;
+}
+
+float LightTree::sphereWeight(const Node& n, const glm::vec3& p, const glm::vec3& nrm) const {
+    if (behind(n, p, nrm)) return 0.0f;
     const glm::vec3 d = n.center - p;
     const float w = n.power * (_sceneRadius2 / std::max(glm::dot(d, d), n.radius2));
     return std::isfinite(w) ? w : n.power;
 }
 
-float LightTree::weight(const Node& n, const glm::vec3& p) const {
+float LightTree::weight(const Node& n, const glm::vec3& p, const glm::vec3& nrm) const {
+    if (behind(n, p, nrm)) return 0.0f;
     const glm::vec3 d = glm::max(glm::max(n.lo - p, p - n.hi), glm::vec3(0.0f));  // to the box
     const float w = n.power * (_sceneRadius2 / std::max(glm::dot(d, d), n.floor2));
     return std::isfinite(w) ? w : n.power;
@@ -102,21 +110,23 @@ bool LightTree::segmentMeetsBox(const Node& n, const glm::vec3& o, const glm::ve
     return true;
 }
 
-float LightTree::leftChance(const Node& n, const glm::vec3& p) const {
+float LightTree::leftChance(const Node& n, const glm::vec3& p, const glm::vec3& nrm) const {
     const Node& a = _nodes[size_t(n.left)];
     const Node& b = _nodes[size_t(n.left) + 1];
-    const float wa = weight(a, p), wb = weight(b, p);
+    const float wa = weight(a, p, nrm), wb = weight(b, p, nrm);
     const float sum = wa + wb;
     // Weights are positive and finite; a sum that is not (overflow) falls back to power.
     return sum > 0.0f && std::isfinite(sum) ? wa / sum : a.power / (a.power + b.power);
 }
 
-float LightTree::rootWeight(const glm::vec3& p) const { return _nodes.empty() ? 0.0f : sphereWeight(_nodes[0], p); }
+float LightTree::rootWeight(const glm::vec3& p, const glm::vec3& n) const {
+    return _nodes.empty() ? 0.0f : sphereWeight(_nodes[0], p, n);
+}
 
-uint32_t LightTree::pick(const glm::vec3& p, float u) const {
+uint32_t LightTree::pick(const glm::vec3& p, float u, const glm::vec3& nrm) const {
     size_t n = 0;
     while (_nodes[n].left >= 0) {
-        const float a = leftChance(_nodes[n], p);
+        const float a = leftChance(_nodes[n], p, nrm);
         if (u < a) {
             u = u / a;
             n = size_t(_nodes[n].left);
@@ -129,13 +139,13 @@ uint32_t LightTree::pick(const glm::vec3& p, float u) const {
     return _nodes[n].light;
 }
 
-float LightTree::probability(uint32_t light, const glm::vec3& p) const {
+float LightTree::probability(uint32_t light, const glm::vec3& p, const glm::vec3& nrm) const {
     if (light >= _leafOf.size() || _leafOf[light] < 0) return 0.0f;
     int32_t n = _leafOf[light];
     float prob = 1.0f;
     while (_nodes[size_t(n)].parent >= 0) {
         const Node& parent = _nodes[size_t(_nodes[size_t(n)].parent)];
-        const float a = leftChance(parent, p);
+        const float a = leftChance(parent, p, nrm);
         prob *= n == parent.left ? a : 1.0f - a;
         n = _nodes[size_t(n)].parent;
     }

@@ -39,12 +39,14 @@ public:
     bool empty() const { return _nodes.empty(); }
     size_t nodeCount() const { return _nodes.size(); }
     bool contains(uint32_t light) const { return light < _leafOf.size() && _leafOf[light] >= 0; }
-    /// The root's weight at p: the whole tree as one cluster.
-    float rootWeight(const glm::vec3& p) const;
-    /// The light for u in [0, 1), with probability probability(light, p).
-    uint32_t pick(const glm::vec3& p, float u) const;
-    /// The chance that pick(p, u) returns this light over u uniform; 0 for a light not in the tree.
-    float probability(uint32_t light, const glm::vec3& p) const;
+    /// The root's weight at p: the whole tree as one cluster. n: the receiver's normal (the side
+    /// light may arrive from) or 0; a node whose box lies wholly behind that plane weighs 0.
+    float rootWeight(const glm::vec3& p, const glm::vec3& n = glm::vec3(0.0f)) const;
+    /// The light for u in [0, 1), with probability probability(light, p, n).
+    uint32_t pick(const glm::vec3& p, float u, const glm::vec3& n = glm::vec3(0.0f)) const;
+    /// The chance that pick(p, u, n) returns this light over u uniform; 0 for a light not in the
+    /// tree.
+    float probability(uint32_t light, const glm::vec3& p, const glm::vec3& n = glm::vec3(0.0f)) const;
     /// Calls f(light) for every light whose box the segment o + t d, 0 <= t <= tmax, meets: a
     /// superset of the emitters the ray reaches, for the caller to intersect exactly.
     template <class F>
@@ -78,12 +80,13 @@ private:
     };
     void build(std::vector<Item>& items, size_t begin, size_t end, int32_t self);
     /// The root's weight: by the distance to its bounding sphere's centre.
-    float sphereWeight(const Node& n, const glm::vec3& p) const;
+    float sphereWeight(const Node& n, const glm::vec3& p, const glm::vec3& nrm) const;
     /// The weight of a node below the root, by the distance to its box (see the file comment).
-    float weight(const Node& n, const glm::vec3& p) const;
+    float weight(const Node& n, const glm::vec3& p, const glm::vec3& nrm) const;
+    static bool behind(const Node& n, const glm::vec3& p, const glm::vec3& nrm);
     static bool segmentMeetsBox(const Node& n, const glm::vec3& o, const glm::vec3& d, float tmax);
     /// The chance the descent at interior node n goes to its first child.
-    float leftChance(const Node& n, const glm::vec3& p) const;
+    float leftChance(const Node& n, const glm::vec3& p, const glm::vec3& nrm) const;
 
     std::vector<Node> _nodes;
     std::vector<int32_t> _leafOf;  ///< per light index: its leaf, or -1

@@ -175,7 +175,8 @@ namespace {
 // of the given pitch centred on the origin, seen from above by an orthographic camera of the
 // given width, with a dim dome and a white wall across the middle (so paths bounce: the MIS
 // weights of later vertices use their own picks).
-std::string lampGridScene(int side, double pitch, double width) {
+// With coneDeg > 0 the lamps are spot lights aimed straight down from `height` (ShapingAPI cone).
+std::string lampGridScene(int side, double pitch, double width, double coneDeg = 0.0, double height = 0.6) {
     std::string lamps = R"(def DomeLight "Sky"
 {
     float inputs:intensity = 0.05
@@ -191,16 +192,29 @@ def Mesh "Wall"
 )";
     const double first = -0.5 * pitch * (side - 1);
     for (int k = 0; k < side * side; ++k) {
-        char buf[512];
-        std::snprintf(buf, sizeof buf, R"(def SphereLight "L%d"
+        char buf[768];
+        if (coneDeg > 0.0)
+            std::snprintf(buf, sizeof buf, R"(def SphereLight "L%d" (prepend apiSchemas = ["ShapingAPI"])
 {
     float inputs:radius = 0.3
     float inputs:intensity = %d
-    double3 xformOp:translate = (%g, 0.6, %g)
+    float inputs:shaping:cone:angle = %g
+    double3 xformOp:translate = (%g, %g, %g)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)",
+                          k, 20 * (1 + k % 3), coneDeg, first + pitch * (k / side), height, first + pitch * (k % side));
+        else
+            std::snprintf(buf, sizeof buf, R"(def SphereLight "L%d"
+{
+    float inputs:radius = 0.3
+    float inputs:intensity = %d
+    double3 xformOp:translate = (%g, %g, %g)
     uniform token[] xformOpOrder = ["xformOp:translate"]
 }
 )",
-                      k, 20 * (1 + k % 3), first + pitch * (k / side), first + pitch * (k % side));
+                          k, 20 * (1 + k % 3), first + pitch * (k / side), height, first + pitch * (k % side));
         lamps += buf;
     }
     char camera[512];
@@ -295,6 +309,14 @@ TEST(Lights, TreePickKeepsTheMeanAndCutsTheNoiseAmongHundredsOfLamps) {
     // 144 lamps (12 x 12, pitch 4): more than LightPick::kMaxLights, so the local lamps are
     // picked through a LightTree (delegate/lightTree.h); the camera sees the middle 20 x 20.
     expectSpatialPickKeepsTheMeanAndCutsTheNoise(lampGridScene(12, 4.0, 20.0), 0.1);
+}
+
+TEST(Lights, SpotsWhoseConesMissThePointAreNotPicked) {
+    // Sixteen spots 3 above the floor, cones of 25 degrees: each floor point lies in at most one
+    // cone. Weighed by 1 / d^2 alone, the pick spends most samples on the nearest spots whose
+    // cones miss the point; the reach test (delegate/lightPick.h) gives those weight 0.
+    // Measured: 0.0046 of the power pick's variance, 0.022 without the cone test.
+    expectSpatialPickKeepsTheMeanAndCutsTheNoise(lampGridScene(4, 5.0, 20.0, 25.0, 3.0), 0.01);
 }
 
 TEST(Lights, MisWeightsOfLightsBehindAPartlyPresentSheetAreTakenFromTheVertex) {

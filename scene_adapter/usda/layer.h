@@ -46,6 +46,8 @@ struct Reference {
         return assetPath == o.assetPath && primPath == o.primPath;
     }
 };
+/// A reference's identity in list operations (ListOp): its asset and prim path.
+inline std::string listOpKey(const Reference& r) { return r.assetPath + '\n' + r.primPath; }
 
 /// A path-valued list item (inherits, specializes, targets, connections) with its location.
 struct PathItem {
@@ -53,6 +55,7 @@ struct PathItem {
     SourceLocation location;
     bool operator==(const PathItem& o) const { return path == o.path; }
 };
+inline const std::string& listOpKey(const PathItem& p) { return p.path; }
 
 enum class Specifier { Def, Over, Class };
 enum class Variability { Varying, Uniform, Config };

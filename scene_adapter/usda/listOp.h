@@ -5,9 +5,16 @@
 #pragma once
 
 #include <algorithm>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace principled::usd {
+
+/// The identity of a list item (two items with equal keys are the same item); other item types
+/// give theirs by an overload found by argument-dependent lookup (layer.h).
+inline const std::string& listOpKey(const std::string& s) { return s; }
 
 enum class ListOpKind { Explicit, Add, Prepend, Append, Delete, Reorder };
 
@@ -48,35 +55,51 @@ struct ListOp {
     }
 
     /// Applies this (stronger) opinion on top of `list`, the result of the weaker ones, in Sdf's
-    /// order: delete, add, prepend, append, reorder.
+    /// order: delete, add, prepend, append, reorder. Linear in the items (hash sets of their
+    /// keys): a relationship may list a hundred thousand targets.
     void applyTo(std::vector<T>& list) const {
-        auto remove = [&list](const T& item) {
-            list.erase(std::remove(list.begin(), list.end(), item), list.end());
+        using Keys = std::unordered_set<std::string>;
+        auto keysOf = [](const std::vector<T>& items) {
+            Keys k;
+            k.reserve(items.size());
+            for (const T& item : items) k.insert(listOpKey(item));
+            return k;
         };
-        auto contains = [&list](const T& item) {
-            return std::find(list.begin(), list.end(), item) != list.end();
+        auto removeAll = [&list](const Keys& keys) {
+            if (keys.empty()) return;
+            list.erase(std::remove_if(list.begin(), list.end(),
+                                      [&keys](const T& item) { return keys.count(listOpKey(item)) > 0; }),
+                       list.end());
         };
-        if (isExplicit) {
+        if (isExplicit) {  // the first of repeated items stays
             list.clear();
+            Keys seen;
             for (const T& item : explicitItems)
-                if (!contains(item)) list.push_back(item);
+                if (seen.insert(listOpKey(item)).second) list.push_back(item);
             return;
         }
-        for (const T& item : deleted) remove(item);
-        for (const T& item : added)
-            if (!contains(item)) list.push_back(item);
-        if (!prepended.empty()) {
+        removeAll(keysOf(deleted));
+        if (!added.empty()) {
+            Keys present = keysOf(list);
+            for (const T& item : added)
+                if (present.insert(listOpKey(item)).second) list.push_back(item);
+        }
+        if (!prepended.empty()) {  // the first of repeated items stays, in front
             std::vector<T> front;
-            for (const T& item : prepended) {
-                if (std::find(front.begin(), front.end(), item) != front.end()) continue;
-                remove(item);
-                front.push_back(item);
-            }
+            Keys seen;
+            for (const T& item : prepended)
+                if (seen.insert(listOpKey(item)).second) front.push_back(item);
+            removeAll(seen);
             list.insert(list.begin(), front.begin(), front.end());
         }
-        for (const T& item : appended) {
-            remove(item);
-            list.push_back(item);
+        if (!appended.empty()) {  // each moves to the end in turn: the last of repeated items stays
+            std::vector<T> back;
+            Keys seen;
+            for (auto it = appended.rbegin(); it != appended.rend(); ++it)
+                if (seen.insert(listOpKey(*it)).second) back.push_back(*it);
+            std::reverse(back.begin(), back.end());
+            removeAll(seen);
+            list.insert(list.end(), back.begin(), back.end());
         }
         if (!ordered.empty()) reorder(list);
     }
@@ -85,23 +108,23 @@ private:
     /// Sdf reorder: each named item moves, in the given order, together with the unnamed items
     /// that follow it; items before every named one stay in front.
     void reorder(std::vector<T>& list) const {
-        std::vector<T> order;
+        std::vector<const T*> order;
+        std::unordered_set<std::string> named;
         for (const T& item : ordered)
-            if (std::find(order.begin(), order.end(), item) == order.end()) order.push_back(item);
-        auto named = [&order](const T& item) {
-            return std::find(order.begin(), order.end(), item) != order.end();
-        };
+            if (named.insert(listOpKey(item)).second) order.push_back(&item);
+        std::unordered_map<std::string, std::size_t> where;  // first position of each item
+        for (std::size_t i = list.size(); i-- > 0;) where[listOpKey(list[i])] = i;
         std::vector<bool> taken(list.size(), false);
         std::vector<T> runs;
-        for (const T& item : order) {
-            auto it = std::find(list.begin(), list.end(), item);
-            if (it == list.end()) continue;
-            std::size_t i = static_cast<std::size_t>(it - list.begin());
+        for (const T* item : order) {
+            auto it = where.find(listOpKey(*item));
+            if (it == where.end()) continue;
+            std::size_t i = it->second;
             do {
                 runs.push_back(list[i]);
                 taken[i] = true;
                 ++i;
-            } while (i < list.size() && !named(list[i]));
+            } while (i < list.size() && !named.count(listOpKey(list[i])));
         }
         std::vector<T> result;
         result.reserve(list.size());

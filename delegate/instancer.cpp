@@ -34,15 +34,13 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
                                              const glm::mat4& prototypeTransform,
                                              std::vector<std::string>* warnings) {
     std::vector<int> indices = delegate->getInstanceIndices(instancerId, prototypeId);
-    Value tv = delegate->get(instancerId, tokens::instanceTranslations());
-    Value rv = delegate->get(instancerId, tokens::instanceRotations());
-    Value sv = delegate->get(instancerId, tokens::instanceScales());
-    const auto* t = getIf<std::vector<glm::vec3>>(tv);
-    const auto* r = getIf<std::vector<glm::vec4>>(rv);
-    const auto* s = getIf<std::vector<glm::vec3>>(sv);
+    // Shared by every prototype of the instancer (no per-prototype copy of the arrays).
+    const std::shared_ptr<const InstancerArrays> arrays = delegate->getInstancerArrays(instancerId);
+    const auto* t = arrays->translations ? &*arrays->translations : nullptr;
+    const auto* r = arrays->rotations ? &*arrays->rotations : nullptr;
+    const auto* s = arrays->scales ? &*arrays->scales : nullptr;
     // Whole matrices per instance (native USD instancing), applied before scale.
-    Value xv = delegate->get(instancerId, tokens::instanceTransforms());
-    const auto* x = getIf<std::vector<glm::dmat4>>(xv);
+    const auto* x = arrays->transforms ? &*arrays->transforms : nullptr;
     size_t count = t ? t->size() : x ? x->size() : 0;
     if (x && x->size() != count) {
         warnings->push_back("instanceTransforms has the wrong length; ignored");

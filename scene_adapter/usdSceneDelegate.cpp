@@ -77,6 +77,7 @@ void UsdSceneDelegate::warn(const std::string& where, const std::string& message
 }
 
 void UsdSceneDelegate::populate(RenderIndex* index) {
+    invalidateInstancerCache();
     const usd::Prim* root = _stage.pseudoRoot();
     if (!root) return;
     for (const usd::Prim* child : root->children()) visit(*child, glm::dmat4(1.0), true, index);

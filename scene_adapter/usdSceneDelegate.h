@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -63,6 +64,7 @@ public:
     std::vector<std::pair<hd::Path, std::vector<int>>> getMaterialSubsets(
         const hd::Path& id) const override;
     hd::Path getInstancerId(const hd::Path& id) const override;
+    std::shared_ptr<const hd::InstancerArrays> getInstancerArrays(const hd::Path& instancerId) const override;
     std::vector<int> getInstanceIndices(const hd::Path& instancerId,
                                         const hd::Path& prototypeId) const override;
     hd::MaterialNetwork getMaterialResource(const hd::Path& materialId) const override;
@@ -167,6 +169,16 @@ private:
     glm::dmat4 _defaultCameraXform{1.0};
     float _defaultCameraFocal = 5.0f;
     glm::vec2 _defaultCameraClip{1.0f, 1e6f};
+    // A PointInstancer's arrays and its instance indices by prototype index, read once and
+    // shared by its prototypes' syncs (which run in parallel); dropped by every edit.
+    struct InstancerCache {
+        std::shared_ptr<const hd::InstancerArrays> arrays;
+        std::shared_ptr<const std::vector<std::vector<int>>> byPrototype;
+    };
+    const InstancerCache& instancerCache(const hd::Path& instancerId, const Entry& inst) const;
+    void invalidateInstancerCache();
+    mutable std::mutex _instancerCacheMutex;
+    mutable std::unordered_map<hd::Path, InstancerCache> _instancerCache;
 };
 
 }  // namespace principled::adapter

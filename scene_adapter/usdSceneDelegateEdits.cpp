@@ -159,6 +159,7 @@ void UsdSceneDelegate::removeEntry(const Path& id, RenderIndex* index) {
 }
 
 void UsdSceneDelegate::resyncSubtree(const std::string& path, RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     if (subtreeHasInstances(path)) {
         repopulate(index);
         return;
@@ -180,6 +181,7 @@ void UsdSceneDelegate::resyncSubtree(const std::string& path, RenderIndex* index
 }
 
 void UsdSceneDelegate::repopulate(RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     // Instanceable prims share prototypes through synthetic instancers whose per-instance
     // matrices are gathered in one traversal; re-running it is the simple exact answer.
     std::vector<Path> all;
@@ -193,6 +195,7 @@ void UsdSceneDelegate::repopulate(RenderIndex* index) {
 }
 
 void UsdSceneDelegate::primAdded(const std::string& path, RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(path);
     if (!p) return;
     if (subtreeHasInstances(path)) {
@@ -215,6 +218,7 @@ void UsdSceneDelegate::primAdded(const std::string& path, RenderIndex* index) {
 }
 
 void UsdSceneDelegate::primRemoving(const std::string& path, RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     _removing = _stage.prim(path);
     _removingHadInstances = subtreeHasInstances(path);
     _removingDrawnBy = instancersDrawing(path);
@@ -226,6 +230,7 @@ void UsdSceneDelegate::primRemoving(const std::string& path, RenderIndex* index)
 }
 
 void UsdSceneDelegate::primRemoved(const std::string& path, RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* removed = _removing;
     _removing = nullptr;
     if (_removingHadInstances) {
@@ -250,6 +255,7 @@ void UsdSceneDelegate::primRemoved(const std::string& path, RenderIndex* index) 
 // ---- Value changes ------------------------------------------------------------------------
 
 void UsdSceneDelegate::transformChanged(const usd::Prim& prim, RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     if (subtreeHasInstances(prim.path())) {
         repopulate(index);
         return;
@@ -292,6 +298,7 @@ void UsdSceneDelegate::transformChanged(const usd::Prim& prim, RenderIndex* inde
 }
 
 void UsdSceneDelegate::visibilityChanged(const usd::Prim& prim, RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     if (subtreeHasInstances(prim.path())) {
         repopulate(index);
         return;
@@ -372,6 +379,7 @@ void UsdSceneDelegate::materialNetworkChanged(const usd::Prim& prim, DirtyBits b
 
 void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::string& attr,
                                         RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;
     if (startsWith(attr, "xformOp:") || attr == "xformOpOrder") return transformChanged(*p, index);
@@ -425,6 +433,7 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
 
 void UsdSceneDelegate::relationshipChanged(const std::string& primPath, const std::string& name,
                                            RenderIndex* index) {
+    invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;
     if (startsWith(name, "material:binding")) {

@@ -110,6 +110,54 @@ Path UsdSceneDelegate::getInstancerId(const Path& id) const {
     return e ? e->instancer : Path();
 }
 
+const UsdSceneDelegate::InstancerCache& UsdSceneDelegate::instancerCache(const Path& instancerId,
+                                                                        const Entry& inst) const {
+    // Built under the lock: the prototypes of one instancer sync at once, and the first builds it
+    // for all (others wait instead of each converting the arrays again).
+    std::lock_guard<std::mutex> lock(_instancerCacheMutex);
+    InstancerCache& c = _instancerCache[instancerId];
+    if (c.arrays) return c;
+    auto arrays = std::make_shared<hd::InstancerArrays>();
+    auto take = [&](const Token& key, auto* out) {
+        Value v = shapeOrInstancerValue(inst, key);
+        using V = typename std::remove_pointer_t<decltype(out)>::value_type;
+        if (auto* x = std::get_if<V>(&v)) *out = std::move(*x);
+    };
+    take(tokens::instanceTranslations(), &arrays->translations);
+    take(tokens::instanceRotations(), &arrays->rotations);
+    take(tokens::instanceScales(), &arrays->scales);
+    take(tokens::instanceTransforms(), &arrays->transforms);
+    auto byPrototype = std::make_shared<std::vector<std::vector<int>>>();
+    if (inst.prim && !inst.instanceXforms) {
+        std::vector<int> protoIndices = intArray(attributeValue(*inst.prim, "protoIndices"));
+        std::vector<int> ids = intArray(attributeValue(*inst.prim, "ids"));
+        std::vector<int> invisible = intArray(attributeValue(*inst.prim, "invisibleIds"));
+        std::unordered_set<int> hidden(invisible.begin(), invisible.end());
+        const bool useIds = ids.size() == protoIndices.size();  // ids, when authored, name the instances
+        for (size_t i = 0; i < protoIndices.size(); ++i) {
+            const int p = protoIndices[i];
+            if (p < 0 || p > 1000000) continue;  // no prototype has that index
+            if (!hidden.empty() && hidden.count(useIds ? ids[i] : int(i))) continue;
+            if (size_t(p) >= byPrototype->size()) byPrototype->resize(size_t(p) + 1);
+            (*byPrototype)[size_t(p)].push_back(int(i));
+        }
+    }
+    c.arrays = std::move(arrays);
+    c.byPrototype = std::move(byPrototype);
+    return c;
+}
+
+void UsdSceneDelegate::invalidateInstancerCache() {
+    std::lock_guard<std::mutex> lock(_instancerCacheMutex);
+    _instancerCache.clear();
+}
+
+std::shared_ptr<const hd::InstancerArrays> UsdSceneDelegate::getInstancerArrays(const Path& instancerId) const {
+    const Entry* inst = entry(instancerId);
+    if (!inst) return std::make_shared<hd::InstancerArrays>();
+    return instancerCache(instancerId, *inst).arrays;
+}
+
 std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
                                                       const Path& prototypeId) const {
     std::vector<int> out;
@@ -121,16 +169,9 @@ std::vector<int> UsdSceneDelegate::getInstanceIndices(const Path& instancerId,
         for (size_t i = 0; i < out.size(); ++i) out[i] = int(i);
         return out;
     }
-    std::vector<int> protoIndices = intArray(attributeValue(*inst->prim, "protoIndices"));
-    std::vector<int> ids = intArray(attributeValue(*inst->prim, "ids"));
-    std::vector<int> invisible = intArray(attributeValue(*inst->prim, "invisibleIds"));
-    std::unordered_set<int> hidden(invisible.begin(), invisible.end());
-    bool useIds = ids.size() == protoIndices.size();  // ids, when authored, name the instances
-    for (size_t i = 0; i < protoIndices.size(); ++i) {
-        if (protoIndices[i] != proto->protoIndex) continue;
-        if (!hidden.empty() && hidden.count(useIds ? ids[i] : int(i))) continue;
-        out.push_back(int(i));
-    }
+    const auto& byPrototype = *instancerCache(instancerId, *inst).byPrototype;
+    if (proto->protoIndex >= 0 && size_t(proto->protoIndex) < byPrototype.size())
+        out = byPrototype[size_t(proto->protoIndex)];
     return out;
 }
 
@@ -264,12 +305,10 @@ void UsdSceneDelegate::growInstancedBounds(
                 grow(x * e.world, glm::dvec3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z));
         return;
     }
-    Value tv = get(e.instancer, tokens::instanceTranslations());
-    Value rv = get(e.instancer, tokens::instanceRotations());
-    Value sv = get(e.instancer, tokens::instanceScales());
-    const auto* t = getIf<std::vector<glm::vec3>>(tv);
-    const auto* r = getIf<std::vector<glm::vec4>>(rv);
-    const auto* s = getIf<std::vector<glm::vec3>>(sv);
+    const std::shared_ptr<const hd::InstancerArrays> arrays = getInstancerArrays(e.instancer);
+    const auto* t = arrays->translations ? &*arrays->translations : nullptr;
+    const auto* r = arrays->rotations ? &*arrays->rotations : nullptr;
+    const auto* s = arrays->scales ? &*arrays->scales : nullptr;
     if (!t) return;
     for (int i : getInstanceIndices(e.instancer, id)) {
         if (size_t(i) >= t->size()) continue;

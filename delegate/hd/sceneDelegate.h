@@ -3,6 +3,9 @@
 // data their dirty bits name (Hydra's HdSceneDelegate, hydra.md section 2.5).
 #pragma once
 
+#include <memory>
+#include <optional>
+#include <type_traits>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -11,9 +14,17 @@
 #include "delegate/hd/meshTopology.h"
 #include "delegate/hd/path.h"
 #include "delegate/hd/primvar.h"
+#include "delegate/hd/tokens.h"
 #include "delegate/hd/value.h"
 
 namespace principled::hd {
+
+/// A PointInstancer's per-instance arrays (absent: not authored).
+struct InstancerArrays {
+    std::optional<std::vector<glm::vec3>> translations, scales;
+    std::optional<std::vector<glm::vec4>> rotations;  ///< (real, i, j, k)
+    std::optional<std::vector<glm::dmat4>> transforms;  ///< native instancing: whole matrices
+};
 
 /// Answers queries about the prims it inserted into a render index. Every method may be called
 /// concurrently from rprim sync workers, so implementations must be safe for concurrent reads.
@@ -49,6 +60,22 @@ public:
     virtual Path getInstancerId(const Path& id) const {
         (void)id;
         return Path();
+    }
+    /// An instancer's per-instance arrays at once, shared by its prototypes (each prototype rprim
+    /// reads them when it syncs: a PointInstancer with P prototypes and N instances must not cost
+    /// P x N). The default reads get(); scene delegates may keep the result until an edit.
+    virtual std::shared_ptr<const InstancerArrays> getInstancerArrays(const Path& instancerId) const {
+        auto a = std::make_shared<InstancerArrays>();
+        auto take = [&](const Token& key, auto* out) {
+            Value v = get(instancerId, key);
+            using V = typename std::remove_pointer_t<decltype(out)>::value_type;
+            if (auto* x = std::get_if<V>(&v)) *out = std::move(*x);
+        };
+        take(tokens::instanceTranslations(), &a->translations);
+        take(tokens::instanceRotations(), &a->rotations);
+        take(tokens::instanceScales(), &a->scales);
+        take(tokens::instanceTransforms(), &a->transforms);
+        return a;
     }
     /// The instances of `instancerId` that draw prototype rprim `prototypeId`: indices into
     /// the instancer's arrays, invisible instances already left out.

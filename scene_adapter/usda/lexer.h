@@ -53,7 +53,7 @@ private:
     void scanString(Token& t);
 
     std::string_view _text;
-    std::string _file;
+    FileName _file;  ///< interned once: every token location shares it
     std::size_t _pos = 0;
     std::size_t _lineStart = 0;
     int _line = 1;

@@ -663,7 +663,7 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
             const AttributeSpec& a = *opinions[i].first;
             if (defaultAt == opinions.size() && a.defaultValue) defaultAt = i;
             if (samplesAt == opinions.size() && a.hasTimeSamples) samplesAt = i;
-            if (a.hasConnections) connections.push_back({&a.connections, opinions[i].second});
+            if (a.hasConnections && a.connections) connections.push_back({a.connections.get(), opinions[i].second});
             for (const auto& [key, value] : a.metadata) composeField(attr->_metadata, key, value);
         }
         if (defaultAt < opinions.size()) attr->_default = *opinions[defaultAt].first->defaultValue;

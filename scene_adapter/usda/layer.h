@@ -70,7 +70,8 @@ struct AttributeSpec {
     bool hasTimeSamples = false;
     std::map<double, Value> timeSamples;  ///< None samples block the value at that time
     bool hasConnections = false;
-    ListOp<PathItem> connections;
+    /// Null unless `.connect` is authored: most attributes have none, and a ListOp is 150 bytes.
+    std::shared_ptr<ListOp<PathItem>> connections;
     Dictionary metadata;
     SourceLocation location;
 };

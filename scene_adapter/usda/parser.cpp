@@ -350,7 +350,8 @@ void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
     if (variability != Variability::Varying) attr->variability = variability;
     if (field == "connect") {
         if (accept('=')) {
-            attr->connections.set(op.value_or(ListOpKind::Explicit), parsePathList());
+            if (!attr->connections) attr->connections = std::make_shared<ListOp<PathItem>>();
+            attr->connections->set(op.value_or(ListOpKind::Explicit), parsePathList());
             attr->hasConnections = true;
         }
     } else if (field == "timeSamples") {

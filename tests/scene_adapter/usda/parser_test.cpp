@@ -305,9 +305,9 @@ line"""
     EXPECT_FALSE(m->attribute("v")->defaultValue);
     const AttributeSpec* dc = m->attribute("inputs:diffuseColor");
     ASSERT_TRUE(dc->hasConnections);
-    EXPECT_EQ(dc->connections.explicitItems.at(0).path, "/Mat/Tex.outputs:rgb");
-    EXPECT_EQ(m->attribute("inputs:x")->connections.explicitItems.size(), 2u);
-    EXPECT_EQ(m->attribute("inputs:y")->connections.prepended.at(0).path, "/C.outputs:c");
+    EXPECT_EQ(dc->connections->explicitItems.at(0).path, "/Mat/Tex.outputs:rgb");
+    EXPECT_EQ(m->attribute("inputs:x")->connections->explicitItems.size(), 2u);
+    EXPECT_EQ(m->attribute("inputs:y")->connections->prepended.at(0).path, "/C.outputs:c");
     const AttributeSpec* pts = m->attribute("points");
     EXPECT_EQ(*pts->metadata.at("interpolation").getString(), "vertex");
     EXPECT_EQ(*pts->metadata.at("elementSize").getInt(), 1);

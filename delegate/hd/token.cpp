@@ -3,15 +3,28 @@
 
 #include <memory>
 #include <mutex>
+#include <string>
+#include <string_view>
 #include <unordered_set>
 
 namespace principled::hd {
 namespace {
 
+// Transparent hashing: a lookup by string_view builds no std::string (a token constructed for
+// text already interned, the common case, allocates nothing).
+struct Hash {
+    using is_transparent = void;
+    size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+};
+struct Equal {
+    using is_transparent = void;
+    bool operator()(std::string_view a, std::string_view b) const { return a == b; }
+};
+
 struct Registry {
     std::mutex mutex;
     // Node-based set: element addresses are stable, so the pointer is the identity.
-    std::unordered_set<std::string> strings;
+    std::unordered_set<std::string, Hash, Equal> strings;
 };
 
 Registry& registry() {
@@ -22,12 +35,17 @@ Registry& registry() {
 const std::string* intern(std::string_view text) {
     Registry& r = registry();
     std::lock_guard<std::mutex> lock(r.mutex);
+    auto it = r.strings.find(text);
+    if (it != r.strings.end()) return &*it;
     return &*r.strings.emplace(text).first;
 }
 
 }  // namespace
 
-Token::Token() : _text(intern("")) {}
+Token::Token() {
+    static const std::string* const empty = intern("");
+    _text = empty;
+}
 Token::Token(std::string_view text) : _text(intern(text)) {}
 
 }  // namespace principled::hd

@@ -10,7 +10,8 @@ no caustic fireflies) and ground, lit by that dome only. OUTDIR/room_{skyonly,su
 a closed 10x4x10 room with a 3x2 window, camera inside: the sun outside the window's view
 (sky only), the sun shining in (a patch on the floor), and the sky without sun or window patch
 (OUTDIR/overcast.hdr). These are the interiors, where BSDF sampling rarely finds the window, in
-which MIS compensation can lose.
+which MIS compensation can lose. room_*_portal.usda: the same with a UsdLux PortalLight filling
+the window (delegate/portalSampling.h).
 """
 import math
 import os
@@ -58,7 +59,7 @@ def quad(name, pts, color=(0.7, 0.7, 0.7)):
             "        uniform bool doubleSided = 1\n    }\n") % (name, p, *color)
 
 
-def room(hdr, rotate_y):
+def room(hdr, rotate_y, portal=False):
     walls = [quad("Floor", [(-5, 0, -5), (-5, 0, 5), (5, 0, 5), (5, 0, -5)]),
              quad("Ceiling", [(-5, 4, -5), (5, 4, -5), (5, 4, 5), (-5, 4, 5)]),
              quad("Back", [(-5, 0, 5), (-5, 4, 5), (5, 4, 5), (5, 0, 5)]),
@@ -75,7 +76,11 @@ def room(hdr, rotate_y):
             "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n    }\n"
             "    def DomeLight \"Sky\"\n    {\n        asset inputs:texture:file = @%s@\n"
             "        float3 xformOp:rotateXYZ = (0, %g, 0)\n        uniform token[] xformOpOrder = [\"xformOp:rotateXYZ\"]\n    }\n") % (hdr, rotate_y)
-    return head + "".join(walls) + "}\n"
+    # The window's portal: light passes along its local -Z, turned to +Z (into the room).
+    window = ("    def PortalLight \"Window\"\n    {\n        float inputs:width = 3\n        float inputs:height = 2\n"
+              "        double3 xformOp:translate = (0, 2, -5)\n        float xformOp:rotateY = 180\n"
+              "        uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:rotateY\"]\n    }\n")
+    return head + "".join(walls) + (window if portal else "") + "}\n"
 
 
 def main():
@@ -100,9 +105,10 @@ def main():
             overcast[y] = sky()[y, 0]
     write_hdr(os.path.join(out, "overcast.hdr"), overcast)
     for name, map_, rot in [("skyonly", hdr, 0), ("sunpatch", hdr, 180), ("overcast", os.path.join(out, "overcast.hdr"), 0)]:
-        path = os.path.join(out, "room_%s.usda" % name)
-        open(path, "w").write(room(map_, rot))
-        print(path)
+        for portal in (False, True):
+            path = os.path.join(out, "room_%s%s.usda" % (name, "_portal" if portal else ""))
+            open(path, "w").write(room(map_, rot, portal))
+            print(path)
 
 
 if __name__ == "__main__":

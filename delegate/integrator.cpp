@@ -542,7 +542,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 if (depth == 0 && (light.kind == LightRecord::Kind::Distant || !_settings.domeVisible)) continue;
                 glm::vec3 Le;
                 float pdf;
-                if (environmentRadiance(light, ray.direction, prevNg, &Le, &pdf, compensate))
+                if (environmentRadiance(light, prevP, ray.direction, prevNg, &Le, &pdf, compensate))
                     addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickNormal, prevPickTotal), li);
             }
             break;

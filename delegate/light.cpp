@@ -165,13 +165,21 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                                     glm::length(vector(xf, 0, 0, 1))});
                 _record.radius = std::max(r * s, 1e-6f);
                 _record.area = 4.0f * kPi * _record.radius * _record.radius;
-            } else if (_type == tokens::rectLight()) {
+            } else if (_type == tokens::rectLight() || _type == tokens::portalLight()) {
                 _record.kind = LightRecord::Kind::Rect;
+                _record.portal = _type == tokens::portalLight();
                 float w = std::max(0.0f, scalar("width", 1.0f)), h = std::max(0.0f, scalar("height", 1.0f));
                 _record.axisU = vector(xf, 0.5 * w, 0, 0);
                 _record.axisV = vector(xf, 0, 0.5 * h, 0);
                 _record.area = 4.0f * glm::length(glm::cross(_record.axisU, _record.axisV));
-                auto file = getString(delegate->getLightParamValue(id(), Token("texture:file")));
+                const float lu = glm::length(_record.axisU), lv = glm::length(_record.axisV);
+                if (_record.portal && lu > 0.0f && lv > 0.0f &&
+                    std::abs(glm::dot(_record.axisU, _record.axisV)) > 1e-4f * lu * lv) {
+                    param->warn(id(), "portal is sheared by its transform (its sides are not perpendicular); ignored");
+                    _record.area = 0.0f;
+                }
+                auto file = _record.portal ? std::nullopt
+                                           : getString(delegate->getLightParamValue(id(), Token("texture:file")));
                 if (file && !file->empty()) {
                     std::string error;
                     if (auto img = loadImage(*file, "rect light texture", false, &error))

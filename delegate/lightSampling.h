@@ -35,9 +35,9 @@ bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec
                         glm::vec3* Le, float* pdf);
 
 /// Radiance of an escaped ray along d from environment light l (dome or distant disc), and the
-/// pdf sampleLight() gives that direction from a point with normal ng (with the same
-/// misCompensation).
-bool environmentRadiance(const LightRecord& l, const glm::vec3& d, const glm::vec3& ng,
+/// pdf sampleLight() gives that direction from point `origin` with normal ng (with the same
+/// misCompensation; a dome with portals mixes in their density at origin).
+bool environmentRadiance(const LightRecord& l, const glm::vec3& origin, const glm::vec3& d, const glm::vec3& ng,
                          glm::vec3* Le, float* pdf, bool misCompensation = false);
 
 bool isAreaLight(const LightRecord& l);

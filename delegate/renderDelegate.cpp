@@ -52,7 +52,8 @@ const std::vector<Token>& EmbreeRenderDelegate::supportedSprimTypes() const {
     static const std::vector<Token> t{tokens::camera(),      tokens::material(),
                                       tokens::distantLight(), tokens::domeLight(),
                                       tokens::sphereLight(),  tokens::rectLight(),
-                                      tokens::diskLight(),    tokens::cylinderLight()};
+                                      tokens::diskLight(),    tokens::cylinderLight(),
+                                      tokens::portalLight()};
     return t;
 }
 const std::vector<Token>& EmbreeRenderDelegate::supportedBprimTypes() const {
@@ -72,7 +73,8 @@ std::unique_ptr<Sprim> EmbreeRenderDelegate::createSprim(const Token& typeId, co
     if (typeId == tokens::camera()) return std::make_unique<Camera>(id);
     if (typeId == tokens::material()) return std::make_unique<Material>(id);
     for (const Token& light : {tokens::distantLight(), tokens::domeLight(), tokens::sphereLight(),
-                               tokens::rectLight(), tokens::diskLight(), tokens::cylinderLight()})
+                               tokens::rectLight(), tokens::diskLight(), tokens::cylinderLight(),
+                               tokens::portalLight()})
         if (typeId == light) return std::make_unique<Light>(typeId, id);
     return nullptr;
 }
@@ -150,7 +152,15 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             if (l->enabled()) lights.push_back(l);
         std::sort(lights.begin(), lights.end(), [](auto* a, auto* b) { return a->lightId() < b->lightId(); });
         _sceneLights.clear();
-        for (LightSource* l : lights) _sceneLights.push_back(l->record());
+        std::vector<Portal> portals;
+        for (LightSource* l : lights) {
+            const LightRecord& r = l->record();
+            if (r.portal)
+                portals.push_back(Portal{r.center, r.axisU, r.axisV, r.normal, r.area});
+            else
+                _sceneLights.push_back(r);
+        }
+        _portals = portals.empty() ? nullptr : std::make_shared<const PortalSet>(std::move(portals));
         ++_lightTableBuilds;
     }
     if (meshLights) {
@@ -187,6 +197,9 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             _snapshot.lights.push_back(dome);
             _snapshot.usingDefaultLight = true;
         }
+        // Portals guide every dome light's sampling (delegate/portalSampling.h).
+        for (LightRecord& l : _snapshot.lights)
+            if (l.kind == LightRecord::Kind::Dome) l.portals = _portals;
         computeLightPower();
     }
     if (lightTable || meshLights || c.scene) {

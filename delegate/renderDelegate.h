@@ -109,6 +109,7 @@ private:
     std::unique_ptr<EmbreeRenderParam> _param;
     SceneSnapshot _snapshot;
     std::vector<LightRecord> _sceneLights;  ///< the UsdLux lights, sorted by path
+    std::shared_ptr<const PortalSet> _portals;  ///< the UsdLux portals, or null
     std::vector<LightRecord> _meshLights;   ///< emissive meshes, by prim id (after _sceneLights)
     /// The mesh lights of one prim, or of one placed copy of an instanced prototype (instance =
     /// its Embree geomID; RTC_INVALID_GEOMETRY_ID for a prim drawn on its own): count lights

@@ -16,6 +16,7 @@
 #include "delegate/distribution2d.h"
 #include "delegate/hd/token.h"
 #include "delegate/lightShaping.h"
+#include "delegate/portalSampling.h"
 #include "delegate/shading/materialProgram.h"
 
 namespace principled::embree {
@@ -176,6 +177,11 @@ struct LightRecord {
     /// Rect light texture:file (texels only; null: constant). Texel (0, 0), the image's top
     /// left, sits at the light's (+X, +Y) corner.
     std::shared_ptr<const EnvironmentMap> rectTexture;
+    /// A UsdLux PortalLight (kind Rect geometry; normal = the direction light passes): never a
+    /// light of the snapshot, it guides the dome lights' sampling (`portals`).
+    bool portal = false;
+    /// Dome lights: the scene's portals, or null (delegate/portalSampling.h).
+    std::shared_ptr<const PortalSet> portals;
     float pickProbability = 1.0f;  ///< chance next-event estimation picks this light
     // Mesh lights (emissive geometry, one light per emitting material of a prim or of a placed
     // copy): the triangles that emit, with a CDF over their world-space areas. Emission is

@@ -86,7 +86,7 @@ usd::Value toUsdValue(const std::string& where, const std::string& type, bool is
 
 bool isLightType(const std::string& t) {
     return t == "DistantLight" || t == "DomeLight" || t == "SphereLight" || t == "RectLight" ||
-           t == "DiskLight" || t == "CylinderLight";
+           t == "DiskLight" || t == "CylinderLight" || t == "PortalLight";
 }
 
 }  // namespace
@@ -96,7 +96,7 @@ const std::vector<std::string>& StageEditor::supportedPrimTypes() {
         "Xform",     "Scope",       "Mesh",      "Sphere",         "Points",  "BasisCurves", "Cube",
         "Cylinder",  "Cone",        "Capsule",   "PointInstancer", "Camera",
         "Material",  "Shader",      "NodeGraph", "GeomSubset",     "DistantLight",
-        "DomeLight", "SphereLight", "RectLight", "DiskLight",      "CylinderLight"};
+        "DomeLight", "SphereLight", "RectLight", "DiskLight",      "CylinderLight", "PortalLight"};
     return t;
 }
 

@@ -119,6 +119,7 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     else if (type == "RectLight") hdType = tokens::rectLight();
     else if (type == "DiskLight") hdType = tokens::diskLight();
     else if (type == "CylinderLight") hdType = tokens::cylinderLight();
+    else if (type == "PortalLight") hdType = tokens::portalLight();
     else if (!ignoredTypes().count(type))
         warn(prim.location().str() + ": " + prim.path(),
              "prim type '" + type + "' is not supported yet; skipped");

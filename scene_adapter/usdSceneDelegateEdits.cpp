@@ -44,7 +44,8 @@ bool isRprimType(const Token& t) {
 
 bool isLightType(const Token& t) {
     return t == tokens::distantLight() || t == tokens::domeLight() || t == tokens::sphereLight() ||
-           t == tokens::rectLight() || t == tokens::diskLight() || t == tokens::cylinderLight();
+           t == tokens::rectLight() || t == tokens::diskLight() || t == tokens::cylinderLight() ||
+           t == tokens::portalLight();
 }
 
 bool isAtOrBelow(const std::string& path, const std::string& root) {

@@ -21,6 +21,7 @@ inline const Token& sphereLight() { static const Token t("sphereLight"); return 
 inline const Token& rectLight() { static const Token t("rectLight"); return t; }
 inline const Token& diskLight() { static const Token t("diskLight"); return t; }
 inline const Token& cylinderLight() { static const Token t("cylinderLight"); return t; }
+inline const Token& portalLight() { static const Token t("portalLight"); return t; }
 // Bprim types.
 inline const Token& renderBuffer() { static const Token t("renderBuffer"); return t; }
 

@@ -96,7 +96,7 @@ TEST(EnvironmentSampling, LightSampleAndEscapedRayAgreeOnTheDensity) {
             ++samples;
             glm::vec3 Le;
             float pdf = 0.0f;
-            ASSERT_TRUE(environmentRadiance(light, ls.wi, ng, &Le, &pdf, compensated));
+            ASSERT_TRUE(environmentRadiance(light, p, ls.wi, ng, &Le, &pdf, compensated));
             EXPECT_NEAR(pdf, ls.pdf, 1e-3f * ls.pdf) << "compensated " << compensated;
             EXPECT_EQ(Le, ls.Li);
             inSun += Le.x > 100.0f;

@@ -252,4 +252,43 @@ def test_light_edits():
         s.close()
 
 
-tr.run_main(test_spot_conversion, test_spot_render, test_world_texture, test_light_edits)
+def test_portal():
+    """A Cycles portal lamp exports as a UsdLux PortalLight: it emits nothing (the image of a
+    floor under a world seen through nothing but the sky is the same with and without it, within
+    noise) and the delegate counts no extra light."""
+    def render(with_portal):
+        scene = empty_scene(32, 32, 64)
+        world = bpy.data.worlds.new("Sky")
+        world.use_nodes = False
+        world.color = (0.5, 0.5, 0.5)
+        scene.world = world
+        bpy.ops.mesh.primitive_plane_add(size=4.0)
+        if with_portal:
+            bpy.ops.object.light_add(type="AREA", location=(0, 0, 2))
+            lamp = bpy.context.active_object
+            lamp.data.shape = "RECTANGLE"
+            lamp.data.size, lamp.data.size_y = 1.0, 1.0
+            lamp.data.energy = 1000.0  # ignored: a portal emits nothing
+            lamp.data.cycles.is_portal = True
+        bpy.ops.object.camera_add(location=(0, 0, 6))
+        scene.camera = bpy.context.active_object
+        dg = bpy.context.evaluated_depsgraph_get()
+        s = session.Session(settings={"convergedSamplesPerPixel": 64})
+        try:
+            s.bind(["color"])
+            warnings = s.full_sync(dg, 32, 32)
+            s.delegate.render()
+            return s.delegate.aov("color", copy=True), warnings, dict(s.delegate.stats())
+        finally:
+            s.close()
+
+    plain, _, stats_plain = render(False)
+    portal, warnings, stats_portal = render(True)
+    check(not [w for w in warnings if "light" in w], f"no light warnings ({warnings})")
+    check(stats_portal.get("lights") == stats_plain.get("lights"),
+          f"the portal is not a light ({stats_portal.get('lights')} against {stats_plain.get('lights')})")
+    a, b = portal[:, :, :3].mean(), plain[:, :, :3].mean()
+    check(abs(a - b) < 0.02 * b, f"the portal emits nothing (mean {a:.4f} against {b:.4f})")
+
+
+tr.run_main(test_spot_conversion, test_spot_render, test_world_texture, test_light_edits, test_portal)

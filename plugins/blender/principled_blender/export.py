@@ -1898,6 +1898,19 @@ class SceneExport:
                     self.warnings.append(f"light '{name}': square spot rendered as a round cone")
             self.lights[name] = (kind, xf, [xf])
             return
+        if getattr(getattr(light, "cycles", None), "is_portal", False):
+            # A Cycles portal emits nothing and guides the world's sampling through it: a
+            # UsdLux PortalLight of the lamp's size, passing light along its local -Z (the way
+            # the lamp faces), as the delegate's dome sampling reads it.
+            b.add_prim(xf, "PortalLight")
+            b.set_transform(xf, usd_matrix(mw))
+            b.set_attribute(xf, "float", "inputs:width", lp["size"][0])
+            b.set_attribute(xf, "float", "inputs:height", lp["size"][1])
+            if lp["disk"]:
+                self.warnings.append(f"light '{name}': a round portal is exported as a rectangle")
+            self.lights[name] = (kind, xf, [xf])
+            self.area_disks[name] = False
+            return
         # Area lamp: a UsdLux RectLight (square/rectangle) or DiskLight (disk; an ellipse is a
         # unit disk scaled by the transform), emitting along its local -Z from the front only
         # and occluding nothing, like Cycles' area lamp. (Until the parity bench it was an

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "delegate/sphericalRectangle.h"
+
 namespace principled::embree {
 
 PortalSet::PortalSet(std::vector<Portal> portals) {
@@ -12,13 +14,11 @@ PortalSet::PortalSet(std::vector<Portal> portals) {
 }
 
 float PortalSet::weightOf(const Portal& q, const glm::vec3& p) const {
-    const glm::vec3 d = p - q.center;
-    const float along = glm::dot(d, q.normal);  // > 0: p lies on the side the light goes to
-    if (!(along > 0.0f)) return 0.0f;
-    const float d2 = glm::dot(d, d);
-    // A cos / d^2 with cos = along / |d| (solid angle far away), capped at distance sqrt(A).
-    const float w = q.area * (along / std::sqrt(d2)) / std::max(d2, q.area);
-    return std::isfinite(w) ? w : 0.0f;
+    // p must lie on the side the light goes to; the weight is the solid angle the portal
+    // subtends there.
+    if (!(glm::dot(p - q.center, q.normal) > 0.0f)) return 0.0f;
+    const SphericalRectangle r(p, q.center - q.axisU - q.axisV, 2.0f * q.axisU, 2.0f * q.axisV);
+    return r.valid() ? float(r.solidAngle()) : 0.0f;
 }
 
 float PortalSet::weight(const glm::vec3& p) const {
@@ -44,7 +44,10 @@ bool PortalSet::sample(const glm::vec3& p, const glm::vec2& u, glm::vec3* wi, fl
     if (!chosen) return false;
     // u.x within the chosen portal's share of [0, 1), rescaled: the point's first coordinate.
     const float s = std::clamp((target - before) / width, 0.0f, 0.99999994f);
-    const glm::vec3 x = chosen->center + (2.0f * s - 1.0f) * chosen->axisU + (2.0f * u.y - 1.0f) * chosen->axisV;
+    const SphericalRectangle r(p, chosen->center - chosen->axisU - chosen->axisV, 2.0f * chosen->axisU,
+                               2.0f * chosen->axisV);
+    if (!r.valid()) return false;
+    const glm::vec3 x = r.sample(s, u.y);
     const glm::vec3 d = x - p;
     const float len = glm::length(d);
     if (!(len > 0.0f) || !std::isfinite(len)) return false;
@@ -69,7 +72,7 @@ float PortalSet::pdf(const glm::vec3& p, const glm::vec3& wi) const {
         const float a = glm::dot(r, q.axisU) / glm::dot(q.axisU, q.axisU);
         const float b = glm::dot(r, q.axisV) / glm::dot(q.axisV, q.axisV);
         if (std::abs(a) > 1.0f || std::abs(b) > 1.0f) continue;
-        sum += (w / total) * (t * t / (q.area * -cosine));  // area to solid angle
+        sum += (w / total) * (1.0f / w);  // uniform in the portal's solid angle w
     }
     return std::isfinite(sum) ? sum : 0.0f;
 }

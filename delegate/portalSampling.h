@@ -7,9 +7,10 @@
 // a sampling aid). Points on the outer side of every portal sample the dome alone.
 //
 // A portal passes light along `normal` (its local -Z, UsdLuxPortalLight); the point receives
-// through it when it lies on that side. Each portal visible from p weighs A cos / max(d^2, A),
-// its solid angle far away (capped next to it); one is picked in proportion and a point on it
-// drawn uniformly by area (pdf d^2 / (A cos) in solid angle).
+// through it when it lies on that side. Each portal visible from p weighs the solid angle it
+// subtends there; one is picked in proportion and a direction drawn uniformly in its solid angle
+// (delegate/sphericalRectangle.h), so a direction through k portals has density k / (sum of the
+// solid angles).
 #pragma once
 
 #include <vector>

@@ -38,10 +38,11 @@ TEST(PortalSampling, DensityIntegratesToOneAndSamplesAgreeWithIt) {
             integral += set.pdf(p, glm::vec3(r * std::cos(phi), z, r * std::sin(phi))) * (4.0 * kPi) / n;
         }
         EXPECT_NEAR(integral, 1.0, 0.02) << p.x;
-        // E[1 / pdf] over sample() is the solid angle its directions cover; E[pdf_other / pdf]
-        // for the uniform density 1 / 4 pi is that solid angle / 4 pi, and every sample's
-        // reported pdf equals pdf() at its direction.
-        double solidAngle = 0.0;
+        // E[f / pdf] over sample() is the integral of f over the directions it covers, for any f:
+        // checked for f = 1 (the solid angle) and a lopsided f, against the same integrals over
+        // uniform directions; every sample's reported pdf equals pdf() at its direction.
+        auto f = [](const glm::vec3& w) { return (1.5 + w.x) * (1.5 + w.x) * (1.2 - w.z); };
+        double solidAngle = 0.0, weighted = 0.0;
         const int m = 1 << 16;
         for (int i = 0; i < m; ++i) {
             Sampler s(SamplerKind::Sobol, 8, 0, uint32_t(i));
@@ -50,16 +51,22 @@ TEST(PortalSampling, DensityIntegratesToOneAndSamplesAgreeWithIt) {
             ASSERT_TRUE(set.sample(p, s.next2D(), &wi, &pdf));
             ASSERT_NEAR(pdf, set.pdf(p, wi), 1e-4f * pdf);
             solidAngle += 1.0 / pdf / m;
+            weighted += f(wi) / pdf / m;
         }
         // The same solid angle by integrating the indicator pdf > 0 over uniform directions.
-        double covered = 0.0;
+        double covered = 0.0, coveredF = 0.0;
         for (int i = 0; i < n; ++i) {
             Sampler s(SamplerKind::Sobol, 9, 0, uint32_t(i));
             const glm::vec2 u = s.next2D();
             const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * u.y;
-            covered += (set.pdf(p, glm::vec3(r * std::cos(phi), z, r * std::sin(phi))) > 0.0f ? 4.0 * kPi : 0.0) / n;
+            const glm::vec3 w(r * std::cos(phi), z, r * std::sin(phi));
+            if (set.pdf(p, w) > 0.0f) {
+                covered += 4.0 * kPi / n;
+                coveredF += f(w) * 4.0 * kPi / n;
+            }
         }
         EXPECT_NEAR(solidAngle, covered, 0.02 * covered) << p.x;
+        EXPECT_NEAR(weighted, coveredF, 0.02 * coveredF) << p.x;
     }
 }
 

@@ -117,16 +117,8 @@ const UsdSceneDelegate::InstancerCache& UsdSceneDelegate::instancerCache(const P
     std::lock_guard<std::mutex> lock(_instancerCacheMutex);
     InstancerCache& c = _instancerCache[instancerId];
     if (c.arrays) return c;
-    auto arrays = std::make_shared<hd::InstancerArrays>();
-    auto take = [&](const Token& key, auto* out) {
-        Value v = shapeOrInstancerValue(inst, key);
-        using V = typename std::remove_pointer_t<decltype(out)>::value_type;
-        if (auto* x = std::get_if<V>(&v)) *out = std::move(*x);
-    };
-    take(tokens::instanceTranslations(), &arrays->translations);
-    take(tokens::instanceRotations(), &arrays->rotations);
-    take(tokens::instanceScales(), &arrays->scales);
-    take(tokens::instanceTransforms(), &arrays->transforms);
+    std::shared_ptr<hd::InstancerArrays> arrays =
+        hd::readInstancerArrays([&](const Token& key) { return shapeOrInstancerValue(inst, key); });
     auto byPrototype = std::make_shared<std::vector<std::vector<int>>>();
     if (inst.prim && !inst.instanceXforms) {
         std::vector<int> protoIndices = intArray(attributeValue(*inst.prim, "protoIndices"));

@@ -26,6 +26,22 @@ struct InstancerArrays {
     std::optional<std::vector<glm::dmat4>> transforms;  ///< native instancing: whole matrices
 };
 
+/// An instancer's arrays from its values by key (tokens::instanceTranslations() ...).
+template <class Get>
+std::shared_ptr<InstancerArrays> readInstancerArrays(Get&& get) {
+    auto a = std::make_shared<InstancerArrays>();
+    auto take = [&](const Token& key, auto* out) {
+        Value v = get(key);
+        using V = typename std::remove_pointer_t<decltype(out)>::value_type;
+        if (auto* x = std::get_if<V>(&v)) *out = std::move(*x);
+    };
+    take(tokens::instanceTranslations(), &a->translations);
+    take(tokens::instanceRotations(), &a->rotations);
+    take(tokens::instanceScales(), &a->scales);
+    take(tokens::instanceTransforms(), &a->transforms);
+    return a;
+}
+
 /// Answers queries about the prims it inserted into a render index. Every method may be called
 /// concurrently from rprim sync workers, so implementations must be safe for concurrent reads.
 class SceneDelegate {
@@ -65,17 +81,7 @@ public:
     /// reads them when it syncs: a PointInstancer with P prototypes and N instances must not cost
     /// P x N). The default reads get(); scene delegates may keep the result until an edit.
     virtual std::shared_ptr<const InstancerArrays> getInstancerArrays(const Path& instancerId) const {
-        auto a = std::make_shared<InstancerArrays>();
-        auto take = [&](const Token& key, auto* out) {
-            Value v = get(instancerId, key);
-            using V = typename std::remove_pointer_t<decltype(out)>::value_type;
-            if (auto* x = std::get_if<V>(&v)) *out = std::move(*x);
-        };
-        take(tokens::instanceTranslations(), &a->translations);
-        take(tokens::instanceRotations(), &a->rotations);
-        take(tokens::instanceScales(), &a->scales);
-        take(tokens::instanceTransforms(), &a->transforms);
-        return a;
+        return readInstancerArrays([&](const Token& key) { return get(instancerId, key); });
     }
     /// The instances of `instancerId` that draw prototype rprim `prototypeId`: indices into
     /// the instancer's arrays, invisible instances already left out.

@@ -13,6 +13,21 @@ using namespace principled::embree;
 
 namespace {
 
+// Global pick probabilities in proportion to `power` (one per light), with the snapshot's CDF,
+// scene radius R and a pick per vertex (as the render delegate's light distribution).
+void setGlobalPick(SceneSnapshot& s, const std::vector<float>& power, float R) {
+    float total = 0.0f;
+    for (float x : power) total += x;
+    s.lightCdf.assign(1, 0.0f);
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        s.lights[i].pickProbability = power[i] / total;
+        s.lightCdf.push_back(s.lightCdf.back() + s.lights[i].pickProbability);
+    }
+    s.lightCdf.back() = 1.0f;
+    s.lightSceneRadius = R;
+    s.neeAllLights = false;
+}
+
 // Eight sphere lamps on a line (x = 0, 2, ..., 14), one distant light; global pick
 // probabilities by a made-up power with the snapshot's CDF.
 SceneSnapshot lampsOnALine() {
@@ -27,17 +42,7 @@ SceneSnapshot lampsOnALine() {
     LightRecord sun;
     sun.kind = LightRecord::Kind::Distant;
     s.lights.push_back(sun);
-    const float power[9] = {1, 2, 3, 4, 1, 2, 3, 4, 5};
-    float total = 0.0f;
-    for (float p : power) total += p;
-    s.lightCdf.assign(1, 0.0f);
-    for (size_t i = 0; i < s.lights.size(); ++i) {
-        s.lights[i].pickProbability = power[i] / total;
-        s.lightCdf.push_back(s.lightCdf.back() + s.lights[i].pickProbability);
-    }
-    s.lightCdf.back() = 1.0f;
-    s.lightSceneRadius = 10.0f;
-    s.neeAllLights = false;
+    setGlobalPick(s, {1, 2, 3, 4, 1, 2, 3, 4, 5}, 10.0f);
     return s;
 }
 
@@ -112,16 +117,7 @@ TEST(LightPick, ManyLightsArePickedThroughTheTreeWithTheProbabilitiesItReports) 
         s.lights.push_back(sun);
         power.push_back(500.0f);
     }
-    float total = 0.0f;
-    for (float x : power) total += x;
-    s.lightCdf.assign(1, 0.0f);
-    for (size_t i = 0; i < s.lights.size(); ++i) {
-        s.lights[i].pickProbability = power[i] / total;
-        s.lightCdf.push_back(s.lightCdf.back() + s.lights[i].pickProbability);
-    }
-    s.lightCdf.back() = 1.0f;
-    s.lightSceneRadius = 30.0f;
-    s.neeAllLights = false;
+    setGlobalPick(s, power, 30.0f);
     const LightPick pick(s, true);
     ASSERT_TRUE(pick.spatial());
     float w[LightPick::kMaxLights];
@@ -189,14 +185,7 @@ TEST(LightPick, LightsThatCannotReachThePointWeighNothing) {
     LightRecord dome;
     dome.kind = LightRecord::Kind::Dome;  // 7: always
     add(dome);
-    s.lightCdf.assign(1, 0.0f);
-    for (auto& l : s.lights) {
-        l.pickProbability = 1.0f / float(s.lights.size());
-        s.lightCdf.push_back(s.lightCdf.back() + l.pickProbability);
-    }
-    s.lightCdf.back() = 1.0f;
-    s.lightSceneRadius = 10.0f;
-    s.neeAllLights = false;
+    setGlobalPick(s, std::vector<float>(s.lights.size(), 1.0f), 10.0f);
     const LightPick pick(s, true);
     ASSERT_TRUE(pick.spatial());
     float w[LightPick::kMaxLights];

@@ -145,6 +145,11 @@ std::shared_ptr<const IesProfile> parseIes(const std::string& text, const std::s
                                    " is not supported: only type C profiles are read");
     if (nv < 1 || nv > 10000 || nh < 1 || nh > 10000 || nv != std::floor(nv) || nh != std::floor(nh))
         return fail(countLine, "expected angle counts between 1 and 10000");
+    // The file must hold the angles and the table before anything is sized by its counts.
+    if (tok.size() - next < size_t(nv) + size_t(nh) + size_t(nv) * size_t(nh))
+        return fail(countLine, "the file holds " + std::to_string(tok.size() - next) + " numbers after the counts, " +
+                                   "fewer than the " + std::to_string(size_t(nv) + size_t(nh) + size_t(nv) * size_t(nh)) +
+                                   " its angle counts need");
     auto profile = std::make_shared<IesProfile>();
     profile->vertical.resize(size_t(nv));
     profile->horizontal.resize(size_t(nh));
@@ -183,6 +188,9 @@ std::shared_ptr<const IesProfile> parseIes(const std::string& text, const std::s
         sum += ring / sectors * std::sin(theta * kPi / 180.0) * (kPi / rings);
     }
     profile->meanCandela = float(sum / 2.0);  // (1 / 4 pi) * 2 pi * integral of I sin(theta)
+    if (!(profile->meanCandela > 0.0f) || !std::isfinite(profile->meanCandela))
+        return fail(countLine, "the profile emits nothing over the sphere (its vertical angles cover less than "
+                               "half a degree)");
     return profile;
 }
 

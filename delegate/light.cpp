@@ -232,8 +232,13 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                     // Unnormalized, the profile's peak is the light's authored radiance; with
                     // ies:normalize, its mean over the sphere is (the power stays the light's).
                     const bool iesNormalize = scalar("shaping:ies:normalize", 0.0f) > 0.5f;
-                    if (sh.ies)
+                    if (sh.ies) {
                         sh.iesScale = 1.0f / (iesNormalize ? sh.ies->meanCandela : sh.ies->maxCandela);
+                        if (!(sh.iesScale > 0.0f) || !std::isfinite(sh.iesScale)) sh.iesScale = 1.0f;
+                    } else if (!authored("shaping:cone:angle") && !authored("shaping:cone:softness") &&
+                               !authored("shaping:focus")) {
+                        sh.enabled = false;  // nothing else shapes it: it emits as authored
+                    }
                     // Horizontal angle 0 along the light's +X, made orthogonal to the axis.
                     glm::vec3 t = vector(xf, 1, 0, 0);
                     t -= glm::dot(t, sh.axis) * sh.axis;

@@ -17,8 +17,8 @@ FileName::FileName(const std::string& name) {
 }
 
 const std::string& FileName::emptyName() {
-    static const std::string empty;
-    return empty;
+    static const std::string* const empty = new std::string();  // never destroyed, as the table
+    return *empty;
 }
 
 }  // namespace principled::usd

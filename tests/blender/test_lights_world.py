@@ -256,7 +256,10 @@ def test_portal():
     """A Cycles portal lamp exports as a UsdLux PortalLight: it emits nothing (the image of a
     floor under a world seen through nothing but the sky is the same with and without it, within
     noise) and the delegate counts no extra light."""
+    lamp = None
+
     def render(with_portal):
+        nonlocal lamp
         scene = empty_scene(32, 32, 64)
         world = bpy.data.worlds.new("Sky")
         world.use_nodes = False
@@ -278,7 +281,20 @@ def test_portal():
             s.bind(["color"])
             warnings = s.full_sync(dg, 32, 32)
             s.delegate.render()
-            return s.delegate.aov("color", copy=True), warnings, dict(s.delegate.stats())
+            result = s.delegate.aov("color", copy=True), warnings, dict(s.delegate.stats())
+            if with_portal:
+                # Live edits: a portal lamp added in the viewport is a portal too; turning a lamp
+                # into (or out of) a portal changes the prim type, so the session rebuilds.
+                check(s.export.lights[lamp.name][0] == "portal", "the lamp exports as a portal")
+                bpy.ops.object.light_add(type="AREA", location=(1, 0, 2))
+                added = bpy.context.active_object
+                added.data.energy = 1000.0
+                added.data.cycles.is_portal = True
+                s._add_light(added)
+                check(s.export.lights[added.name][0] == "portal", "a portal added live is a portal")
+                lamp.data.cycles.is_portal = False
+                check(not s._update_light(lamp), "turning a portal into a lamp asks for a rebuild")
+            return result
         finally:
             s.close()
 

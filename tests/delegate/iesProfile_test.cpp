@@ -90,7 +90,7 @@ TEST(IesProfile, MalformedAndUnsupportedFilesAreRefusedWithTheirLine) {
     EXPECT_NE(error.find("t.ies:"), std::string::npos);
     EXPECT_NE(error.find("TILT"), std::string::npos);
     EXPECT_FALSE(parse(ies(4, 1, "0 45 90 180\n0\n100 50"), &error));  // two values short
-    EXPECT_NE(error.find("candela"), std::string::npos) << error;
+    EXPECT_NE(error.find("fewer than the 9 its angle counts need"), std::string::npos) << error;
     EXPECT_FALSE(parse(ies(2, 1, "0 90\n0\n100 x"), &error));
     EXPECT_NE(error.find("t.ies:9: expected a candela value, found 'x'"), std::string::npos) << error;
     EXPECT_FALSE(parse(ies(2, 1, "0 90\n0\n100 0", "TILT=NONE", 3), &error));
@@ -101,6 +101,12 @@ TEST(IesProfile, MalformedAndUnsupportedFilesAreRefusedWithTheirLine) {
     EXPECT_NE(error.find("emits nothing"), std::string::npos) << error;
     EXPECT_FALSE(parse(ies(2, 1, "0 200\n0\n1 1"), &error));
     EXPECT_NE(error.find("[0, 180]"), std::string::npos) << error;
+    // Counts the file cannot back are refused before anything is sized by them.
+    EXPECT_FALSE(parse(ies(10000, 10000, "0 90\n0\n1 1"), &error));
+    EXPECT_NE(error.find("fewer than the 100020000"), std::string::npos) << error;
+    // Vertical angles within the first half degree: no power over the sphere to normalize by.
+    EXPECT_FALSE(parse(ies(2, 1, "0 0.2\n0\n100 100"), &error));
+    EXPECT_NE(error.find("emits nothing over the sphere"), std::string::npos) << error;
     EXPECT_FALSE(loadIes("/nonexistent/x.ies", &error));
     EXPECT_NE(error.find("cannot open"), std::string::npos) << error;
 }

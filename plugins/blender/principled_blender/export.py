@@ -1276,6 +1276,8 @@ def light_params(light, obj_matrix):
     kept). A spot adds the ShapingAPI cone of spot_shaping().
     AREA, power P (W), area A: Cycles' area-lamp radiance is P/(4A) (cycles-peer.md); exported
     as a one-sided UsdLux RectLight/DiskLight of that radiance facing the light's -Z.
+    AREA with Cycles' is_portal: kind "portal", a UsdLux PortalLight of the lamp's size (it
+    emits nothing; it guides the world's sampling through it).
     """
     color = [float(c) for c in light.color]
     if light.type == "SUN":
@@ -1299,6 +1301,8 @@ def light_params(light, obj_matrix):
         sx = float(light.size)
         sy = float(light.size_y) if light.shape in ("RECTANGLE", "ELLIPSE") else sx
         disk = light.shape in ("DISK", "ELLIPSE")
+        if getattr(getattr(light, "cycles", None), "is_portal", False):
+            return "portal", {"size": (sx, sy), "disk": disk}
         area = (math.pi * sx * sy / 4.0) if disk else sx * sy
         L = float(light.energy) / (4.0 * max(area, 1e-12))
         return "area", {"size": (sx, sy), "disk": disk, "radiance": [c * L for c in color]}
@@ -1898,7 +1902,7 @@ class SceneExport:
                     self.warnings.append(f"light '{name}': square spot rendered as a round cone")
             self.lights[name] = (kind, xf, [xf])
             return
-        if getattr(getattr(light, "cycles", None), "is_portal", False):
+        if kind == "portal":
             # A Cycles portal emits nothing and guides the world's sampling through it: a
             # UsdLux PortalLight of the lamp's size, passing light along its local -Z (the way
             # the lamp faces), as the delegate's dome sampling reads it.
@@ -1909,7 +1913,6 @@ class SceneExport:
             if lp["disk"]:
                 self.warnings.append(f"light '{name}': a round portal is exported as a rectangle")
             self.lights[name] = (kind, xf, [xf])
-            self.area_disks[name] = False
             return
         # Area lamp: a UsdLux RectLight (square/rectangle) or DiskLight (disk; an ellipse is a
         # unit disk scaled by the transform), emitting along its local -Z from the front only

@@ -476,6 +476,13 @@ class Session:
                 f("inputs:shaping:cone:angle", sh["angle"])
                 f("inputs:shaping:cone:softness", sh["softness"])
                 f("inputs:shaping:focus", sh["focus"])
+        elif kind == "portal":  # as SceneExport._light: sized by width/height, placed by mw
+            d.add_prim(xf, "PortalLight")
+            d.set_transform(xf, export.usd_matrix(mw))
+            f("inputs:width", lp["size"][0])
+            f("inputs:height", lp["size"][1])
+            if lp["disk"]:
+                ex.warnings.append(f"light '{name}': a round portal is exported as a rectangle")
         else:
             d.add_prim(xf, "DiskLight" if lp["disk"] else "RectLight")
             d.set_transform(xf, export.usd_matrix(export.area_light_matrix(lp, mw)))
@@ -563,6 +570,9 @@ class Session:
                 d.set_attribute(xf, "inputs:shaping:cone:angle", sh["angle"])
                 d.set_attribute(xf, "inputs:shaping:cone:softness", sh["softness"])
                 d.set_attribute(xf, "inputs:shaping:focus", sh["focus"])
+        elif kind == "portal":
+            d.set_attribute(xf, "inputs:width", lp["size"][0])
+            d.set_attribute(xf, "inputs:height", lp["size"][1])
         else:
             if lp["disk"] != ex.area_disks.get(obj.name):
                 return False  # Rect <-> Disk: another prim type

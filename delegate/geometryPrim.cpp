@@ -5,6 +5,7 @@
 #include <string>
 
 #include "delegate/hd/sceneDelegate.h"
+#include "delegate/transformCheck.h"
 
 namespace principled::embree {
 
@@ -30,19 +31,11 @@ void GeometryPrim::sync(SceneDelegate* delegate, RenderParam* renderParam, Dirty
     // own instance disabled.
     if (*bits & RprimDirty::Transform) {
         glm::mat4 m(delegate->getTransform(id()));
-        // Rays are moved into object space by the inverse: a singular, non-finite or
-        // projective matrix cannot place geometry (Embree would get invalid rays).
-        float det = glm::determinant(glm::mat3(m));
-        bool finite = true;
-        for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(m[c][r]);
-        bool affine = std::abs(m[0][3]) + std::abs(m[1][3]) + std::abs(m[2][3]) < 1e-6f &&
-                      std::abs(m[3][3] - 1.0f) < 1e-6f;
-        bool usable = finite && affine && std::isfinite(det) && std::abs(det) > 1e-30f;
+        // Rays are moved into object space by the inverse (delegate/transformCheck.h).
+        const char* why = unusableTransform(m);
+        const bool usable = why == nullptr;
         if (!usable && !_badTransform)
-            param->warn(id(), std::string("transform is ") +
-                                  (!finite ? "not finite" : !affine ? "projective (last column is not (0,0,0,1))" : "singular") +
-                                  "; prim not rendered");
+            param->warn(id(), std::string("transform is ") + why + "; prim not rendered");
         _badTransform = !usable;
         if (!usable) m = glm::mat4(1.0f);
         _record.objectToWorld = m;

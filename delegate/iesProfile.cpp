@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -195,6 +196,17 @@ std::shared_ptr<const IesProfile> parseIes(const std::string& text, const std::s
 }
 
 std::shared_ptr<const IesProfile> loadIes(const std::string& path, std::string* error) {
+    // Real profiles are kilobytes; a device (/dev/zero) or a huge file would never end.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        *error = path + ": cannot open the IES file (not a regular file)";
+        return nullptr;
+    }
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec || size > (uintmax_t(64) << 20)) {
+        *error = path + ": the IES file is larger than 64 MB";
+        return nullptr;
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         *error = path + ": cannot open the IES file";

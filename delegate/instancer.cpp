@@ -9,6 +9,7 @@
 
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
+#include "delegate/transformCheck.h"
 
 namespace principled::embree {
 
@@ -62,7 +63,7 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
     glm::mat4 instancer(delegate->getTransform(instancerId));
     std::vector<InstanceRecord> out;
     out.reserve(indices.size());
-    size_t outOfRange = 0;
+    size_t outOfRange = 0, unusable = 0;
     for (int i : indices) {
         if (i < 0 || size_t(i) >= count) {
             ++outOfRange;
@@ -75,13 +76,18 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
                                               r ? (*r)[size_t(i)] : glm::vec4(1, 0, 0, 0),
                                               s ? (*s)[size_t(i)] : glm::vec3(1.0f), local);
         const glm::mat4& m = rec.objectToWorld;
-        bool finite = true;
-        for (int c = 0; c < 4; ++c)
-            for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(m[c][k]);
-        if (!finite) continue;
+        // A zero scale, a singular instance matrix or NaN cannot place the prototype: Embree
+        // would get invalid rays or degenerate bounds (delegate/transformCheck.h).
+        if (unusableTransform(m)) {
+            ++unusable;
+            continue;
+        }
         rec.normalToWorld = glm::transpose(glm::inverse(glm::mat3(m)));
         out.push_back(rec);
     }
+    if (unusable > 0)
+        warnings->push_back(std::to_string(unusable) + " instance(s) of " + prototypeId.str() +
+                            " have a transform that is singular (a zero scale), projective or not finite; not drawn");
     if (outOfRange > 0 && count > 0)
         warnings->push_back(std::to_string(outOfRange) + " instance(s) of " + prototypeId.str() +
                             " have no position (protoIndices is longer than positions); not drawn");

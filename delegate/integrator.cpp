@@ -338,8 +338,11 @@ void materialAt(const SceneSnapshot& scene, const std::vector<std::optional<bsdf
     shaded.params.baseColor = rec.displayColor;
     float dc[3];
     static const hd::Token kDisplayColor("displayColor");  // interned once, not per hit
-    if (context.primvar(kDisplayColor, 3, dc))
-        shaded.params.baseColor = glm::clamp(glm::vec3(dc[0], dc[1], dc[2]), 0.0f, 1.0f);
+    if (context.primvar(kDisplayColor, 3, dc)) {
+        // Authored NaN (clamp keeps it) reads as 0: a NaN colour dropped every sample of the prim.
+        for (float& c : dc) c = std::isnan(c) ? 0.0f : std::clamp(c, 0.0f, 1.0f);
+        shaded.params.baseColor = glm::vec3(dc[0], dc[1], dc[2]);
+    }
     shaded.params.roughness = 0.5f;
     shaded.params.specular = 0.5f;
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "delegate/colorTemperature.h"
 #include "delegate/environmentSampling.h"
@@ -36,6 +37,11 @@ glm::vec3 vector(const glm::dmat4& m, double x, double y, double z) {
 std::shared_ptr<EnvironmentMap> loadImage(const std::string& path, const std::string& what, bool latLong,
                                           std::string* error) {
     std::string reason;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {  // a device or directory would block or fail oddly
+        *error = "cannot read " + what + " '" + path + "': not a regular file";
+        return nullptr;
+    }
     imageio::Backend* io = imageio::backend(&reason);
     std::unique_ptr<imageio::ImageReader> in = io ? io->open(path, &reason) : nullptr;
     if (!in) {

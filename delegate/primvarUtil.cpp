@@ -141,9 +141,16 @@ std::vector<glm::vec3> smoothCornerNormals(const std::vector<glm::vec3>& points,
 
 std::optional<glm::vec3> constantDisplayColor(const SceneDelegate* delegate, const Path& id) {
     Value v = delegate->get(id, tokens::displayColor());
-    if (auto* a = getIf<std::vector<glm::vec3>>(v); a && !a->empty()) return (*a)[0];
-    if (auto c = getVec3(v)) return *c;
-    return std::nullopt;
+    std::optional<glm::vec3> c;
+    if (auto* a = getIf<std::vector<glm::vec3>>(v); a && !a->empty())
+        c = (*a)[0];
+    else
+        c = getVec3(v);
+    // An authored NaN or infinity reads as 0 (a NaN base colour turned every sample invalid).
+    if (c)
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite((*c)[i])) (*c)[i] = 0.0f;
+    return c;
 }
 
 }  // namespace principled::embree

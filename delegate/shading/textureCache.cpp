@@ -211,6 +211,18 @@ TextureCache::Reading TextureCache::read(const std::string& path) {
             r.error = "image has no pixels or no channels";
             return r;
         }
+        // A header can claim any size: more than 2^31 pixels, or more than 10,000 bytes of pixels
+        // per byte of file (beyond deflate's ~1000:1 on a constant image), is refused before a
+        // lookup makes the texture system allocate it (a 67-byte PNG claiming 1e6 x 1e6 ran out
+        // of memory).
+        const double pixels = double(spec.width) * double(spec.height);
+        const double rawBytes = pixels * spec.channels * std::max(1, spec.bitsPerChannel / 8);
+        const double fileBytes = double(std::filesystem::file_size(path, ec));
+        if (pixels > 2147483648.0 || (!ec && rawBytes > 1e4 * fileBytes + 268435456.0)) {
+            r.error = "image header claims " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                      " pixels, implausible for a file of " + std::to_string(size_t(fileBytes)) + " bytes";
+            return r;
+        }
         TextureInfo& info = r.info;
         info.width = spec.width;
         info.height = spec.height;

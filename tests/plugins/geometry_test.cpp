@@ -317,6 +317,38 @@ def Capsule "Cap" { uniform token axis = "Q" }
     EXPECT_GE(r.id("primId", r.px(0.0), r.py(0.0)), 0);
 }
 
+TEST(Geometry, InstancesWithASingularTransformAreLeftOutWithAWarning) {
+    // A zero scale (fuzzing found it): Embree asserted on the invalid rays (PointInstancer) or
+    // on degenerate instance bounds (instanceable prims under a zero transform).
+    Rendered r = render(R"(
+def PointInstancer "Inst"
+{
+    rel prototypes = [</Inst/P/Ball>]
+    int[] protoIndices = [0, 0, 0]
+    point3f[] positions = [(0, 0, 0), (1, 0, 0), (2, 0, 0)]
+    float3[] scales = [(1, 1, 1), (1, 1, 0), (0, 0, 0)]
+    def Scope "P" { def Sphere "Ball" { double radius = 0.3 } }
+}
+def Xform "Flat" (instanceable = true)
+{
+    double3 xformOp:scale = (0, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:scale"]
+    def Sphere "S" { double radius = 0.3 }
+}
+def Xform "Flat2" (instanceable = true)
+{
+    double3 xformOp:scale = (0, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:scale"]
+    def Sphere "S" { double radius = 0.3 }
+}
+)");
+    std::string all;
+    for (const auto& w : r.session->takeWarnings()) all += w + "\n";
+    EXPECT_NE(all.find("2 instance(s) of /Inst/P/Ball have a transform that is singular"), std::string::npos) << all;
+    EXPECT_EQ(r.session->stats()["instances"], 1.0);
+    EXPECT_GE(r.id("primId", r.px(0.0), r.py(0.0)), 0);
+}
+
 TEST(Geometry, EmissiveInstancerPrototypesAreNotPlacedAsLights) {
     // The prototype's own record is instancer-relative: it must not become a mesh light at
     // the wrong place; each placed instance is a light of its own (the sun + one instance; that

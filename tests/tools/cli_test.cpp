@@ -83,6 +83,68 @@ TEST(Cli, UserErrorsExitOne) {
     EXPECT_EQ(run("--help").status, 0);
 }
 
+TEST(Cli, FuzzedInputsRenderWithAWarningInsteadOfHangingOrDroppingSamples) {
+    // Inputs the ninth session's fuzzing found (each hung, ran out of memory or turned samples
+    // invalid): device files as a dome texture, rect texture and IES profile; a 67-byte PNG whose
+    // header claims 1e6 x 1e6 pixels; a NaN display colour. Each renders, warns, and loses no sample.
+    const fs::path dir = tempDir();
+    const unsigned char png[] = {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48,
+                                 0x44, 0x52, 0x00, 0x0f, 0x42, 0x40, 0x00, 0x0f, 0x42, 0x40, 0x01, 0x00, 0x00, 0x00,
+                                 0x01, 0x03, 0x11, 0x35, 0x46, 0x00, 0x00, 0x00, 0x0a, 0x49, 0x44, 0x41, 0x54, 0x78,
+                                 0x9c, 0x63, 0x98, 0x0f, 0x00, 0x00, 0xa1, 0x00, 0xa0, 0x94, 0x87, 0x12, 0x5d, 0x00,
+                                 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    std::ofstream(dir / "huge.png", std::ios::binary).write(reinterpret_cast<const char*>(png), sizeof png);
+    const std::string quad = R"(
+def Mesh "Q" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "vertex")
+    rel material:binding = </M>
+}
+def Material "M"
+{
+    token outputs:surface.connect = </M/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor.connect = </M/T.outputs:rgb>
+        token outputs:surface
+    }
+    def Shader "T"
+    {
+        uniform token info:id = "UsdUVTexture"
+        asset inputs:file = @huge.png@
+        float2 inputs:st.connect = </M/R.outputs:result>
+        float3 outputs:rgb
+    }
+    def Shader "R"
+    {
+        uniform token info:id = "UsdPrimvarReader_float2"
+        token inputs:varname = "st"
+        float2 outputs:result
+    }
+}
+def Sphere "Nan" { color3f[] primvars:displayColor = [(nan, 0, 0)] }
+def DomeLight "D" { asset inputs:texture:file = @/dev/zero@ }
+def RectLight "R" { asset inputs:texture:file = @/dev/urandom@ }
+def SphereLight "L" { asset inputs:shaping:ies:file = @/dev/zero@ }
+)";
+    std::ofstream(dir / "fuzzed.usda") << "#usda 1.0\n" << quad;
+    const fs::path out = dir / "fuzzed.exr", stats = dir / "fuzzed.json";
+    Result r = run("render " + (dir / "fuzzed.usda").string() + " -o " + out.string() +
+                   " --spp 2 --res 16x16 --stats " + stats.string());  // a hang: ctest's timeout
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const char* expected : {"'/dev/zero': not a regular file", "'/dev/urandom': not a regular file",
+                                 "/dev/zero: cannot open the IES file", "1000000 x 1000000 pixels, implausible"})
+        EXPECT_NE(r.output.find(expected), std::string::npos) << expected << "\n" << r.output;
+    std::ifstream in(stats);
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"invalidSamples\": 0.0"), std::string::npos) << json;
+    EXPECT_TRUE(exrStats(out.string()).first);
+}
+
 TEST(Cli, BinaryCrateFilesAreRefusedClearly) {
     fs::path f = tempDir() / "crate.usda";
     std::ofstream(f, std::ios::binary) << "PXR-USDC" << std::string(64, '\0');

@@ -35,7 +35,6 @@ LightPick::LightPick(const SceneSnapshot& scene, bool enabled) : _scene(scene) {
             items.push_back({glm::vec3(_bounds[i]), _bounds[i].w, base, i});
         } else {
             _flat.push_back(i);
-            _flatSum += base;
         }
     }
     _tree = LightTree(std::move(items), _sceneRadius2);
@@ -78,7 +77,7 @@ bool LightPick::reaches(uint32_t i, const glm::vec3& c, float r2, const glm::vec
     const glm::vec3 d = c - p;  // toward the light
     // The receiver: the whole bounding sphere behind its plane.
     if (n != glm::vec3(0.0f) && glm::dot(d, n) < 0.0f && glm::dot(d, n) * glm::dot(d, n) > r2) return false;
-    if (_reach.empty() || _reach[i].tests == 0) return true;
+    if (_reach[i].tests == 0) return true;
     const Reach& e = _reach[i];
     if ((e.tests & kBehindPlane) && glm::dot(d, e.normal) >= 0.0f) return false;  // p at or behind it
     if (e.tests & kCone) {

@@ -78,14 +78,13 @@ private:
     /// Per light: its bounding sphere (centre, radius^2) for local lights; radius^2 < 0 marks a
     /// distant or dome light (weight = its global probability).
     std::vector<glm::vec4> _bounds;
-    std::vector<Reach> _reach;  ///< per light (empty when every light reaches everywhere)
+    std::vector<Reach> _reach;  ///< per light
     float _sceneRadius2 = 1.0f;
     /// More than kMaxLights lights: the local ones in a tree, the others (distant, dome, or
-    /// without finite bounds) listed with the sum of their global probabilities.
+    /// without finite bounds) listed, weighed one by one.
     bool _many = false;
     LightTree _tree;
     std::vector<uint32_t> _flat;
-    float _flatSum = 0.0f;
 };
 
 }  // namespace principled::embree

@@ -544,8 +544,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 const LightRecord& light = lights[li];
                 if (depth == 0 && (light.kind == LightRecord::Kind::Distant || !_settings.domeVisible)) continue;
                 glm::vec3 Le;
-                float pdf;
-                if (environmentRadiance(light, prevP, ray.direction, prevNg, &Le, &pdf, compensate))
+                float pdf = 0.0f;  // not weighed after a delta bounce (the camera's included)
+                if (environmentRadiance(light, prevP, ray.direction, prevNg, &Le, prevDelta ? nullptr : &pdf, compensate))
                     addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickNormal, prevPickTotal), li);
             }
             break;

@@ -532,13 +532,13 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& origin, const gl
                          glm::vec3* Le, float* pdf, bool misCompensation) {
     if (l.kind == LightRecord::Kind::Dome) {
         *Le = l.environment && l.environment->latLong ? envLookup(*l.environment, d) : l.radiance;
-        *pdf = domeMixturePdf(l, origin, d, ng, misCompensation);
+        if (pdf) *pdf = domeMixturePdf(l, origin, d, ng, misCompensation);
         return true;
     }
     if (l.kind == LightRecord::Kind::Distant && l.cosHalfAngle < 1.0f &&
         glm::dot(d, -l.direction) >= l.cosHalfAngle) {
         *Le = l.radiance;
-        *pdf = 1.0f / (2.0f * kPi * (1.0f - l.cosHalfAngle));
+        if (pdf) *pdf = 1.0f / (2.0f * kPi * (1.0f - l.cosHalfAngle));
         return true;
     }
     return false;

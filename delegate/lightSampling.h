@@ -36,7 +36,9 @@ bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec
 
 /// Radiance of an escaped ray along d from environment light l (dome or distant disc), and the
 /// pdf sampleLight() gives that direction from point `origin` with normal ng (with the same
-/// misCompensation; a dome with portals mixes in their density at origin).
+/// misCompensation; a dome with portals mixes in their density at origin). pdf may be null when
+/// the caller does not weigh the hit (camera rays, after a delta bounce): the portal density is
+/// then not computed.
 bool environmentRadiance(const LightRecord& l, const glm::vec3& origin, const glm::vec3& d, const glm::vec3& ng,
                          glm::vec3* Le, float* pdf, bool misCompensation = false);
 

@@ -13,6 +13,7 @@
 // solid angles).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -25,6 +26,8 @@ struct Portal {
     glm::vec3 normal{0, 0, -1};          ///< unit: the direction light travels through it
     float area = 0.0f;
 };
+
+struct PortalView;  // portalSampling.cpp
 
 class PortalSet {
 public:
@@ -43,7 +46,10 @@ public:
     float pdf(const glm::vec3& p, const glm::vec3& wi) const;
 
 private:
-    float weightOf(const Portal& q, const glm::vec3& p) const;
+    /// The portals' solid angles and spherical rectangles at p (cached per thread for the last
+    /// point asked about).
+    const PortalView& view(const glm::vec3& p) const;
+    uint64_t _id = 0;
     std::vector<Portal> _portals;
 };
 

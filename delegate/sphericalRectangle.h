@@ -11,6 +11,7 @@ namespace principled::embree {
 
 class SphericalRectangle {
 public:
+    SphericalRectangle() = default;  ///< not valid()
     /// The rectangle corner + a ex + b ey (a, b in [0, 1]; ex and ey perpendicular) seen from p.
     SphericalRectangle(const glm::vec3& p, const glm::vec3& corner, const glm::vec3& ex, const glm::vec3& ey);
 

@@ -216,8 +216,9 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
             };
             const auto iesFile = getString(delegate->getLightParamValue(id(), Token("shaping:ies:file")));
             const bool iesAuthored = iesFile && !iesFile->empty();
-            if (authored("shaping:cone:angle") || authored("shaping:cone:softness") ||
-                authored("shaping:focus") || iesAuthored) {
+            const bool coneOrFocus = authored("shaping:cone:angle") || authored("shaping:cone:softness") ||
+                                     authored("shaping:focus");
+            if (coneOrFocus || iesAuthored) {
                 LightShaping& sh = _record.shaping;
                 sh.enabled = true;
                 sh.axis = _record.normal;
@@ -241,8 +242,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                     if (sh.ies) {
                         sh.iesScale = 1.0f / (iesNormalize ? sh.ies->meanCandela : sh.ies->maxCandela);
                         if (!(sh.iesScale > 0.0f) || !std::isfinite(sh.iesScale)) sh.iesScale = 1.0f;
-                    } else if (!authored("shaping:cone:angle") && !authored("shaping:cone:softness") &&
-                               !authored("shaping:focus")) {
+                    } else if (!coneOrFocus) {
                         sh.enabled = false;  // nothing else shapes it: it emits as authored
                     }
                     // Horizontal angle 0 along the light's +X, made orthogonal to the axis.

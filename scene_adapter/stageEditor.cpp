@@ -7,6 +7,7 @@
 #include <map>
 
 #include "delegate/hd/renderIndex.h"
+#include "scene_adapter/collectionMembership.h"
 #include "scene_adapter/usdSceneDelegate.h"
 #include "scene_adapter/usda/stage.h"
 #include "scene_adapter/usda/stageEdit.h"
@@ -33,6 +34,22 @@ std::string pathProblem(const std::string& p) {
         if (!validName(p.substr(start, end - start)))
             return "prim path '" + p + "' has an invalid name '" + p.substr(start, end - start) +
                    "'";
+        start = end + 1;
+    }
+    return "";
+}
+
+// A relationship target: a prim path, or a prim path and a namespaced property
+// ("/World/Set.collection:metal").
+std::string targetProblem(const std::string& t) {
+    const size_t dot = t.find('.');
+    if (dot == std::string::npos) return pathProblem(t);
+    if (std::string why = pathProblem(t.substr(0, dot)); !why.empty()) return why;
+    const std::string prop = t.substr(dot + 1);
+    for (size_t start = 0; start <= prop.size();) {
+        const size_t end = std::min(prop.find(':', start), prop.size());
+        if (!validName(prop.substr(start, end - start)))
+            return "property path '" + t + "' has an invalid property name '" + prop + "'";
         start = end + 1;
     }
     return "";
@@ -355,10 +372,20 @@ void StageEditor::setRelationship(const std::string& primPath, const std::string
     existingPrim(primPath, "setRelationship");
     checkNotInstanceProxy(primPath);
     for (const std::string& t : targets)
-        if (std::string why = pathProblem(t); !why.empty())
+        if (std::string why = targetProblem(t); !why.empty())
             throw EditError(Code::BadValue, primPath + "." + name + ": target " + why);
+    const bool collectionBinding = name.rfind("material:binding:collection:", 0) == 0;
+    if (collectionBinding && !targets.empty()) {
+        std::string prim, collection;
+        if (targets.size() != 2 || !CollectionMembership::splitCollectionPath(targets[0], &prim, &collection))
+            throw EditError(Code::BadValue, primPath + "." + name +
+                                                ": expected two targets, a collection (</Prim.collection:name>) and a Material");
+        if (!_stage.prim(prim))
+            throw EditError(Code::BadValue, primPath + "." + name + ": the collection's prim '" + prim + "' does not exist");
+    }
     if (name.rfind("material:binding", 0) == 0)
-        for (const std::string& t : targets) {
+        for (size_t i = collectionBinding ? 1 : 0; i < targets.size(); ++i) {
+            const std::string& t = targets[i];
             const usd::Prim* m = _stage.prim(t);
             if (!m || m->typeName() != "Material")
                 throw EditError(Code::BadValue, primPath + "." + name +

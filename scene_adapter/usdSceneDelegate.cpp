@@ -66,13 +66,15 @@ std::string stripNamespace(const std::string& name, const std::string& ns) {
 }  // namespace
 
 UsdSceneDelegate::UsdSceneDelegate(const usd::Stage& stage, const AdapterOptions& options)
-    : _stage(stage), _options(options) {
+    : _stage(stage), _options(options),
+      _bindings(stage, [this](const std::string& where, const std::string& message) { warn(where, message); }) {
     _time = std::isnan(options.time) ? stage.defaultTime() : options.time;
 }
 
 UsdSceneDelegate::~UsdSceneDelegate() = default;
 
 void UsdSceneDelegate::warn(const std::string& where, const std::string& message) {
+    std::lock_guard<std::mutex> lock(_warningsMutex);
     _warnings.push_back(where + ": " + message);
 }
 
@@ -130,7 +132,10 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
         e.type = hdType;
         e.world = world;
         e.visible = visible;
-        if (isRprim) e.material = resolveMaterialBinding(prim);
+        if (isRprim) {
+            e.material = resolveMaterialBinding(prim);
+            e.subsetMaterials = subsetBindings(prim);
+        }
         if (hdType == tokens::mesh() && type == "Mesh") checkExtent(prim);
         bool ok = !isImplicitShape(type) || prepareShape(prim, &e);  // warns when not
         bool inserted = ok && (isRprim ? index->insertRprim(hdType, this, id)
@@ -144,24 +149,16 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
 }
 
 Path UsdSceneDelegate::resolveMaterialBinding(const usd::Prim& start) const {
-    // The nearest binding wins, walking up the namespace; the "full" purpose (final-quality
-    // renders) is preferred over the all-purpose binding on the same prim.
-    for (const usd::Prim* p = &start; p; p = p->parent()) {
-        for (const char* rel : {"material:binding:full", "material:binding"}) {
-            const usd::Relationship* r = p->relationship(rel);
-            if (!r || r->targets().empty()) continue;
-            const std::string& target = r->targets().front();
-            const usd::Prim* m = _stage.prim(target);
-            if (!m || m->typeName() != "Material") {
-                const_cast<UsdSceneDelegate*>(this)->warn(
-                    r->location().str() + ": " + start.path(),
-                    "material:binding targets '" + target + "', which is not a Material");
-                return Path();
-            }
-            return Path(target);
-        }
-    }
-    return Path();
+    const std::string m = _bindings.resolve(start);  // scene_adapter/materialBinding.h
+    return m.empty() ? Path() : Path(m);
+}
+
+std::string UsdSceneDelegate::subsetBindings(const usd::Prim& mesh) const {
+    std::string key;
+    if (mesh.typeName() != "Mesh") return key;
+    for (const usd::Prim* child : mesh.children())
+        if (child->typeName() == "GeomSubset") key += child->name() + "=" + _bindings.resolve(*child) + ";";
+    return key;
 }
 
 void UsdSceneDelegate::checkExtent(const usd::Prim& prim) {

@@ -14,6 +14,7 @@
 
 #include "delegate/hd/renderIndex.h"
 #include "delegate/hd/sceneDelegate.h"
+#include "scene_adapter/materialBinding.h"
 
 namespace principled::usd {
 class Stage;
@@ -101,6 +102,9 @@ private:
         glm::dmat4 world{1.0};
         bool visible = true;
         hd::Path material;
+        /// What the mesh's materialBind GeomSubsets resolve to (subsetBindings()), so an edit
+        /// re-splits only meshes whose subsets changed.
+        std::string subsetMaterials;
         // Implicit shapes (Cube, Cylinder, Cone, Capsule): the generated mesh.
         std::shared_ptr<const ShapeMesh> shape;
         // PointInstancer prototypes: the instancer drawing them and their prototype index
@@ -141,6 +145,7 @@ private:
     void transformChanged(const usd::Prim& prim, hd::RenderIndex* index);
     void visibilityChanged(const usd::Prim& prim, hd::RenderIndex* index);
     void rebind(const std::string& root, const std::string& material, hd::RenderIndex* index);
+    void collectionChanged(hd::RenderIndex* index);
     void materialNetworkChanged(const usd::Prim& prim, hd::DirtyBits bits, hd::RenderIndex* index);
     /// Instancers that draw `path` or anything below it (as prototypes or by containing it).
     std::vector<hd::Path> instancersDrawing(const std::string& path) const;
@@ -150,6 +155,8 @@ private:
     const usd::Prim* prim(const hd::Path& id) const;
     hd::Value attributeValue(const usd::Prim& prim, const std::string& name) const;
     hd::Path resolveMaterialBinding(const usd::Prim& prim) const;
+    /// The resolved materials of a mesh's materialBind GeomSubsets, in order ("" without any).
+    std::string subsetBindings(const usd::Prim& mesh) const;
     void warn(const std::string& where, const std::string& message);
     void checkExtent(const usd::Prim& prim);
 
@@ -161,6 +168,8 @@ private:
     std::vector<hd::Path> _cameras;
     std::vector<std::string> _instancePrims;  ///< instanceable prims drawn through a group
     std::vector<std::string> _warnings;
+    std::mutex _warningsMutex;  ///< warn() may be called from parallel rprim syncs
+    MaterialBindingResolver _bindings;
     // Between primRemoving and primRemoved.
     const usd::Prim* _removing = nullptr;
     bool _removingHadInstances = false;

@@ -332,8 +332,16 @@ void UsdSceneDelegate::visibilityChanged(const usd::Prim& prim, RenderIndex* ind
     for (const std::string& inst : instancers) resyncSubtree(inst, index);
 }
 
+void UsdSceneDelegate::collectionChanged(RenderIndex* index) {
+    // Membership can reach any prim below a collection binding: every binding is resolved
+    // again (instance groups are keyed by bindings, so a stage with instances is rebuilt).
+    if (subtreeHasInstances("/")) return repopulate(index);
+    rebind("/", "", index);
+}
+
 void UsdSceneDelegate::rebind(const std::string& root, const std::string& material,
                               RenderIndex* index) {
+
     auto subsetTargets = [&](const usd::Prim& mesh) {
         for (const usd::Prim* child : mesh.children()) {
             if (child->typeName() != "GeomSubset") continue;
@@ -356,6 +364,12 @@ void UsdSceneDelegate::rebind(const std::string& root, const std::string& materi
             e.material = now;
         }
         if (!material.empty() && subsetTargets(*e.prim)) dirty = true;
+        // Subsets may bind through collections or bindings above the mesh.
+        if (resolve) {
+            std::string subsets = subsetBindings(*e.prim);
+            dirty = dirty || subsets != e.subsetMaterials;
+            e.subsetMaterials = std::move(subsets);
+        }
         if (dirty) index->changeTracker().markRprimDirty(id, RprimDirty::MaterialId);
     }
 }
@@ -386,6 +400,7 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
     if (startsWith(attr, "xformOp:") || attr == "xformOpOrder") return transformChanged(*p, index);
     if (attr == "visibility") return visibilityChanged(*p, index);
     if (attr == "purpose") return resyncSubtree(primPath, index);
+    if (startsWith(attr, "collection:")) return collectionChanged(index);
     const std::string& type = p->typeName();
     ChangeTracker& tracker = index->changeTracker();
     if (type == "Shader" || type == "NodeGraph")
@@ -437,6 +452,7 @@ void UsdSceneDelegate::relationshipChanged(const std::string& primPath, const st
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;
+    if (startsWith(name, "collection:")) return collectionChanged(index);
     if (startsWith(name, "material:binding")) {
         if (p->typeName() == "GeomSubset") return attributeChanged(primPath, name, index);
         if (subtreeHasInstances(primPath)) return repopulate(index);  // keys hold the binding

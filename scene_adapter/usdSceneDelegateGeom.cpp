@@ -88,19 +88,16 @@ std::vector<std::pair<Path, std::vector<int>>> UsdSceneDelegate::getMaterialSubs
     std::vector<std::pair<Path, std::vector<int>>> out;
     const usd::Prim* p = prim(id);
     if (!p || p->typeName() != "Mesh") return out;
+    const Entry* meshEntry = entry(id);
     for (const usd::Prim* child : p->children()) {
         if (child->typeName() != "GeomSubset" || !child->isActive()) continue;
         if (tokenOf(*child, "familyName", _time, "") != "materialBind") continue;
         if (tokenOf(*child, "elementType", _time, "face") != "face") continue;
-        // The subset's own binding; without one its faces keep the mesh's material.
-        for (const char* rel : {"material:binding:full", "material:binding"}) {
-            const usd::Relationship* r = child->relationship(rel);
-            if (!r || r->targets().empty()) continue;
-            const usd::Prim* m = _stage.prim(r->targets().front());
-            if (m && m->typeName() == "Material")
-                out.emplace_back(Path(r->targets().front()), intArray(attributeValue(*child, "indices")));
-            break;
-        }
+        // The subset's resolved binding (its own, a collection holding it, or a stronger one
+        // above); faces whose subset resolves to the mesh's material need no split.
+        const std::string m = _bindings.resolve(*child);
+        if (!m.empty() && (!meshEntry || Path(m) != meshEntry->material))
+            out.emplace_back(Path(m), intArray(attributeValue(*child, "indices")));
     }
     return out;
 }
@@ -140,8 +137,11 @@ const UsdSceneDelegate::InstancerCache& UsdSceneDelegate::instancerCache(const P
 }
 
 void UsdSceneDelegate::invalidateInstancerCache() {
-    std::lock_guard<std::mutex> lock(_instancerCacheMutex);
-    _instancerCache.clear();
+    {
+        std::lock_guard<std::mutex> lock(_instancerCacheMutex);
+        _instancerCache.clear();
+    }
+    _bindings.invalidate();  // collections may have been edited too
 }
 
 std::shared_ptr<const hd::InstancerArrays> UsdSceneDelegate::getInstancerArrays(const Path& instancerId) const {
@@ -187,7 +187,7 @@ bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& wo
         return false;  // an instanceable gprim is simply drawn
     if (!onlyPrototypeGeometry(prim)) return false;
     // Instances of one prototype share its BLAS unless an inherited binding differs.
-    std::string key = prim.instanceKey() + "|" + resolveMaterialBinding(prim).str();
+    std::string key = prim.instanceKey() + "|" + _bindings.inheritedKey(prim);
     auto it = _instanceGroups.find(key);
     if (it == _instanceGroups.end()) {
         // The first instance's subtree is the prototype; its rprims keep their own paths and
@@ -268,6 +268,7 @@ void UsdSceneDelegate::visitPrototype(const usd::Prim& prim, const Path& id, con
         e.world = rel;
         e.visible = visible;
         e.material = resolveMaterialBinding(prim);
+        e.subsetMaterials = subsetBindings(prim);
         e.instancer = instancer;
         e.protoIndex = protoIndex;
         if ((!shape || prepareShape(prim, &e)) && index->insertRprim(e.type, this, id)) _entries[id] = e;

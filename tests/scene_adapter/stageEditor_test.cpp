@@ -550,3 +550,34 @@ TEST(StageEditor, AddAPointInstancerWithItsPrototype) {
 }
 
 }  // namespace
+
+TEST(StageEditor, CollectionBindingEditsReSplitTheMeshesTheyReach) {
+    Fixture f;
+    f.edit().setAttribute("/World/Group/Right/Half", "indices", EditValue::of({0}));
+    // A collection on the mesh holding its subset, bound to red: on the mesh's own prim a
+    // collection binding beats the direct one (blue), so the subset's faces turn red.
+    f.edit().setRelationship("/World/Group/Right", "collection:warm:includes", {"/World/Group/Right/Half"});
+    f.edit().setRelationship("/World/Group/Right", "material:binding:collection:warm",
+                             {"/World/Group/Right.collection:warm", "/World/Looks/Red"});
+    EXPECT_EQ(f.rprims(), (Dirty{{"/World/Group/Right", D::MaterialId}}));
+    f.render();
+    glm::vec3 c = f.colorOf("/World/Group/Right");
+    EXPECT_GT(c.x, 4.0f * c.z);
+    // Excluding it again restores the mesh's blue.
+    f.edit().setRelationship("/World/Group/Right", "collection:warm:excludes", {"/World/Group/Right/Half"});
+    EXPECT_EQ(f.rprims(), (Dirty{{"/World/Group/Right", D::MaterialId}}));
+    f.render();
+    c = f.colorOf("/World/Group/Right");
+    EXPECT_GT(c.z, 4.0f * c.x);
+    // The same collection bound on the group, above the mesh's direct binding, is weaker.
+    f.edit().setRelationship("/World/Group/Right", "collection:warm:excludes", {});
+    f.edit().setRelationship("/World/Group/Right", "material:binding:collection:warm", {});
+    f.edit().setRelationship("/World/Group", "material:binding:collection:warm",
+                             {"/World/Group/Right.collection:warm", "/World/Looks/Red"});
+    f.render();
+    c = f.colorOf("/World/Group/Right");
+    EXPECT_GT(c.z, 4.0f * c.x);
+    // A binding that is not a collection and a Material is refused.
+    EXPECT_THROW(f.edit().setRelationship("/World/Group", "material:binding:collection:bad", {"/World/Looks/Red"}),
+                 EditError);
+}

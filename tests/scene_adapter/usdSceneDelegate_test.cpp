@@ -445,3 +445,46 @@ TEST(UsdSceneDelegate, MaterialXNodeGraphTexturesAndUnsupportedNodes) {
     ASSERT_FALSE(looks.notes.empty());
     EXPECT_TRUE(anyHas(looks.notes, "t.usda:")) << looks.notes.front();
 }
+
+TEST(UsdSceneDelegate, CollectionBindingsReachMeshesAndSubsets) {
+    Populated p(R"(#usda 1.0
+def Xform "World" (
+    prepend apiSchemas = ["MaterialBindingAPI", "CollectionAPI:red"]
+)
+{
+    rel collection:red:includes = [</World/Tri/Part>, </World/Other>]
+    rel material:binding:collection:red = [</World.collection:red>, </World/Looks/Red>]
+    rel material:binding = </World/Looks/Blue>
+    def Mesh "Tri"
+    {
+        int[] faceVertexCounts = [3, 3]
+        int[] faceVertexIndices = [0, 1, 2, 0, 2, 3]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+        def GeomSubset "Part"
+        {
+            uniform token elementType = "face"
+            uniform token familyName = "materialBind"
+            int[] indices = [1]
+        }
+    }
+    def Mesh "Other"
+    {
+        int[] faceVertexCounts = [3]
+        int[] faceVertexIndices = [0, 1, 2]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    }
+    def Scope "Looks"
+    {
+        def Material "Red" {}
+        def Material "Blue" {}
+    }
+}
+)");
+    EXPECT_EQ(p.scene->getMaterialId(hd::Path("/World/Tri")), hd::Path("/World/Looks/Blue"));
+    EXPECT_EQ(p.scene->getMaterialId(hd::Path("/World/Other")), hd::Path("/World/Looks/Red"));
+    auto subsets = p.scene->getMaterialSubsets(hd::Path("/World/Tri"));
+    ASSERT_EQ(subsets.size(), 1u);
+    EXPECT_EQ(subsets[0].first, hd::Path("/World/Looks/Red"));
+    EXPECT_EQ(subsets[0].second, std::vector<int>{1});
+    EXPECT_TRUE(p.scene->warnings().empty());
+}

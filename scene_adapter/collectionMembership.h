@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: Apache-2.0
+// UsdCollectionAPI membership: which prims a collection ("/Prim.collection:name") holds, from
+// its includes / excludes relationships, expansionRule, includeRoot and the collections it
+// includes. Used by collection-based material bindings (scene_adapter/materialBinding.h).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+
+namespace principled::usd {
+class Stage;
+}
+
+namespace principled::adapter {
+
+class CollectionMembership {
+public:
+    /// How an included path brings in what lies below it (UsdCollectionAPI expansionRule).
+    enum class Rule { ExplicitOnly, ExpandPrims, Exclude };
+    using WarnFn = std::function<void(const std::string& where, const std::string& message)>;
+
+    CollectionMembership() = default;
+    /// The collection at `collectionPath` ("/A/B.collection:name"). A path that is not a
+    /// collection, a prim that does not exist, a cycle of included collections or a
+    /// membershipExpression (not evaluated here) are reported through warn; what cannot be
+    /// read includes nothing.
+    CollectionMembership(const usd::Stage& stage, std::string_view collectionPath, const WarnFn& warn);
+
+    /// Whether the prim at `primPath` is a member: the nearest entry on the path or an
+    /// ancestor decides (an exclude excludes; an explicitOnly include counts only for the path
+    /// itself; an expandPrims include counts for everything below). The pseudo-root is never a
+    /// member.
+    bool includes(std::string_view primPath) const;
+
+    /// Splits "/A/B.collection:name" into "/A/B" and "name"; false if it is not that form.
+    static bool splitCollectionPath(std::string_view path, std::string* prim, std::string* name);
+
+private:
+    void addCollection(const usd::Stage& stage, std::string_view collectionPath, const WarnFn& warn,
+                       std::vector<std::string>* visiting);
+    std::unordered_map<std::string, Rule> _rules;  ///< path -> rule (the rule map)
+};
+
+}  // namespace principled::adapter

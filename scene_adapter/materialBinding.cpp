@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "scene_adapter/materialBinding.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string_view>
+#include <vector>
+
+#include "scene_adapter/usda/prim.h"
+#include "scene_adapter/usda/stage.h"
+
+namespace principled::adapter {
+namespace {
+
+constexpr std::string_view kCollectionPrefix = "material:binding:collection:";
+
+bool strongerThanDescendants(const usd::Relationship& rel) {
+    const usd::Value* v = rel.metadata("bindMaterialAs");
+    return v && v->getString().value_or("") == "strongerThanDescendants";
+}
+
+// Property "dictionary order" (how USD orders property names): letters compare without case,
+// runs of digits by their value; ties fall back to plain byte order.
+bool dictionaryLess(std::string_view a, std::string_view b) {
+    size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+        if (std::isdigit(static_cast<unsigned char>(a[i])) && std::isdigit(static_cast<unsigned char>(b[j]))) {
+            size_t ie = i, je = j;
+            while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
+            while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
+            std::string_view da = a.substr(i, ie - i), db = b.substr(j, je - j);
+            while (da.size() > 1 && da[0] == '0') da.remove_prefix(1);
+            while (db.size() > 1 && db[0] == '0') db.remove_prefix(1);
+            if (da.size() != db.size()) return da.size() < db.size();
+            if (da != db) return da < db;
+            i = ie, j = je;
+            continue;
+        }
+        const int ca = std::tolower(static_cast<unsigned char>(a[i])), cb = std::tolower(static_cast<unsigned char>(b[j]));
+        if (ca != cb) return ca < cb;
+        ++i, ++j;
+    }
+    if (a.size() - i != b.size() - j) return a.size() - i < b.size() - j;
+    return a < b;
+}
+
+// The collection-binding relationships of one purpose on a prim, in dictionary order:
+// "material:binding:collection:NAME" (all-purpose, NAME without ':') or
+// "material:binding:collection:full:NAME".
+std::vector<const usd::Relationship*> collectionBindings(const usd::Prim& prim, bool full) {
+    std::vector<const usd::Relationship*> out;
+    for (const usd::Relationship* r : prim.relationships()) {
+        std::string_view n = r->name();
+        if (n.substr(0, kCollectionPrefix.size()) != kCollectionPrefix) continue;
+        n.remove_prefix(kCollectionPrefix.size());
+        if (full) {
+            if (n.substr(0, 5) != "full:" || n.size() == 5) continue;
+        } else if (n.empty() || n.find(':') != std::string_view::npos) {
+            continue;
+        }
+        out.push_back(r);
+    }
+    std::sort(out.begin(), out.end(),
+              [](const usd::Relationship* x, const usd::Relationship* y) { return dictionaryLess(x->name(), y->name()); });
+    return out;
+}
+
+}  // namespace
+
+std::string MaterialBindingResolver::materialTarget(const usd::Relationship& rel, size_t targetIndex,
+                                                    const usd::Prim& subject) const {
+    const std::string& target = rel.targets()[targetIndex];
+    const usd::Prim* m = _stage.prim(target);
+    if (m && m->typeName() == "Material") return target;
+    _warn(rel.location().str() + ": " + subject.path(),
+          rel.name() + " targets '" + target + "', which is not a Material; the binding is ignored");
+    return "";
+}
+
+bool MaterialBindingResolver::collectionIncludes(const std::string& collectionPath, const std::string& primPath) const {
+    std::shared_ptr<const CollectionMembership> c;
+    {
+        std::lock_guard<std::mutex> lock(_mutex);
+        auto& slot = _collections[collectionPath];
+        if (!slot) slot = std::make_shared<const CollectionMembership>(_stage, collectionPath, _warn);
+        c = slot;
+    }
+    return c->includes(primPath);
+}
+
+void MaterialBindingResolver::invalidate() {
+    std::lock_guard<std::mutex> lock(_mutex);
+    _collections.clear();
+}
+
+std::string MaterialBindingResolver::inheritedKey(const usd::Prim& prim) const {
+    // Levels without bindings do not change what a descendant resolves to, so only the
+    // sequence of levels that bind, nearest first, enters the key (not their paths).
+    std::string key;
+    for (const usd::Prim* p = &prim; p && p->path() != "/"; p = p->parent()) {
+        bool any = false;
+        for (const usd::Relationship* r : p->relationships()) {
+            const std::string& n = r->name();
+            if (n.rfind("material:binding", 0) != 0) continue;
+            if (n.rfind(kCollectionPrefix, 0) == 0) return "path:" + prim.path();
+            key += n + (strongerThanDescendants(*r) ? "!" : "") + "=";
+            for (const std::string& t : r->targets()) key += t + ",";
+            key += ";";
+            any = true;
+        }
+        if (any) key += "|";
+    }
+    return key;
+}
+
+std::string MaterialBindingResolver::resolve(const usd::Prim& subject) const {
+    for (const bool full : {true, false}) {
+        const char* directName = full ? "material:binding:full" : "material:binding";
+        Candidate bound;
+        bool boundDirectHere = false;  // the binding taken so far is the current prim's direct one
+        for (const usd::Prim* p = &subject; p && p->path() != "/"; p = p->parent()) {
+            boundDirectHere = false;
+            if (const usd::Relationship* r = p->relationship(directName); r && !r->targets().empty()) {
+                if (bound.material.empty() || strongerThanDescendants(*r)) {
+                    if (std::string m = materialTarget(*r, 0, subject); !m.empty()) {
+                        bound = {std::move(m), p};
+                        boundDirectHere = true;
+                    }
+                }
+            }
+            for (const usd::Relationship* r : collectionBindings(*p, full)) {
+                if (r->targets().size() != 2) {
+                    if (!r->targets().empty())
+                        _warn(r->location().str() + ": " + p->path(),
+                              r->name() + " has " + std::to_string(r->targets().size()) +
+                                  " targets (expected a collection and a Material); ignored");
+                    continue;
+                }
+                if (!collectionIncludes(r->targets()[0], subject.path())) continue;
+                if (!bound.material.empty() && !boundDirectHere && !strongerThanDescendants(*r)) continue;
+                if (std::string m = materialTarget(*r, 1, subject); !m.empty()) {
+                    bound = {std::move(m), p};
+                    break;
+                }
+            }
+        }
+        if (!bound.material.empty()) return bound.material;
+    }
+    return "";
+}
+
+}  // namespace principled::adapter

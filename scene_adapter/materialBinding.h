@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: Apache-2.0
+// UsdShade material resolution: the one Material a gprim (or GeomSubset) is shaded with, from
+// the direct and collection-based bindings on it and its ancestors, their strengths and their
+// purposes (the "full" purpose first, then all-purpose bindings).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "scene_adapter/collectionMembership.h"
+
+namespace principled::usd {
+class Prim;
+class Relationship;
+class Stage;
+}  // namespace principled::usd
+
+namespace principled::adapter {
+
+class MaterialBindingResolver {
+public:
+    using WarnFn = CollectionMembership::WarnFn;
+    MaterialBindingResolver(const usd::Stage& stage, WarnFn warn) : _stage(stage), _warn(std::move(warn)) {}
+
+    /// The bound Material's path, or "" when nothing binds one. Rules (UsdShadeMaterialBindingAPI
+    /// material resolution): for the purpose "full", then for all-purpose bindings, walk from the
+    /// prim up to the root; at each prim its direct binding is taken when nothing nearer bound one
+    /// or when it is strongerThanDescendants (bindMaterialAs), then the first of its collection
+    /// bindings (material:binding:collection:NAME, in name order) whose collection holds the prim
+    /// is taken when nothing nearer bound one, when the binding taken so far is this prim's own
+    /// direct binding, or when it is strongerThanDescendants. The first purpose that binds wins.
+    /// Bindings whose target is not a Material are reported and ignored. Thread-safe.
+    std::string resolve(const usd::Prim& prim) const;
+
+    /// A key equal for two prims whose descendants resolve alike wherever their own subtrees
+    /// bind alike: the binding relationships (name, targets, strength) on the prim and its
+    /// ancestors. Collection bindings there make membership depend on the exact path, so the
+    /// key is then the prim's path (no two prims share it).
+    std::string inheritedKey(const usd::Prim& prim) const;
+
+    /// Forgets the collections read so far (after an edit to the stage).
+    void invalidate();
+
+private:
+    struct Candidate {
+        std::string material;
+        const usd::Prim* at = nullptr;
+    };
+    /// The Material a binding relationship's `targetIndex`-th target names, "" (with a
+    /// warning) when it is not a Material.
+    std::string materialTarget(const usd::Relationship& rel, size_t targetIndex, const usd::Prim& subject) const;
+    bool collectionIncludes(const std::string& collectionPath, const std::string& primPath) const;
+
+    const usd::Stage& _stage;
+    WarnFn _warn;
+    mutable std::mutex _mutex;
+    mutable std::map<std::string, std::shared_ptr<const CollectionMembership>> _collections;
+};
+
+}  // namespace principled::adapter

@@ -507,10 +507,12 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // have found them. Without MIS, lights that NEE samples are counted only by NEE
         // (weight 0 here), except after a delta bounce, which NEE cannot follow; directions
         // NEE cannot produce (pdf 0, e.g. below the surface) always count fully.
+        // A light that casts no shadows is NEE's alone (it reaches through occluders, which a
+        // BSDF ray cannot), as every NEE-sampled light is without MIS.
         auto addEmitter = [&](const glm::vec3& Le, float lightPdf, uint32_t li) {
-            float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
-                          ? 1.0f
-                          : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
+            float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee) ? 1.0f
+                      : (_settings.mis && lights[li].castsShadows) ? powerHeuristic(prevBsdfPdf, lightPdf)
+                                                                   : 0.0f;
             glm::vec3 c = beta * Le * w;
             if (caustic && caustic->isCausticLight(li)) c *= glm::vec3(1.0f) - causticCovered;
             if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
@@ -695,15 +697,19 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf, split || share ? &perLobe : nullptr);
                 if (share) f *= glm::vec3(1.0f) - causticOpen * lobeShare(perLobe, f, sharp);
                 if (maxComponent(f) > 0.0f) {
-                    ++out.rays;
-                    glm::vec3 shadowOrigin = offsetOrigin(hit, ls.wi);
-                    // Stop just short of a sampled point on an area light.
-                    float tfar = ls.distance >= kInf ? kInf
-                                                      : std::max(0.0f, glm::length(hit.p + ls.distance * ls.wi - shadowOrigin) * (1.0f - 1e-4f));
-                    if (_settings.recorder) _settings.recorder->record(shadowOrigin, ls.wi, 0.0f, tfar, true);
-                    const float visible = transmittance(_scene, shadowOrigin, ls.wi, tfar);
+                    const bool shadows = lights[li].castsShadows;
+                    float visible = 1.0f;
+                    if (shadows) {
+                        ++out.rays;
+                        glm::vec3 shadowOrigin = offsetOrigin(hit, ls.wi);
+                        // Stop just short of a sampled point on an area light.
+                        float tfar = ls.distance >= kInf ? kInf
+                                                          : std::max(0.0f, glm::length(hit.p + ls.distance * ls.wi - shadowOrigin) * (1.0f - 1e-4f));
+                        if (_settings.recorder) _settings.recorder->record(shadowOrigin, ls.wi, 0.0f, tfar, true);
+                        visible = transmittance(_scene, shadowOrigin, ls.wi, tfar);
+                    }
                     if (visible > 0.0f) {
-                        float w = (ls.delta || !_settings.mis) ? 1.0f : powerHeuristic(ls.pdf * lightPick, bsdfPdf);
+                        float w = (ls.delta || !_settings.mis || !shadows) ? 1.0f : powerHeuristic(ls.pdf * lightPick, bsdfPdf);
                         glm::vec3 scale = beta * ls.Li * (visible * w / (ls.pdf * lightPick));
                         glm::vec3 c = scale * f;
                         if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)

@@ -112,6 +112,10 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
         glm::vec3 scaled = finiteNonNegative(color * intensity * std::exp2(exposure));
         glm::dmat4 xf = delegate->getTransform(id());
         _record = LightRecord();
+        _record.castsShadows = scalar("shadow:enable", 1.0f) > 0.5f;  // UsdLux ShadowAPI
+        if (getVec3(delegate->getLightParamValue(id(), Token("shadow:color"))).value_or(glm::vec3(0.0f)) != glm::vec3(0.0f) ||
+            getFloat(delegate->getLightParamValue(id(), Token("shadow:distance"))).value_or(-1.0f) >= 0.0f)
+            param->warn(id(), "shadow:color and shadow:distance are not supported; shadows are black and unbounded");
         if (_type == tokens::distantLight()) {
             _record.kind = LightRecord::Kind::Distant;
             glm::vec3 d = vector(xf, 0.0, 0.0, -1.0);

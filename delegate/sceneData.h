@@ -166,6 +166,9 @@ struct LightRecord {
     float cosHalfAngle = 1.0f;   ///< distant: cos of half the angular diameter (1 = delta)
     glm::vec3 irradiance{0.0f};  ///< distant: perpendicular irradiance it delivers
     bool visibleToCamera = true;
+    /// UsdLux ShadowAPI inputs:shadow:enable: false lets the light through occluders (no shadow
+    /// rays; next-event estimation alone carries it, BSDF-sampled hits on it weigh 0).
+    bool castsShadows = true;
     // Area lights, in world space.
     glm::vec3 center{0.0f};
     glm::vec3 axisU{0.0f}, axisV{0.0f};  ///< rect: half extents; disk: radii; cylinder: U = half length along the axis

@@ -240,6 +240,14 @@ def test_conversions():
     intensity = p["intensity"] * math.pi * p["radius"] ** 2
     check(kind == "point" and abs(intensity - 100.0 / (4 * math.pi)) < 1e-9,
           "point light intensity P/(4 pi)")
+    check(p["shadows"] is True, "a lamp without Cycles settings casts shadows")
+
+    class CyclesLamp:
+        cast_shadow = False
+
+    pt.cycles = CyclesLamp()
+    check(export.light_params(pt, None)[1]["shadows"] is False,
+          "Cycles' Cast Shadow off becomes shadow:enable = 0")
     ar = L()
     ar.type, ar.energy, ar.shape, ar.size, ar.size_y, ar.color = "AREA", 40.0, "RECTANGLE", 2.0, \
         0.5, (1, 1, 1)

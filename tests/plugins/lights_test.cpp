@@ -592,3 +592,63 @@ def RectLight "Panel"
     double expected = 0.25 * a * (L * A / (dist * dist)) / kPi;
     EXPECT_NEAR(render(planeScene(a, light), 256), expected, 0.01 * expected);
 }
+
+TEST(Lights, ShadowDisabledLightsReachThroughOccluders) {
+    // A disk light (R = 1, L = 10, h = 2) over the plane, a black 1.2 x 1.2 card at height 1
+    // between them; the camera looks at the origin from 60 degrees off vertical, past the card.
+    // UsdLux ShadowAPI shadow:enable = 0: the card casts no shadow, the closed form holds.
+    auto scene = [](const std::string& shadowInput, bool card = true) {
+        return planeScene(0.5, R"(
+def DiskLight "Disk"
+{
+    float inputs:radius = 1
+    float inputs:intensity = 10
+    )" + shadowInput + R"(
+    double3 xformOp:translate = (0, 2, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+def SphereLight "Bulb"
+{
+    float inputs:radius = 0.1
+    float inputs:intensity = 50
+    )" + shadowInput + R"(
+    double3 xformOp:translate = (0, 1.6, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Mesh "Card" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    )" + std::string(card ? "" : "token visibility = \"invisible\"") + R"(
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-0.6, 1, -0.6), (-0.6, 1, 0.6), (0.6, 1, 0.6), (0.6, 1, -0.6)]
+    rel material:binding = </Black>
+}
+def Material "Black"
+{
+    token outputs:surface.connect = </Black/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0, 0, 0)
+        float inputs:ior = 1
+        token outputs:surface
+    }
+}
+)",
+                          60.0);
+    };
+    // Disk: E = pi L R^2 / (h^2 + R^2); sphere (radius r, radiance Ls, distance d): E = pi Ls (r/d)^2.
+    const double a = 0.5;
+    const double E = kPi * 10.0 * 1.0 / (4.0 + 1.0) + kPi * 50.0 * (0.1 / 1.6) * (0.1 / 1.6);
+    const double expected = a * E / kPi;
+    const double lit = render(scene("bool inputs:shadow:enable = 0"), 1024);
+    EXPECT_NEAR(lit, expected, 0.03 * expected);
+    // Nothing in the way: BSDF-sampled hits on the lights must not add to NEE's full weight.
+    EXPECT_NEAR(render(scene("bool inputs:shadow:enable = 0", false), 1024), expected, 0.03 * expected);
+    // Without MIS the same light arrives (it is NEE's alone either way).
+    EXPECT_NEAR(render(scene("bool inputs:shadow:enable = 0"), 1024, {{"mis", "0"}}), expected, 0.03 * expected);
+    // Shadowed (the default), the card takes nearly all of both lights.
+    EXPECT_LT(render(scene(""), 256), 0.25 * expected);
+}

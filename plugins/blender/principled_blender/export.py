@@ -1279,6 +1279,14 @@ def light_params(light, obj_matrix):
     AREA with Cycles' is_portal: kind "portal", a UsdLux PortalLight of the lamp's size (it
     emits nothing; it guides the world's sampling through it).
     """
+    p = _light_params_by_type(light, obj_matrix)
+    # Cycles' per-lamp "Cast Shadow" (light.cycles.cast_shadow): UsdLux ShadowAPI shadow:enable.
+    if p[0] not in (None, "portal"):
+        p[1]["shadows"] = bool(getattr(getattr(light, "cycles", None), "cast_shadow", True))
+    return p
+
+
+def _light_params_by_type(light, obj_matrix):
     color = [float(c) for c in light.color]
     if light.type == "SUN":
         S = float(light.energy)
@@ -1868,6 +1876,12 @@ class SceneExport:
 
     def _light(self, b, name, mw, light):
         kind, lp = light_params(light, mw)
+        self._light_prim(b, name, mw, light, kind, lp)
+        if lp and lp.get("shadows") is False and name in self.lights:
+            xf = self.lights[name][1]
+            b.set_attribute(xf, "bool", "inputs:shadow:enable", 0)
+
+    def _light_prim(self, b, name, mw, light, kind, lp):
         xf = "/World/" + self._unique(usd_name(name, "Light"))
         if kind == "sun":
             b.add_prim(xf, "DistantLight")

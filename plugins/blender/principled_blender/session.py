@@ -494,6 +494,8 @@ class Session:
             f("inputs:intensity", 1.0)
             d.set_attribute_typed(xf, "inputs:color", "color3f", lp["radiance"])
             ex.area_disks[name] = lp["disk"]
+        if lp.get("shadows") is False:  # Cycles' Cast Shadow off: UsdLux ShadowAPI
+            d.set_attribute_typed(xf, "inputs:shadow:enable", "bool", 0)
         ex.lights[name] = (kind, xf, [xf])
         return True
 
@@ -583,6 +585,8 @@ class Session:
             else:
                 d.set_attribute(xf, "inputs:width", lp["size"][0])
                 d.set_attribute(xf, "inputs:height", lp["size"][1])
+        if "shadows" in lp:
+            d.set_attribute_typed(xf, "inputs:shadow:enable", "bool", 1 if lp["shadows"] else 0)
         return True
 
     # ---- results -----------------------------------------------------------------------

@@ -405,6 +405,19 @@ glm::vec3 lobeShare(const bsdf::LobeValues& perLobe, const glm::vec3& f, bsdf::L
 
 bool anyPositive(const glm::vec3& v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
 
+// The lobe classes a light's diffuse / specular multipliers act on (UsdLux LightAPI).
+constexpr bsdf::LobeMask kDiffuseClass = (1u << int(bsdf::Lobe::Diffuse)) | (1u << int(bsdf::Lobe::Sheen));
+
+// f with each lobe scaled by the light's multiplier for its class; perLobe scaled in place.
+glm::vec3 scaleLobes(bsdf::LobeValues* perLobe, float diffuseScale, float specularScale) {
+    glm::vec3 f(0.0f);
+    for (int i = 0; i < bsdf::kLobeCount; ++i) {
+        (*perLobe)[size_t(i)] *= (kDiffuseClass & (1u << i)) ? diffuseScale : specularScale;
+        f += (*perLobe)[size_t(i)];
+    }
+    return f;
+}
+
 }  // namespace
 
 Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& settings)
@@ -428,6 +441,7 @@ Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& set
         }
         _areaLightTree = LightTree(std::move(items), 1.0f);
     }
+    for (const LightRecord& l : scene.lights) _lightsScaleLobes = _lightsScaleLobes || l.scalesLobes();
     _constantBsdfs.reserve(scene.materials.size());
     for (const MaterialRecord& m : scene.materials) {
         if (m.program)
@@ -497,6 +511,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     const bool compensate = _settings.misCompensation && _settings.mis && _settings.nee;
     const bool merging = caustic && _settings.photons && !_settings.photons->empty();
     glm::vec3 causticOpen(0.0f), causticCovered(0.0f);
+    // With lights that scale lobe classes: the diffuse class's share of f at the direction the
+    // current ray left its vertex (per channel; the specular classes hold the rest). A light
+    // the ray reaches counts diffuseScale * share + specularScale * (1 - share) of its light.
+    glm::vec3 prevDiffuseShare(0.0f);
+    bool prevVertex = false;  // the ray left a surface (not the camera)
 
     for (int depth = 0;; ++depth) {
         Hit hit;
@@ -514,6 +533,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                       : (_settings.mis && lights[li].castsShadows) ? powerHeuristic(prevBsdfPdf, lightPdf)
                                                                    : 0.0f;
             glm::vec3 c = beta * Le * w;
+            if (prevVertex && lights[li].scalesLobes())
+                c *= lights[li].diffuseScale * prevDiffuseShare +
+                     lights[li].specularScale * (glm::vec3(1.0f) - prevDiffuseShare);
             if (caustic && caustic->isCausticLight(li)) c *= glm::vec3(1.0f) - causticCovered;
             if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
                 c *= _settings.clampIndirect / maxComponent(c);
@@ -694,7 +716,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 bsdf::LobeValues perLobe;
                 const bool split = depth == 0 && _settings.splitLobes;
                 const bool share = shareHere && caustic->isCausticLight(li);
-                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf, split || share ? &perLobe : nullptr);
+                const bool scaled = lights[li].scalesLobes();
+                glm::vec3 f = bsdf.eval(view, frame.toLocal(ls.wi), &bsdfPdf, split || share || scaled ? &perLobe : nullptr);
+                if (scaled) f = scaleLobes(&perLobe, lights[li].diffuseScale, lights[li].specularScale);
                 if (share) f *= glm::vec3(1.0f) - causticOpen * lobeShare(perLobe, f, sharp);
                 if (maxComponent(f) > 0.0f) {
                     const bool shadows = lights[li].castsShadows;
@@ -769,6 +793,17 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             causticCovered = causticOpen * sharpShare;
             causticOpen = causticCovered + (depth == 0 || merging ? restShare : glm::vec3(0.0f));
         }
+        if (_lightsScaleLobes) {
+            // The diffuse class's share of f at the sampled direction (a delta lobe is specular).
+            prevDiffuseShare = glm::vec3(0.0f);
+            if (!s->delta) {
+                bsdf::LobeValues perLobe;
+                const glm::vec3 f = bsdf.eval(view, s->wi, nullptr, &perLobe);
+                const glm::vec3 d = perLobe[size_t(bsdf::Lobe::Diffuse)] + perLobe[size_t(bsdf::Lobe::Sheen)];
+                for (int c = 0; c < 3; ++c) prevDiffuseShare[c] = f[c] > 0.0f ? std::clamp(d[c] / f[c], 0.0f, 1.0f) : 0.0f;
+            }
+        }
+        prevVertex = true;
         // NEE samples the far side only for rough transmission (neeThrough): a direction
         // transmitted by anything else could not have come from it, so lights it reaches count
         // fully (treated like a delta bounce); otherwise they are MIS-weighted as reflections.

@@ -176,6 +176,9 @@ private:
     LightTree _areaLightTree;
     std::vector<uint32_t> _unboundedAreaLights;
     LightPick _lightPick;  ///< which light next-event estimation samples when it samples one
+    /// Some light scales the diffuse or specular lobes (LightRecord::scalesLobes): paths then
+    /// keep the lobe classes' shares of f at their last vertex.
+    bool _lightsScaleLobes = false;
 };
 
 }  // namespace principled::embree

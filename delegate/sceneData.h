@@ -169,6 +169,11 @@ struct LightRecord {
     /// UsdLux ShadowAPI inputs:shadow:enable: false lets the light through occluders (no shadow
     /// rays; next-event estimation alone carries it, BSDF-sampled hits on it weigh 0).
     bool castsShadows = true;
+    /// UsdLux LightAPI inputs:diffuse / inputs:specular: how strongly the light reaches the
+    /// diffuse lobes (diffuse, sheen) and the specular ones (specular, clearcoat, transmission)
+    /// of the surface it lights (1, 1: as the BSDF says).
+    float diffuseScale = 1.0f, specularScale = 1.0f;
+    bool scalesLobes() const { return diffuseScale != 1.0f || specularScale != 1.0f; }
     // Area lights, in world space.
     glm::vec3 center{0.0f};
     glm::vec3 axisU{0.0f}, axisV{0.0f};  ///< rect: half extents; disk: radii; cylinder: U = half length along the axis

@@ -248,6 +248,14 @@ def test_conversions():
     pt.cycles = CyclesLamp()
     check(export.light_params(pt, None)[1]["shadows"] is False,
           "Cycles' Cast Shadow off becomes shadow:enable = 0")
+
+    class LampObject:
+        visible_diffuse = False
+        visible_glossy = True
+
+    check(export.light_lobe_scales(LampObject()) == {"inputs:diffuse": 0.0},
+          "a lamp hidden from diffuse rays gets inputs:diffuse = 0")
+    check(export.light_lobe_scales(None) == {}, "no object: no multipliers")
     ar = L()
     ar.type, ar.energy, ar.shape, ar.size, ar.size_y, ar.color = "AREA", 40.0, "RECTANGLE", 2.0, \
         0.5, (1, 1, 1)

@@ -652,3 +652,30 @@ def Material "Black"
     // Shadowed (the default), the card takes nearly all of both lights.
     EXPECT_LT(render(scene(""), 256), 0.25 * expected);
 }
+
+TEST(Lights, DiffuseAndSpecularMultipliersScaleTheirLobesUnderEveryStrategy) {
+    // UsdLux LightAPI inputs:diffuse / inputs:specular on a disk light (R = 1, L = 10, h = 2)
+    // over the Lambertian plane: the diffuse multiplier scales the closed form, the specular one
+    // leaves it (the plane has no specular lobe); NEE alone, BSDF sampling alone and MIS agree.
+    auto scene = [](const std::string& inputs) {
+        return planeScene(0.5, R"(
+def DiskLight "Disk"
+{
+    float inputs:radius = 1
+    float inputs:intensity = 10
+    )" + inputs + R"(
+    double3 xformOp:translate = (0, 2, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)");
+    };
+    const double expected = 0.5 * 10.0 * 1.0 / (4.0 + 1.0);  // a E / pi
+    for (const auto& strategy : std::vector<std::map<std::string, std::string>>{{}, {{"mis", "0"}}, {{"nee", "0"}}}) {
+        const int spp = strategy.count("nee") ? 4096 : 1024;
+        EXPECT_NEAR(render(scene("float inputs:diffuse = 0.25"), spp, strategy), 0.25 * expected, 0.03 * 0.25 * expected);
+        EXPECT_NEAR(render(scene("float inputs:specular = 0"), spp, strategy), expected, 0.03 * expected);
+    }
+    // Only the plane's grazing Schlick specular (ior 1: F0 = 0) is left.
+    EXPECT_LT(render(scene("float inputs:diffuse = 0"), 64), 1e-3 * expected);
+}

@@ -1286,6 +1286,22 @@ def light_params(light, obj_matrix):
     return p
 
 
+def light_lobe_scales(obj):
+    """A lamp object's Cycles ray visibility -> UsdLux LightAPI lobe multipliers.
+
+    Cycles 3.4 lets a lamp skip diffuse or glossy bounces (Object > Visibility > Ray Visibility,
+    obj.visible_diffuse / visible_glossy): principled's inputs:diffuse / inputs:specular of 0 do
+    the same to the lobes they scale. Returns {"inputs:diffuse": 0.0, ...} for the flags that are
+    off (an empty dict for a lamp visible to both).
+    """
+    out = {}
+    if obj is not None and not getattr(obj, "visible_diffuse", True):
+        out["inputs:diffuse"] = 0.0
+    if obj is not None and not getattr(obj, "visible_glossy", True):
+        out["inputs:specular"] = 0.0
+    return out
+
+
 def _light_params_by_type(light, obj_matrix):
     color = [float(c) for c in light.color]
     if light.type == "SUN":
@@ -1796,7 +1812,7 @@ class SceneExport:
                     self.camera_object = obj.name
                 continue
             if obj.type == "LIGHT":
-                self._light(b, name, mw, obj.data)
+                self._light(b, name, mw, obj.data, obj)
                 continue
             if obj.type not in ("MESH", "CURVE", "SURFACE", "META", "FONT"):
                 continue
@@ -1874,12 +1890,16 @@ class SceneExport:
                 b.set_attribute(path, "float", k, v)
         self.camera_path = path
 
-    def _light(self, b, name, mw, light):
+    def _light(self, b, name, mw, light, obj=None):
         kind, lp = light_params(light, mw)
         self._light_prim(b, name, mw, light, kind, lp)
-        if lp and lp.get("shadows") is False and name in self.lights:
-            xf = self.lights[name][1]
+        if name not in self.lights or kind == "portal":
+            return
+        xf = self.lights[name][1]
+        if lp.get("shadows") is False:
             b.set_attribute(xf, "bool", "inputs:shadow:enable", 0)
+        for attr, v in light_lobe_scales(obj).items():
+            b.set_attribute(xf, "float", attr, v)
 
     def _light_prim(self, b, name, mw, light, kind, lp):
         xf = "/World/" + self._unique(usd_name(name, "Light"))

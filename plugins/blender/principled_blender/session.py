@@ -496,6 +496,9 @@ class Session:
             ex.area_disks[name] = lp["disk"]
         if lp.get("shadows") is False:  # Cycles' Cast Shadow off: UsdLux ShadowAPI
             d.set_attribute_typed(xf, "inputs:shadow:enable", "bool", 0)
+        if kind != "portal":
+            for attr, v in export.light_lobe_scales(obj).items():
+                d.set_attribute_typed(xf, attr, "float", v)
         ex.lights[name] = (kind, xf, [xf])
         return True
 
@@ -587,6 +590,9 @@ class Session:
                 d.set_attribute(xf, "inputs:height", lp["size"][1])
         if "shadows" in lp:
             d.set_attribute_typed(xf, "inputs:shadow:enable", "bool", 1 if lp["shadows"] else 0)
+            scales = export.light_lobe_scales(obj)
+            for attr in ("inputs:diffuse", "inputs:specular"):
+                d.set_attribute_typed(xf, attr, "float", scales.get(attr, 1.0))
         return True
 
     # ---- results -----------------------------------------------------------------------

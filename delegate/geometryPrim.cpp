@@ -70,6 +70,7 @@ void GeometryPrim::sync(SceneDelegate* delegate, RenderParam* renderParam, Dirty
     if (*bits & RprimDirty::MaterialId) {
         _materialId = delegate->getMaterialId(id());
         _subsets = delegate->getMaterialSubsets(id());
+        _categories = delegate->getCategories(id());  // light linking changes come this way too
         param->bindingChanged(this);
     }
     constexpr DirtyBits kInstanceBits = RprimDirty::Transform | RprimDirty::Visibility |

@@ -25,6 +25,7 @@ public:
         return _instancer.empty() ? nullptr : &_instances.geomIds();
     }
     hd::Path instancerId() const override { return _instancer; }
+    const std::vector<hd::Token>& categories() const override { return _categories; }
     const std::vector<InstanceRecord>* instanceRecords() const override {
         return _instancer.empty() ? nullptr : &_instances.records();
     }
@@ -44,6 +45,7 @@ private:
     EmbreeInstance _instance;
     hd::Path _materialId;
     std::vector<std::pair<hd::Path, std::vector<int>>> _subsets;  ///< GeomSubset bindings
+    std::vector<hd::Token> _categories;  ///< light-linking categories (read with the binding)
     hd::Path _instancer;      ///< non-empty: a PointInstancer prototype, drawn only by _instances
     InstanceSet _instances;
     bool _registered = false;

@@ -516,6 +516,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     // the ray reaches counts diffuseScale * share + specularScale * (1 - share) of its light.
     glm::vec3 prevDiffuseShare(0.0f);
     bool prevVertex = false;  // the ray left a surface (not the camera)
+    uint64_t prevLightLinks = 0;  // GeometryRecord::lightLinks of that surface
 
     for (int depth = 0;; ++depth) {
         Hit hit;
@@ -529,6 +530,9 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // A light that casts no shadows is NEE's alone (it reaches through occluders, which a
         // BSDF ray cannot), as every NEE-sampled light is without MIS.
         auto addEmitter = [&](const glm::vec3& Le, float lightPdf, uint32_t li) {
+            // Light linking: a light that does not light the surface the ray left adds nothing
+            // there (NEE skips it too); the camera sees every light.
+            if (prevVertex && !lights[li].lights(prevLightLinks)) return;
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee) ? 1.0f
                       : (_settings.mis && lights[li].castsShadows) ? powerHeuristic(prevBsdfPdf, lightPdf)
                                                                    : 0.0f;
@@ -707,6 +711,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             const size_t li = _scene.neeAllLights ? nee
                               : spatialPick       ? _lightPick.pick(hit.p, pickNormal, pickWeights, pickTotal, ul)
                                                   : _lightPick.globalPick(ul);
+            if (!lights[li].lights(rec.lightLinks)) continue;  // light linking: not this prim's light
             const float lightPick = _lightPick.probability(uint32_t(li), hit.p, pickNormal, pickTotal);
             LightSample ls;
             if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate) && ls.pdf > 0.0f &&
@@ -804,6 +809,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             }
         }
         prevVertex = true;
+        prevLightLinks = rec.lightLinks;
         // NEE samples the far side only for rough transmission (neeThrough): a direction
         // transmitted by anything else could not have come from it, so lights it reaches count
         // fully (treated like a delta bounce); otherwise they are MIS-weighted as reflections.

@@ -211,6 +211,7 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
             ++_lightDistributionBuilds;
         }
     }
+    if (lightTable || meshLights || c.all || c.materialSet || c.geometrySet || !c.bindings.empty()) assignLightLinks();
     if (c.scene || c.all || c.geometrySet) {
         _snapshot.geometryByInstance.clear();
         _snapshot.instanceByInstance.clear();
@@ -228,6 +229,29 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
     if (_param->takeTablesDirty()) {
         _param->markTablesDirty();
         commitResources(nullptr);
+    }
+}
+
+void EmbreeRenderDelegate::assignLightLinks() {
+    // One bit per linked light (UsdLux collection:lightLink), in the light table's order; a
+    // prim's bits say which linked lights reach it. Lights without a category light every prim.
+    std::unordered_map<std::string, int> bitOf;
+    for (LightRecord& l : _snapshot.lights) {
+        l.linkBit = -1;
+        if (l.linkCategory.empty()) continue;
+        auto [it, added] = bitOf.emplace(l.linkCategory, int(bitOf.size()));
+        if (it->second >= 64) {
+            if (added) _param->warn(hd::Path(l.linkCategory), "more than 64 linked lights: this one lights every prim");
+            continue;
+        }
+        l.linkBit = it->second;
+    }
+    for (GeometrySource* g : _param->geometry()) {
+        uint64_t links = 0;
+        if (!bitOf.empty())
+            for (const hd::Token& c : g->categories())
+                if (auto it = bitOf.find(c.str()); it != bitOf.end() && it->second < 64) links |= uint64_t(1) << it->second;
+        g->record()->lightLinks = links;
     }
 }
 

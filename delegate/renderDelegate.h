@@ -98,6 +98,8 @@ private:
                            const std::vector<uint32_t>& triangles, bool* emits) const;
     void computeLightPower();
     float sceneRadius() const;
+    /// LightRecord::linkBit of the linked lights and GeometryRecord::lightLinks of every prim.
+    void assignLightLinks();
     bool mayEmit(const GeometryRecord* r) const;
     /// Whether material `materialIndex` of the table may emit (MaterialRecord::mayEmit).
     bool materialMayEmit(int materialIndex) const;

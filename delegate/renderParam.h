@@ -36,6 +36,11 @@ public:
     virtual const std::vector<InstanceRecord>* instanceRecords() const { return nullptr; }
     /// The instancer drawing this prim (empty: drawn on its own).
     virtual hd::Path instancerId() const { return hd::Path(); }
+    /// Light-linking categories the prim belongs to (SceneDelegate::getCategories).
+    virtual const std::vector<hd::Token>& categories() const {
+        static const std::vector<hd::Token> kNone;
+        return kNone;
+    }
 };
 
 /// Implemented by light sprims.

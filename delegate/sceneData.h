@@ -61,6 +61,9 @@ struct GeometryRecord {
     int emissiveLight = -1;
     int emissiveLightCount = 0;
     glm::vec3 displayColor{0.18f};
+    /// Bit i set: lit by the linked light of LightRecord::linkBit i (lights without a link
+    /// category light every prim).
+    uint64_t lightLinks = 0;
     bool doubleSided = false;
     glm::mat4 objectToWorld{1.0f};
     glm::mat4 worldToObject{1.0f};
@@ -174,6 +177,11 @@ struct LightRecord {
     /// of the surface it lights (1, 1: as the BSDF says).
     float diffuseScale = 1.0f, specularScale = 1.0f;
     bool scalesLobes() const { return diffuseScale != 1.0f || specularScale != 1.0f; }
+    /// UsdLux light linking: the category (SceneDelegate::getCategories) of the prims this light
+    /// lights, empty for all; linkBit is its bit in GeometryRecord::lightLinks (-1: lights all).
+    std::string linkCategory;
+    int linkBit = -1;
+    bool lights(uint64_t geometryLinks) const { return linkBit < 0 || ((geometryLinks >> linkBit) & 1u); }
     // Area lights, in world space.
     glm::vec3 center{0.0f};
     glm::vec3 axisU{0.0f}, axisV{0.0f};  ///< rect: half extents; disk: radii; cylinder: U = half length along the axis

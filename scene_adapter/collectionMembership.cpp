@@ -36,13 +36,29 @@ bool CollectionMembership::splitCollectionPath(std::string_view path, std::strin
 }
 
 CollectionMembership::CollectionMembership(const usd::Stage& stage, std::string_view collectionPath,
-                                           const WarnFn& warn) {
+                                           const WarnFn& warn, bool includeRootFallback) {
     std::vector<std::string> visiting;
-    addCollection(stage, collectionPath, warn, &visiting);
+    addCollection(stage, collectionPath, warn, &visiting, includeRootFallback);
+}
+
+bool CollectionMembership::holdsEverything(const usd::Stage& stage, std::string_view collectionPath) {
+    std::string primPath, name;
+    if (!splitCollectionPath(collectionPath, &primPath, &name)) return false;
+    const usd::Prim* prim = stage.prim(primPath);
+    if (!prim) return false;
+    const std::string prefix = "collection:" + name + ":";
+    for (const char* rel : {"includes", "excludes"})
+        if (const usd::Relationship* r = prim->relationship(prefix + rel); r && !r->targets().empty()) return false;
+    if (const usd::Attribute* a = prim->attribute(prefix + "includeRoot"); a && a->hasValue() &&
+                                                                           !a->get().getBool().value_or(true))
+        return false;
+    if (const usd::Attribute* e = prim->attribute(prefix + "membershipExpression"); e && e->hasValue()) return false;
+    return tokenValue(*prim, prefix + "expansionRule", "expandPrims") != "explicitOnly";
 }
 
 void CollectionMembership::addCollection(const usd::Stage& stage, std::string_view collectionPath,
-                                         const WarnFn& warn, std::vector<std::string>* visiting) {
+                                         const WarnFn& warn, std::vector<std::string>* visiting,
+                                         bool includeRootFallback) {
     std::string primPath, name;
     if (!splitCollectionPath(collectionPath, &primPath, &name)) {
         warn(std::string(collectionPath), "not a collection path (expected </Prim.collection:name>)");
@@ -68,9 +84,9 @@ void CollectionMembership::addCollection(const usd::Stage& stage, std::string_vi
                                "' (expected explicitOnly, expandPrims or expandPrimsAndProperties); expandPrims is used");
     const usd::Relationship* includes = prim->relationship(prefix + "includes");
     const usd::Relationship* excludes = prim->relationship(prefix + "excludes");
-    bool includeRoot = false;
+    bool includeRoot = includeRootFallback;
     if (const usd::Attribute* a = prim->attribute(prefix + "includeRoot"); a && a->hasValue())
-        includeRoot = a->get().getBool().value_or(false);
+        includeRoot = a->get().getBool().value_or(includeRootFallback);
     if (!includes && !excludes && !includeRoot)
         if (const usd::Attribute* e = prim->attribute(prefix + "membershipExpression"); e && e->hasValue())
             warn(e->location().str() + ": " + prim->path(),
@@ -83,7 +99,7 @@ void CollectionMembership::addCollection(const usd::Stage& stage, std::string_vi
         for (const std::string& t : includes->targets()) {
             if (t.find(kCollectionMarker) != std::string::npos) {
                 CollectionMembership nested;
-                nested.addCollection(stage, t, warn, visiting);
+                nested.addCollection(stage, t, warn, visiting, false);
                 for (const auto& [p, r] : nested._rules) _rules.emplace(p, r);
             } else if (t.find('.') == std::string::npos) {
                 direct.push_back(t);  // a prim (property targets do not hold prims)

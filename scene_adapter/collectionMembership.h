@@ -26,7 +26,14 @@ public:
     /// collection, a prim that does not exist, a cycle of included collections or a
     /// membershipExpression (not evaluated here) are reported through warn; what cannot be
     /// read includes nothing.
-    CollectionMembership(const usd::Stage& stage, std::string_view collectionPath, const WarnFn& warn);
+    /// includeRootFallback: includeRoot when not authored (UsdLux's lightLink and shadowLink
+    /// collections declare true: a light lights everything until told otherwise).
+    CollectionMembership(const usd::Stage& stage, std::string_view collectionPath, const WarnFn& warn,
+                         bool includeRootFallback = false);
+
+    /// Whether the collection holds every prim because nothing restricts it: not authored
+    /// beyond includeRoot = the fallback true (then includes() is true for every prim).
+    static bool holdsEverything(const usd::Stage& stage, std::string_view collectionPath);
 
     /// Whether the prim at `primPath` is a member: the nearest entry on the path or an
     /// ancestor decides (an exclude excludes; an explicitOnly include counts only for the path
@@ -39,7 +46,7 @@ public:
 
 private:
     void addCollection(const usd::Stage& stage, std::string_view collectionPath, const WarnFn& warn,
-                       std::vector<std::string>* visiting);
+                       std::vector<std::string>* visiting, bool includeRootFallback);
     std::unordered_map<std::string, Rule> _rules;  ///< path -> rule (the rule map)
 };
 

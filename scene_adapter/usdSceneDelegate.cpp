@@ -22,6 +22,11 @@ namespace {
 // UsdGeomCamera stores lengths in tenths of a scene unit (GfCamera::APERTURE_UNIT).
 constexpr double kCameraUnit = 0.1;
 
+bool isLightTypeToken(const Token& t) {
+    return t == tokens::distantLight() || t == tokens::domeLight() || t == tokens::sphereLight() ||
+           t == tokens::rectLight() || t == tokens::diskLight() || t == tokens::cylinderLight();
+}
+
 std::string tokenAttr(const usd::Prim& prim, const char* name, double time,
                       const std::string& fallback) {
     if (const usd::Attribute* a = prim.attribute(name))
@@ -83,6 +88,7 @@ void UsdSceneDelegate::populate(RenderIndex* index) {
     const usd::Prim* root = _stage.pseudoRoot();
     if (!root) return;
     for (const usd::Prim* child : root->children()) visit(*child, glm::dmat4(1.0), true, index);
+    readLightLinks();  // rprims ask for their categories when they first sync, after this
 }
 
 void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorld,
@@ -423,8 +429,36 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
 Value UsdSceneDelegate::getLightParamValue(const Path& id, const Token& param) const {
     const usd::Prim* p = prim(id);
     if (!p) return {};
+    if (param.str() == "lightLink") {
+        if (_lightLinks.count(p->path())) return Value(p->path());
+        return {};
+    }
     Value v = attributeValue(*p, "inputs:" + param.str());
     return isEmpty(v) ? attributeValue(*p, param.str()) : v;  // pre-2021 names had no prefix
+}
+
+std::vector<Token> UsdSceneDelegate::getCategories(const Path& id) const {
+    std::vector<Token> out;
+    const usd::Prim* p = prim(id);
+    if (!p) return out;
+    for (const auto& [light, link] : _lightLinks)
+        if (link->includes(p->path())) out.emplace_back(light);
+    return out;
+}
+
+void UsdSceneDelegate::readLightLinks() {
+    _lightLinks.clear();
+    auto warnFn = [this](const std::string& where, const std::string& message) { warn(where, message); };
+    for (const auto& [id, e] : _entries) {
+        if (!e.prim || !isLightTypeToken(e.type)) continue;
+        const std::string& path = e.prim->path();
+        if (!CollectionMembership::holdsEverything(_stage, path + ".collection:lightLink"))
+            _lightLinks[path] = std::make_shared<const CollectionMembership>(_stage, path + ".collection:lightLink",
+                                                                             warnFn, /*includeRootFallback=*/true);
+        if (!CollectionMembership::holdsEverything(_stage, path + ".collection:shadowLink"))
+            warn(e.prim->location().str() + ": " + path,
+                 "shadow linking (collection:shadowLink) is not supported; every prim casts this light's shadows");
+    }
 }
 
 Value UsdSceneDelegate::getCameraParamValue(const Path& id, const Token& param) const {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -70,6 +71,9 @@ public:
                                         const hd::Path& prototypeId) const override;
     hd::MaterialNetwork getMaterialResource(const hd::Path& materialId) const override;
     hd::Value getLightParamValue(const hd::Path& id, const hd::Token& param) const override;
+    /// Light linking: the paths of the lights whose collection:lightLink holds this prim
+    /// (only lights that do not light everything name a category).
+    std::vector<hd::Token> getCategories(const hd::Path& id) const override;
     hd::Value getCameraParamValue(const hd::Path& id, const hd::Token& param) const override;
 
     // ---- Change processing (usdSceneDelegateEdits.cpp) --------------------------------------
@@ -146,6 +150,11 @@ private:
     void visibilityChanged(const usd::Prim& prim, hd::RenderIndex* index);
     void rebind(const std::string& root, const std::string& material, hd::RenderIndex* index);
     void collectionChanged(hd::RenderIndex* index);
+    /// Reads the light-link collections of every light entry into _lightLinks (lights whose
+    /// collection:lightLink holds everything are left out); warns about shadow links.
+    void readLightLinks();
+    /// readLightLinks() after an edit, marking what linking may have changed.
+    void refreshLightLinks(hd::RenderIndex* index);
     void materialNetworkChanged(const usd::Prim& prim, hd::DirtyBits bits, hd::RenderIndex* index);
     /// Instancers that draw `path` or anything below it (as prototypes or by containing it).
     std::vector<hd::Path> instancersDrawing(const std::string& path) const;
@@ -170,6 +179,8 @@ private:
     std::vector<std::string> _warnings;
     std::mutex _warningsMutex;  ///< warn() may be called from parallel rprim syncs
     MaterialBindingResolver _bindings;
+    /// Light path -> its collection:lightLink, for lights that do not light everything.
+    std::map<std::string, std::shared_ptr<const CollectionMembership>> _lightLinks;
     // Between primRemoving and primRemoved.
     const usd::Prim* _removing = nullptr;
     bool _removingHadInstances = false;

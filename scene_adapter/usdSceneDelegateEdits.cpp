@@ -209,6 +209,7 @@ void UsdSceneDelegate::primAdded(const std::string& path, RenderIndex* index) {
     for (const Path& inst : drawing)
         if (const Entry* e = entry(inst); e && e->prim) resyncSubtree(e->prim->path(), index);
     const std::string& type = p->typeName();
+    if (type.size() > 5 && type.compare(type.size() - 5, 5, "Light") == 0) refreshLightLinks(index);
     if (type == "Material") rebind("/", "", index);  // bindings waiting for it now resolve
     if (type == "Shader" || type == "NodeGraph")
         materialNetworkChanged(*p, SprimDirty::Resource, index);
@@ -244,6 +245,7 @@ void UsdSceneDelegate::primRemoved(const std::string& path, RenderIndex* index) 
     rebind("", path, index);
     if (!removed) return;
     const std::string& type = removed->typeName();
+    if (type.size() > 5 && type.compare(type.size() - 5, 5, "Light") == 0) refreshLightLinks(index);
     const usd::Prim* parent = removed->parent();  // still allocated (StageEdit keeps it)
     if ((type == "Shader" || type == "NodeGraph") && parent)
         materialNetworkChanged(*parent, SprimDirty::Resource, index);
@@ -333,10 +335,24 @@ void UsdSceneDelegate::visibilityChanged(const usd::Prim& prim, RenderIndex* ind
 }
 
 void UsdSceneDelegate::collectionChanged(RenderIndex* index) {
+    refreshLightLinks(index);
     // Membership can reach any prim below a collection binding: every binding is resolved
     // again (instance groups are keyed by bindings, so a stage with instances is rebuilt).
     if (subtreeHasInstances("/")) return repopulate(index);
     rebind("/", "", index);
+}
+
+void UsdSceneDelegate::refreshLightLinks(RenderIndex* index) {
+    // Any light's link may now hold other prims: every rprim asks for its categories again
+    // (through MaterialId) and every light for its link.
+    const bool hadLinks = !_lightLinks.empty();
+    readLightLinks();
+    if (!hadLinks && _lightLinks.empty()) return;
+    ChangeTracker& tracker = index->changeTracker();
+    for (const auto& [id, e] : _entries) {
+        if (isRprimType(e.type)) tracker.markRprimDirty(id, RprimDirty::MaterialId);
+        else if (isLightType(e.type)) tracker.markSprimDirty(id, SprimDirty::Params);
+    }
 }
 
 void UsdSceneDelegate::rebind(const std::string& root, const std::string& material,

@@ -92,6 +92,13 @@ public:
     }
     /// Light parameters by USD input name without the "inputs:" prefix ("intensity", "color").
     virtual Value getLightParamValue(const Path& id, const Token& param) const = 0;
+    /// Light linking (Hydra's categories): the categories an rprim belongs to. A light whose
+    /// getLightParamValue(id, "lightLink") names a category lights only the rprims in it; a
+    /// light without one lights every rprim.
+    virtual std::vector<Token> getCategories(const Path& id) const {
+        (void)id;
+        return {};
+    }
     /// Camera parameters in scene units (apertures already converted from tenths of a unit).
     virtual Value getCameraParamValue(const Path& id, const Token& param) const = 0;
 };

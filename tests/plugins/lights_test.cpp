@@ -679,3 +679,37 @@ def DiskLight "Disk"
     // Only the plane's grazing Schlick specular (ior 1: F0 = 0) is left.
     EXPECT_LT(render(scene("float inputs:diffuse = 0"), 64), 1e-3 * expected);
 }
+
+TEST(Lights, LightLinkingLightsOnlyTheLinkedPrimsUnderEveryStrategy) {
+    // UsdLux collection:lightLink on a disk light (R = 1, L = 10, h = 2) over the plane: linked
+    // (the schema's includeRoot = true, or the plane included explicitly) it gives the closed
+    // form; with the plane excluded, or only another prim included, nothing (NEE skips the
+    // light, BSDF rays that reach it add nothing).
+    auto scene = [](const std::string& link) {
+        return planeScene(0.5, R"(
+def DiskLight "Disk"
+{
+    float inputs:radius = 1
+    float inputs:intensity = 10
+    )" + link + R"(
+    double3 xformOp:translate = (0, 2, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+def Sphere "Other" { double radius = 0.1
+    double3 xformOp:translate = (30, 1, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"] }
+)");
+    };
+    const double expected = 0.5 * 10.0 * 1.0 / (4.0 + 1.0);
+    const std::string onlyPlane = "uniform bool collection:lightLink:includeRoot = 0\n    rel collection:lightLink:includes = </Plane>";
+    const std::string onlyOther = "uniform bool collection:lightLink:includeRoot = 0\n    rel collection:lightLink:includes = </Other>";
+    const std::string allButPlane = "rel collection:lightLink:excludes = </Plane>";
+    for (const auto& strategy : std::vector<std::map<std::string, std::string>>{{}, {{"mis", "0"}}, {{"nee", "0"}}}) {
+        const int spp = strategy.count("nee") ? 4096 : 1024;
+        EXPECT_NEAR(render(scene(onlyPlane), spp, strategy), expected, 0.03 * expected);
+        EXPECT_LT(render(scene(onlyOther), 256, strategy), 1e-3 * expected);
+        EXPECT_LT(render(scene(allButPlane), 256, strategy), 1e-3 * expected);
+    }
+    EXPECT_NEAR(render(scene(""), 1024), expected, 0.03 * expected);
+}

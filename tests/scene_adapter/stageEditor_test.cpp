@@ -581,3 +581,17 @@ TEST(StageEditor, CollectionBindingEditsReSplitTheMeshesTheyReach) {
     EXPECT_THROW(f.edit().setRelationship("/World/Group", "material:binding:collection:bad", {"/World/Looks/Red"}),
                  EditError);
 }
+
+TEST(StageEditor, LightLinkEditsRelightThePrimsTheyReach) {
+    Fixture f;
+    const glm::vec3 before = f.colorOf("/World/Group/Right");
+    f.edit().setRelationship("/World/Sun", "collection:lightLink:excludes", {"/World/Group/Right"});
+    EXPECT_EQ(f.rprims().count("/World/Group/Right"), 1u);
+    f.render();
+    const glm::vec3 unlit = f.colorOf("/World/Group/Right");
+    EXPECT_LT(unlit.z, 0.1f * before.z);  // only light bounced off the other prims is left
+    EXPECT_GT(f.colorOf("/World/Group/Left").x, 0.5f * before.z);  // the other quad still lit
+    f.edit().setRelationship("/World/Sun", "collection:lightLink:excludes", {});
+    f.render();
+    EXPECT_NEAR(f.colorOf("/World/Group/Right").z, before.z, 0.02f * before.z);
+}

@@ -488,3 +488,28 @@ def Xform "World" (
     EXPECT_EQ(subsets[0].second, std::vector<int>{1});
     EXPECT_TRUE(p.scene->warnings().empty());
 }
+
+TEST(UsdSceneDelegate, LightLinksNameTheirPrimsAsCategories) {
+    Populated p(R"(#usda 1.0
+def Xform "World"
+{
+    def SphereLight "Key"
+    {
+        uniform bool collection:lightLink:includeRoot = 0
+        rel collection:lightLink:includes = </World/Hero>
+    }
+    def SphereLight "Fill" { rel collection:lightLink:excludes = </World/Hero/Face> }
+    def SphereLight "Rim" { rel collection:shadowLink:excludes = </World/Hero> }
+    def Xform "Hero" { def Sphere "Face" {} def Sphere "Body" {} }
+    def Sphere "Prop" {}
+}
+)");
+    using V = std::vector<hd::Token>;
+    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Face")), (V{hd::Token("/World/Key")}));
+    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Body")), (V{hd::Token("/World/Fill"), hd::Token("/World/Key")}));
+    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Prop")), (V{hd::Token("/World/Fill")}));
+    EXPECT_EQ(hd::getString(p.scene->getLightParamValue(hd::Path("/World/Key"), hd::Token("lightLink"))), "/World/Key");
+    EXPECT_TRUE(hd::isEmpty(p.scene->getLightParamValue(hd::Path("/World/Rim"), hd::Token("lightLink"))));
+    ASSERT_EQ(p.scene->warnings().size(), 1u);  // shadow linking is not modelled
+    EXPECT_NE(p.scene->warnings()[0].find("shadowLink"), std::string::npos);
+}

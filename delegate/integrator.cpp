@@ -424,7 +424,7 @@ Integrator::Integrator(const SceneSnapshot& scene, const IntegratorSettings& set
     : _scene(scene), _settings(settings), _lightPick(scene, settings.spatialLightPick) {
     for (uint32_t i = 0; i < scene.lights.size(); ++i) {
         const LightRecord::Kind k = scene.lights[i].kind;
-        if (isAreaLight(scene.lights[i]))
+        if (isAreaLight(scene.lights[i]) && !scene.lights[i].point)  // rays never hit a point
             _areaLights.push_back(i);
         else if (k == LightRecord::Kind::Dome || k == LightRecord::Kind::Distant)
             _environmentLights.push_back(i);

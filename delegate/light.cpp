@@ -112,6 +112,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
         glm::vec3 scaled = finiteNonNegative(color * intensity * std::exp2(exposure));
         glm::dmat4 xf = delegate->getTransform(id());
         _record = LightRecord();
+        glm::vec3 pointIntensity(0.0f);  // LightRecord::point lights
         _record.castsShadows = scalar("shadow:enable", 1.0f) > 0.5f;  // UsdLux ShadowAPI
         _record.linkCategory = getString(delegate->getLightParamValue(id(), Token("lightLink"))).value_or("");
         _record.diffuseScale = std::max(0.0f, scalar("diffuse", 1.0f));
@@ -178,6 +179,15 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                                     glm::length(vector(xf, 0, 0, 1))});
                 _record.radius = std::max(r * s, 1e-6f);
                 _record.area = 4.0f * kPi * _record.radius * _record.radius;
+                // UsdLux treatAsPoint, and a zero radius: a point light with the sphere's power,
+                // radiant intensity I = L pi r^2 (normalized: scaled / 4, the same for any r). A
+                // zero radius has no unnormalized power; it is read as normalized (as Arnold reads
+                // Maya's radius-0 point lights) rather than rendering black.
+                if (scalar("treatAsPoint", 0.0f) > 0.5f || !(r * s > 0.0f)) {
+                    _record.point = true;
+                    pointIntensity = normalize || !(r * s > 0.0f) ? scaled / 4.0f
+                                                                  : scaled * (kPi * (r * s) * (r * s));
+                }
             } else if (_type == tokens::rectLight() || _type == tokens::portalLight()) {
                 _record.kind = LightRecord::Kind::Rect;
                 _record.portal = _type == tokens::portalLight();
@@ -260,7 +270,10 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
             }
             // normalize: the power no longer depends on the size (divide by the world area).
             _record.radiance = normalize && _record.area > 0.0f ? scaled / _record.area : scaled;
-            if (!(_record.area > 0.0f) || !std::isfinite(_record.area)) {
+            if (_record.point) {
+                _record.radiance = finiteNonNegative(pointIntensity);
+                _record.radius = 0.0f;
+            } else if (!(_record.area > 0.0f) || !std::isfinite(_record.area)) {
                 param->warn(id(), "light has zero or invalid area; disabled");
                 _enabled = false;
             }

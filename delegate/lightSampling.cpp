@@ -267,6 +267,17 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
         case LightRecord::Kind::Sphere: {
             glm::vec3 toC = l.center - p;
             float d2 = glm::dot(toC, toC);
+            if (l.point) {
+                // A point: irradiance I / d^2 along the one direction (a delta light).
+                const float dist = std::sqrt(d2);
+                if (!(dist > 0.0f) || !std::isfinite(dist)) return false;
+                out->wi = toC / dist;
+                out->distance = dist;
+                out->Li = l.radiance / d2;
+                out->pdf = 1.0f;
+                out->delta = true;
+                return true;
+            }
             if (d2 <= l.radius * l.radius) return false;  // inside the light
             float dist = std::sqrt(d2);
             // Uniform in the cone the sphere subtends (Pharr et al. 2023, §6.2.4).
@@ -387,6 +398,7 @@ bool intersectUnshaped(const LightRecord& l, const glm::vec3& o, const glm::vec3
     switch (l.kind) {
         case LightRecord::Kind::Sphere: {
             float t;
+            if (l.point) return false;  // rays never hit a point
             if (!raySphere(o, d, l.center, l.radius, &t) || t >= tmax) return false;
             glm::vec3 toC = l.center - o;
             float d2 = glm::dot(toC, toC);

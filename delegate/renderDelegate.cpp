@@ -453,6 +453,12 @@ void EmbreeRenderDelegate::computeLightPower() {
                 _lightPowerScales[i] = 1;
                 break;
             }
+            case LightRecord::Kind::Sphere:
+                if (l.point) {  // radiance holds the radiant intensity: flux 4 pi I
+                    _lightPower[i] = lum(l.radiance) * 4.0f * kPi;
+                    break;
+                }
+                [[fallthrough]];
             default: {
                 glm::vec3 L = l.radiance;  // one-sided Lambertian emitter
                 if (l.rectTexture) L *= l.rectTexture->mean;

@@ -187,6 +187,9 @@ struct LightRecord {
     glm::vec3 axisU{0.0f}, axisV{0.0f};  ///< rect: half extents; disk: radii; cylinder: U = half length along the axis
     glm::vec3 normal{0, 0, -1};          ///< rect/disk: the side that emits
     float radius = 0.0f;                 ///< sphere, cylinder
+    /// A sphere light rendered as a point (UsdLux treatAsPoint, or radius 0): radiance holds
+    /// its radiant intensity; next-event estimation alone finds it (rays never hit it).
+    bool point = false;
     float area = 0.0f;
     LightShaping shaping;                ///< sphere/rect/disk/cylinder: UsdLux ShapingAPI cone
     std::shared_ptr<const EnvironmentMap> environment;  ///< dome texture (null: constant)

@@ -713,3 +713,32 @@ def Sphere "Other" { double radius = 0.1
     }
     EXPECT_NEAR(render(scene(""), 1024), expected, 0.03 * expected);
 }
+
+TEST(Lights, PointLightsCarryTheSpherePowerAndZeroRadiusReadsAsNormalized) {
+    // A SphereLight at height h = 2 over the plane. treatAsPoint keeps the sphere's power
+    // (radiant intensity I = L pi r^2; E = I / h^2 straight below); radius 0 is read as
+    // normalized (I = L / 4, the r -> 0 limit of a normalized sphere), not as black. Spot
+    // shaping still applies to a point.
+    auto scene = [](const std::string& inputs) {
+        return planeScene(0.5, R"(
+def SphereLight "Bulb"
+{
+    float inputs:intensity = 40
+    )" + inputs + R"(
+    double3 xformOp:translate = (0, 2, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)");
+    };
+    const double a = 0.5, h = 2.0;
+    const double sphere = a * (40.0 * kPi * 0.3 * 0.3) / (h * h) / kPi;  // a E / pi
+    EXPECT_NEAR(render(scene("float inputs:radius = 0.3\n    bool treatAsPoint = 1"), 64), sphere, 1e-3 * sphere);
+    EXPECT_NEAR(render(scene("float inputs:radius = 0.3"), 1024), sphere, 0.02 * sphere);  // the real sphere agrees
+    const double zero = a * (40.0 / 4.0) / (h * h) / kPi;
+    EXPECT_NEAR(render(scene("float inputs:radius = 0"), 64), zero, 1e-3 * zero);
+    EXPECT_NEAR(render(scene("float inputs:radius = 0.3\n    bool treatAsPoint = 1\n    bool inputs:normalize = 1"), 64),
+                zero, 1e-3 * zero);
+    // A 30-degree cone straight down (the light looks along its -Z) lights the point below.
+    EXPECT_NEAR(render(scene("float inputs:radius = 0\n    float inputs:shaping:cone:angle = 30"), 64), zero, 1e-3 * zero);
+}

@@ -573,7 +573,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 if (depth == 0 && (light.kind == LightRecord::Kind::Distant || !_settings.domeVisible)) continue;
                 glm::vec3 Le;
                 float pdf = 0.0f;  // not weighed after a delta bounce (the camera's included)
-                if (environmentRadiance(light, prevP, ray.direction, prevNg, &Le, prevDelta ? nullptr : &pdf, compensate))
+                // Compensation leaves part of a dome to BSDF rays, which a shadowless light's
+                // occluders would block: such a light is sampled whole (NEE alone carries it).
+                if (environmentRadiance(light, prevP, ray.direction, prevNg, &Le, prevDelta ? nullptr : &pdf,
+                                        compensate && light.castsShadows))
                     addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickNormal, prevPickTotal), li);
             }
             break;
@@ -714,7 +717,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             if (!lights[li].lights(rec.lightLinks)) continue;  // light linking: not this prim's light
             const float lightPick = _lightPick.probability(uint32_t(li), hit.p, pickNormal, pickTotal);
             LightSample ls;
-            if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate) && ls.pdf > 0.0f &&
+            if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate && lights[li].castsShadows) && ls.pdf > 0.0f &&
                 lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough) &&
                 (!lights[li].texturedEmission || texturedEmission(lights[li], &ls))) {
                 float bsdfPdf = 0.0f;

@@ -35,10 +35,17 @@ bool CollectionMembership::splitCollectionPath(std::string_view path, std::strin
     return true;
 }
 
+struct CollectionMembership::Build {
+    const usd::Stage& stage;
+    const WarnFn& warn;
+    std::unordered_map<std::string, RuleMap> done;     ///< collection path -> its rule map
+    std::unordered_map<std::string, bool> inProgress;  ///< collections on the current path
+};
+
 CollectionMembership::CollectionMembership(const usd::Stage& stage, std::string_view collectionPath,
                                            const WarnFn& warn, bool includeRootFallback) {
-    std::vector<std::string> visiting;
-    addCollection(stage, collectionPath, warn, &visiting, includeRootFallback);
+    Build b{stage, warn, {}, {}};
+    _rules = ruleMap(b, std::string(collectionPath), includeRootFallback, 0);
 }
 
 bool CollectionMembership::holdsEverything(const usd::Stage& stage, std::string_view collectionPath) {
@@ -56,32 +63,38 @@ bool CollectionMembership::holdsEverything(const usd::Stage& stage, std::string_
     return tokenValue(*prim, prefix + "expansionRule", "expandPrims") != "explicitOnly";
 }
 
-void CollectionMembership::addCollection(const usd::Stage& stage, std::string_view collectionPath,
-                                         const WarnFn& warn, std::vector<std::string>* visiting,
-                                         bool includeRootFallback) {
+const CollectionMembership::RuleMap& CollectionMembership::ruleMap(Build& b, const std::string& collectionPath,
+                                                                 bool includeRootFallback, int depth) {
+    static const RuleMap kEmpty;
+    if (auto it = b.done.find(collectionPath); it != b.done.end()) return it->second;
     std::string primPath, name;
     if (!splitCollectionPath(collectionPath, &primPath, &name)) {
-        warn(std::string(collectionPath), "not a collection path (expected </Prim.collection:name>)");
-        return;
+        b.warn(collectionPath, "not a collection path (expected </Prim.collection:name>)");
+        return kEmpty;
     }
-    if (std::find(visiting->begin(), visiting->end(), collectionPath) != visiting->end()) {
-        warn(std::string(collectionPath), "collection includes itself through its includes; the cycle is cut");
-        return;
+    if (b.inProgress.count(collectionPath)) {
+        b.warn(collectionPath, "collection includes itself through its includes; the cycle is cut");
+        return kEmpty;
     }
-    const usd::Prim* prim = stage.prim(primPath);
+    if (depth >= kMaxNesting) {
+        b.warn(collectionPath, "collections nested more than " + std::to_string(kMaxNesting) +
+                                   " deep; the deeper ones are left out");
+        return kEmpty;
+    }
+    const usd::Prim* prim = b.stage.prim(primPath);
     if (!prim) {
-        warn(std::string(collectionPath), "the collection's prim does not exist; it includes nothing");
-        return;
+        b.warn(collectionPath, "the collection's prim does not exist; it includes nothing");
+        return kEmpty;
     }
-    visiting->emplace_back(collectionPath);
+    b.inProgress[collectionPath] = true;
     const std::string prefix = "collection:" + name + ":";
     const std::string rule = tokenValue(*prim, prefix + "expansionRule", "expandPrims");
     Rule own = Rule::ExpandPrims;
     if (rule == "explicitOnly")
         own = Rule::ExplicitOnly;
     else if (rule != "expandPrims" && rule != "expandPrimsAndProperties")
-        warn(prim->path(), "collection '" + name + "' has expansionRule '" + rule +
-                               "' (expected explicitOnly, expandPrims or expandPrimsAndProperties); expandPrims is used");
+        b.warn(prim->path(), "collection '" + name + "' has expansionRule '" + rule +
+                                 "' (expected explicitOnly, expandPrims or expandPrimsAndProperties); expandPrims is used");
     const usd::Relationship* includes = prim->relationship(prefix + "includes");
     const usd::Relationship* excludes = prim->relationship(prefix + "excludes");
     bool includeRoot = includeRootFallback;
@@ -89,28 +102,27 @@ void CollectionMembership::addCollection(const usd::Stage& stage, std::string_vi
         includeRoot = a->get().getBool().value_or(includeRootFallback);
     if (!includes && !excludes && !includeRoot)
         if (const usd::Attribute* e = prim->attribute(prefix + "membershipExpression"); e && e->hasValue())
-            warn(e->location().str() + ": " + prim->path(),
-                 "collection '" + name + "' is defined by a membershipExpression, which is not evaluated; it includes nothing");
+            b.warn(e->location().str() + ": " + prim->path(),
+                   "collection '" + name + "' is defined by a membershipExpression, which is not evaluated; it includes nothing");
 
-    // Included collections first; this collection's own includes, then its excludes, override
-    // what they say about the same path.
-    std::vector<std::string> direct;
+    // UsdCollectionAPI's order: the root, then the includes in order (an included
+    // collection's rules overwrite what came before, as a path listed there does), then the
+    // excludes.
+    RuleMap rules;
+    if (includeRoot) rules["/"] = own;
     if (includes)
         for (const std::string& t : includes->targets()) {
             if (t.find(kCollectionMarker) != std::string::npos) {
-                CollectionMembership nested;
-                nested.addCollection(stage, t, warn, visiting, false);
-                for (const auto& [p, r] : nested._rules) _rules.emplace(p, r);
+                for (const auto& [p, r] : ruleMap(b, t, false, depth + 1)) rules[p] = r;
             } else if (t.find('.') == std::string::npos) {
-                direct.push_back(t);  // a prim (property targets do not hold prims)
+                rules[t] = own;  // a prim (property targets do not hold prims)
             }
         }
-    for (const std::string& p : direct) _rules[p] = own;
-    if (includeRoot) _rules["/"] = own;
     if (excludes)
         for (const std::string& t : excludes->targets())
-            if (t.find('.') == std::string::npos) _rules[t] = Rule::Exclude;
-    visiting->pop_back();
+            if (t.find('.') == std::string::npos) rules[t] = Rule::Exclude;
+    b.inProgress.erase(collectionPath);
+    return b.done[collectionPath] = std::move(rules);
 }
 
 bool CollectionMembership::includes(std::string_view primPath) const {

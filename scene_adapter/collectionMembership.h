@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 
 namespace principled::usd {
 class Stage;
@@ -44,10 +45,15 @@ public:
     /// Splits "/A/B.collection:name" into "/A/B" and "name"; false if it is not that form.
     static bool splitCollectionPath(std::string_view path, std::string* prim, std::string* name);
 
+    /// Included collections nest at most this deep (deeper ones are cut with a warning), so a
+    /// hostile chain cannot exhaust the stack.
+    static constexpr int kMaxNesting = 64;
+
 private:
-    void addCollection(const usd::Stage& stage, std::string_view collectionPath, const WarnFn& warn,
-                       std::vector<std::string>* visiting, bool includeRootFallback);
-    std::unordered_map<std::string, Rule> _rules;  ///< path -> rule (the rule map)
+    using RuleMap = std::unordered_map<std::string, Rule>;
+    struct Build;  // the memo of one construction (each collection's map computed once)
+    static const RuleMap& ruleMap(Build& b, const std::string& collectionPath, bool includeRootFallback, int depth);
+    RuleMap _rules;  ///< path -> rule (the rule map)
 };
 
 }  // namespace principled::adapter

@@ -68,14 +68,35 @@ std::vector<const usd::Relationship*> collectionBindings(const usd::Prim& prim, 
 }  // namespace
 
 std::string MaterialBindingResolver::materialTarget(const usd::Relationship& rel, size_t targetIndex,
-                                                    const usd::Prim& subject) const {
+                                                    const usd::Prim& subject, bool warn) const {
     const std::string& target = rel.targets()[targetIndex];
     const usd::Prim* m = _stage.prim(target);
     if (m && m->typeName() == "Material") return target;
-    _warn(rel.location().str() + ": " + subject.path(),
-          rel.name() + " targets '" + target + "', which is not a Material; the binding is ignored");
+    if (warn)
+        _warn(rel.location().str() + ": " + subject.path(),
+              rel.name() + " targets '" + target + "', which is not a Material; the binding is ignored");
     return "";
 }
+
+std::string MaterialBindingResolver::directTarget(const usd::Relationship& rel, const usd::Prim& subject,
+                                                  bool warn) const {
+    if (rel.targets().size() == 1) return materialTarget(rel, 0, subject, warn);
+    if (warn && rel.targets().size() > 1)
+        _warn(rel.location().str() + ": " + subject.path(),
+              rel.name() + " has " + std::to_string(rel.targets().size()) + " targets (a direct binding names one Material); ignored");
+    return "";
+}
+
+namespace {
+// A collection binding's targets: the collection and the Material, in either order; -1 when
+// neither or both are collections.
+int collectionTargetIndex(const usd::Relationship& r) {
+    if (r.targets().size() != 2) return -1;
+    const bool first = r.targets()[0].find(".collection:") != std::string::npos;
+    const bool second = r.targets()[1].find(".collection:") != std::string::npos;
+    return first == second ? -1 : (first ? 0 : 1);
+}
+}  // namespace
 
 bool MaterialBindingResolver::collectionIncludes(const std::string& collectionPath, const std::string& primPath) const {
     std::shared_ptr<const CollectionMembership> c;
@@ -94,21 +115,27 @@ void MaterialBindingResolver::invalidate() {
 }
 
 std::string MaterialBindingResolver::inheritedKey(const usd::Prim& prim) const {
-    // Levels without bindings do not change what a descendant resolves to, so only the
-    // sequence of levels that bind, nearest first, enters the key (not their paths).
+    // What the prim and its ancestors pass down to a descendant, per purpose: the nearest bound
+    // Material (it wins where nothing inside binds) and the outermost strongerThanDescendants one
+    // (it wins over anything inside). Equal keys resolve every descendant alike. Collection
+    // bindings make membership depend on the exact path: the key is then the path itself.
     std::string key;
-    for (const usd::Prim* p = &prim; p && p->path() != "/"; p = p->parent()) {
-        bool any = false;
-        for (const usd::Relationship* r : p->relationships()) {
-            const std::string& n = r->name();
-            if (n.rfind("material:binding", 0) != 0) continue;
-            if (n.rfind(kCollectionPrefix, 0) == 0) return "path:" + prim.path();
-            key += n + (strongerThanDescendants(*r) ? "!" : "") + "=";
-            for (const std::string& t : r->targets()) key += t + ",";
-            key += ";";
-            any = true;
+    for (const bool full : {true, false}) {
+        const char* directName = full ? "material:binding:full" : "material:binding";
+        std::string nearest, strongest;
+        for (const usd::Prim* p = &prim; p && p->path() != "/"; p = p->parent()) {
+            if (!collectionBindings(*p, full).empty()) {
+                _sawCollections.store(true, std::memory_order_relaxed);
+                return "path:" + prim.path();
+            }
+            const usd::Relationship* r = p->relationship(directName);
+            if (!r) continue;
+            const std::string m = directTarget(*r, prim, false);
+            if (m.empty()) continue;
+            if (nearest.empty()) nearest = m;
+            if (strongerThanDescendants(*r)) strongest = m;
         }
-        if (any) key += "|";
+        key += nearest + "|" + strongest + ";";
     }
     return key;
 }
@@ -122,23 +149,24 @@ std::string MaterialBindingResolver::resolve(const usd::Prim& subject) const {
             boundDirectHere = false;
             if (const usd::Relationship* r = p->relationship(directName); r && !r->targets().empty()) {
                 if (bound.material.empty() || strongerThanDescendants(*r)) {
-                    if (std::string m = materialTarget(*r, 0, subject); !m.empty()) {
+                    if (std::string m = directTarget(*r, subject); !m.empty()) {
                         bound = {std::move(m), p};
                         boundDirectHere = true;
                     }
                 }
             }
             for (const usd::Relationship* r : collectionBindings(*p, full)) {
-                if (r->targets().size() != 2) {
+                _sawCollections.store(true, std::memory_order_relaxed);
+                const int c = collectionTargetIndex(*r);
+                if (c < 0) {
                     if (!r->targets().empty())
                         _warn(r->location().str() + ": " + p->path(),
-                              r->name() + " has " + std::to_string(r->targets().size()) +
-                                  " targets (expected a collection and a Material); ignored");
+                              r->name() + " needs two targets, a collection and a Material; ignored");
                     continue;
                 }
-                if (!collectionIncludes(r->targets()[0], subject.path())) continue;
+                if (!collectionIncludes(r->targets()[size_t(c)], subject.path())) continue;
                 if (!bound.material.empty() && !boundDirectHere && !strongerThanDescendants(*r)) continue;
-                if (std::string m = materialTarget(*r, 1, subject); !m.empty()) {
+                if (std::string m = materialTarget(*r, size_t(1 - c), subject); !m.empty()) {
                     bound = {std::move(m), p};
                     break;
                 }

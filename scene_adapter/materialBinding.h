@@ -4,6 +4,7 @@
 // purposes (the "full" purpose first, then all-purpose bindings).
 #pragma once
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -35,13 +36,16 @@ public:
     std::string resolve(const usd::Prim& prim) const;
 
     /// A key equal for two prims whose descendants resolve alike wherever their own subtrees
-    /// bind alike: the binding relationships (name, targets, strength) on the prim and its
-    /// ancestors. Collection bindings there make membership depend on the exact path, so the
-    /// key is then the prim's path (no two prims share it).
+    /// bind alike: per purpose, the nearest Material bound on the prim or above and the
+    /// outermost strongerThanDescendants one. Collection bindings there make membership depend
+    /// on the exact path, so the key is then the prim's path (no two prims share it).
     std::string inheritedKey(const usd::Prim& prim) const;
 
     /// Forgets the collections read so far (after an edit to the stage).
     void invalidate();
+    /// Whether resolve() or inheritedKey() has met a collection-based binding (edits then
+    /// re-resolve every prim: membership can reach anywhere below the binding).
+    bool sawCollectionBindings() const { return _sawCollections.load(std::memory_order_relaxed); }
 
 private:
     struct Candidate {
@@ -49,14 +53,18 @@ private:
         const usd::Prim* at = nullptr;
     };
     /// The Material a binding relationship's `targetIndex`-th target names, "" (with a
-    /// warning) when it is not a Material.
-    std::string materialTarget(const usd::Relationship& rel, size_t targetIndex, const usd::Prim& subject) const;
+    /// warning when `warn`) when it is not a Material.
+    std::string materialTarget(const usd::Relationship& rel, size_t targetIndex, const usd::Prim& subject,
+                               bool warn = true) const;
+    /// A direct binding's Material: "" unless it has exactly one target, a Material.
+    std::string directTarget(const usd::Relationship& rel, const usd::Prim& subject, bool warn = true) const;
     bool collectionIncludes(const std::string& collectionPath, const std::string& primPath) const;
 
     const usd::Stage& _stage;
     WarnFn _warn;
     mutable std::mutex _mutex;
     mutable std::map<std::string, std::shared_ptr<const CollectionMembership>> _collections;
+    mutable std::atomic<bool> _sawCollections{false};
 };
 
 }  // namespace principled::adapter

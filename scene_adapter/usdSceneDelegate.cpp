@@ -80,7 +80,8 @@ UsdSceneDelegate::~UsdSceneDelegate() = default;
 
 void UsdSceneDelegate::warn(const std::string& where, const std::string& message) {
     std::lock_guard<std::mutex> lock(_warningsMutex);
-    _warnings.push_back(where + ": " + message);
+    std::string text = where + ": " + message;
+    if (_warningSet.insert(text).second) _warnings.push_back(std::move(text));
 }
 
 void UsdSceneDelegate::populate(RenderIndex* index) {

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "delegate/hd/renderIndex.h"
@@ -150,6 +151,9 @@ private:
     void visibilityChanged(const usd::Prim& prim, hd::RenderIndex* index);
     void rebind(const std::string& root, const std::string& material, hd::RenderIndex* index);
     void collectionChanged(hd::RenderIndex* index);
+    /// A mesh's GeomSubsets changed: its rprims re-split (MaterialId) and record what the
+    /// subsets now resolve to.
+    void subsetsChanged(const usd::Prim& mesh, hd::RenderIndex* index);
     /// Reads the light-link collections of every light entry into _lightLinks (lights whose
     /// collection:lightLink holds everything are left out); warns about shadow links.
     void readLightLinks();
@@ -178,6 +182,7 @@ private:
     std::vector<std::string> _instancePrims;  ///< instanceable prims drawn through a group
     std::vector<std::string> _warnings;
     std::mutex _warningsMutex;  ///< warn() may be called from parallel rprim syncs
+    std::unordered_set<std::string> _warningSet;  ///< each warning is reported once
     MaterialBindingResolver _bindings;
     /// Light path -> its collection:lightLink, for lights that do not light everything.
     std::map<std::string, std::shared_ptr<const CollectionMembership>> _lightLinks;

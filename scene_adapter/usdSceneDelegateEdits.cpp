@@ -213,10 +213,7 @@ void UsdSceneDelegate::primAdded(const std::string& path, RenderIndex* index) {
     if (type == "Material") rebind("/", "", index);  // bindings waiting for it now resolve
     if (type == "Shader" || type == "NodeGraph")
         materialNetworkChanged(*p, SprimDirty::Resource, index);
-    if (type == "GeomSubset" && p->parent())
-        for (const Path& id : idsOf(p->parent()))
-            if (isRprimType(_entries[id].type))
-                index->changeTracker().markRprimDirty(id, RprimDirty::MaterialId);
+    if (type == "GeomSubset" && p->parent()) subsetsChanged(*p->parent(), index);
 }
 
 void UsdSceneDelegate::primRemoving(const std::string& path, RenderIndex* index) {
@@ -241,18 +238,17 @@ void UsdSceneDelegate::primRemoved(const std::string& path, RenderIndex* index) 
     }
     for (const Path& inst : _removingDrawnBy)
         if (const Entry* e = entry(inst); e && e->prim) resyncSubtree(e->prim->path(), index);
-    // Prims bound to a removed material fall back to the default material.
-    rebind("", path, index);
+    // Prims bound to a removed material fall back to the default material. With collection
+    // bindings anything may have depended on the removed prim (a collection, a Material one
+    // reaches): every prim is resolved again.
+    rebind(_bindings.sawCollectionBindings() ? "/" : "", path, index);
     if (!removed) return;
     const std::string& type = removed->typeName();
     if (type.size() > 5 && type.compare(type.size() - 5, 5, "Light") == 0) refreshLightLinks(index);
     const usd::Prim* parent = removed->parent();  // still allocated (StageEdit keeps it)
     if ((type == "Shader" || type == "NodeGraph") && parent)
         materialNetworkChanged(*parent, SprimDirty::Resource, index);
-    if (type == "GeomSubset" && parent)
-        for (const Path& id : idsOf(parent))
-            if (isRprimType(_entries[id].type))
-                index->changeTracker().markRprimDirty(id, RprimDirty::MaterialId);
+    if (type == "GeomSubset" && parent) subsetsChanged(*parent, index);
 }
 
 // ---- Value changes ------------------------------------------------------------------------
@@ -332,6 +328,15 @@ void UsdSceneDelegate::visibilityChanged(const usd::Prim& prim, RenderIndex* ind
     };
     walk(prim, a.parentVisible);
     for (const std::string& inst : instancers) resyncSubtree(inst, index);
+}
+
+void UsdSceneDelegate::subsetsChanged(const usd::Prim& mesh, RenderIndex* index) {
+    for (const Path& id : idsOf(&mesh)) {
+        Entry& e = _entries[id];
+        if (!isRprimType(e.type)) continue;
+        index->changeTracker().markRprimDirty(id, RprimDirty::MaterialId);
+        if (e.prim) e.subsetMaterials = subsetBindings(*e.prim);
+    }
 }
 
 void UsdSceneDelegate::collectionChanged(RenderIndex* index) {
@@ -424,10 +429,7 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
             *p, startsWith(attr, "inputs:") ? SprimDirty::MaterialParams : SprimDirty::Resource,
             index);
     if (type == "GeomSubset") {
-        if (p->parent())
-            for (const Path& id : idsOf(p->parent()))
-                if (isRprimType(_entries[id].type))
-                    tracker.markRprimDirty(id, RprimDirty::MaterialId);
+        if (p->parent()) subsetsChanged(*p->parent(), index);
         return;
     }
     if (type == "PointInstancer" && attr == "prototypes") return resyncSubtree(primPath, index);

@@ -742,3 +742,50 @@ def SphereLight "Bulb"
     // A 30-degree cone straight down (the light looks along its -Z) lights the point below.
     EXPECT_NEAR(render(scene("float inputs:radius = 0\n    float inputs:shaping:cone:angle = 30"), 64), zero, 1e-3 * zero);
 }
+
+TEST(Lights, AShadowlessTexturedDomeIgnoresOccludersWithMisCompensation) {
+    // MIS compensation leaves the dome's dim texels to BSDF rays, which an occluder blocks; a
+    // dome without shadows is therefore sampled whole: under a black card over the whole plane
+    // compensation on and off agree (they differed by the dim half's 9 %), and both match the
+    // open plane up to the light the card's grazing specular sends back (~1.5 %).
+    std::vector<float> rgb(64 * 32 * 3);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int c = 0; c < 3; ++c) rgb[3 * (y * 64 + x) + c] = x < 32 ? 10.0f : 1.0f;
+    const std::string tex = writeExr("halves.exr", 64, 32, rgb);
+    ASSERT_FALSE(tex.empty());
+    auto scene = [&](bool card) {
+        return planeScene(0.5, R"(
+def DomeLight "Sky"
+{
+    asset inputs:texture:file = @)" + tex + R"(@
+    token inputs:texture:format = "latlong"
+    bool inputs:shadow:enable = 0
+}
+)" + std::string(card ? R"(
+def Mesh "Card" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-40, 1, -40), (40, 1, -40), (40, 1, 40), (-40, 1, 40)]
+    rel material:binding = </Black>
+}
+def Material "Black"
+{
+    token outputs:surface.connect = </Black/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0, 0, 0)
+        float inputs:ior = 1
+        token outputs:surface
+    }
+}
+)" : ""), 60.0);
+    };
+    const double open = render(scene(false), 2048);
+    const double covered = render(scene(true), 2048, {{"misCompensation", "0"}});
+    EXPECT_NEAR(render(scene(true), 2048), covered, 0.005 * covered);
+    EXPECT_NEAR(covered, open, 0.03 * open);
+}

@@ -102,3 +102,43 @@ TEST(CollectionMembership, SplitsCollectionPaths) {
     EXPECT_FALSE(CollectionMembership::splitCollectionPath("/A/B.points", &prim, &name));
     EXPECT_FALSE(CollectionMembership::splitCollectionPath("A.collection:x", &prim, &name));
 }
+
+TEST(CollectionMembership, IncludedCollectionsMergeInIncludeOrder) {
+    // UsdCollectionAPI: the includes in order, an included collection's rules overwriting what
+    // came before, then the excludes.
+    Opened o(R"(#usda 1.0
+def Xform "W" { def Mesh "M" {} }
+def Scope "C" {
+    rel collection:x:includes = </W>
+    rel collection:x:excludes = </W/M>
+    rel collection:y:includes = </W/M>
+    rel collection:a:includes = [</W/M>, </C.collection:x>]
+    rel collection:b:includes = [</C.collection:x>, </C.collection:y>]
+}
+)");
+    EXPECT_FALSE(o.collection("/C.collection:a").includes("/W/M"));  // x's exclude came later
+    EXPECT_TRUE(o.collection("/C.collection:b").includes("/W/M"));   // y's include came later
+}
+
+TEST(CollectionMembership, HostileNestingIsCutNotExponentialNorDeep) {
+    // A diamond 100 levels deep (2^100 paths through it) and a chain 5000 collections long.
+    std::string diamond = "#usda 1.0\ndef Xform \"W\" { def Mesh \"M\" {} }\ndef Scope \"C\" {\n";
+    const int levels = 100;
+    for (int i = 0; i < levels; ++i)
+        for (const char* side : {"a", "b"})
+            diamond += "    rel collection:l" + std::to_string(i) + side + ":includes = [</C.collection:l" +
+                       std::to_string(i + 1) + "a>, </C.collection:l" + std::to_string(i + 1) + "b>]\n";
+    diamond += "    rel collection:l100a:includes = </W/M>\n    rel collection:l100b:includes = </W/M>\n}\n";
+    Opened d(diamond);
+    // Nested deeper than kMaxNesting: the innermost collections are left out, with a warning.
+    EXPECT_FALSE(d.collection("/C.collection:l0a").includes("/W/M"));
+    EXPECT_TRUE(d.collection("/C.collection:l50a").includes("/W/M"));
+    EXPECT_FALSE(d.warnings.empty());
+    std::string chain = "#usda 1.0\ndef Xform \"W\" { def Mesh \"M\" {} }\ndef Scope \"C\" {\n";
+    for (int i = 0; i < 5000; ++i)
+        chain += "    rel collection:c" + std::to_string(i) + ":includes = </C.collection:c" + std::to_string(i + 1) + ">\n";
+    chain += "    rel collection:c5000:includes = </W/M>\n}\n";
+    Opened c(chain);
+    EXPECT_FALSE(c.collection("/C.collection:c0").includes("/W/M"));
+    EXPECT_TRUE(c.collection("/C.collection:c4990").includes("/W/M"));
+}

@@ -147,3 +147,30 @@ def Xform "Four" { rel collection:c:includes = </Four/Inst>
     EXPECT_NE(key("/One/Inst"), key("/Three/Inst"));
     EXPECT_NE(key("/Four/Inst"), key("/One/Inst"));
 }
+
+TEST(MaterialBinding, CollectionBindingTargetsMayComeInEitherOrderAndDirectOnesNameOne) {
+    Resolved r(R"(
+def Xform "G" {
+    rel collection:c:includes = </G/A>
+    rel material:binding:collection:c = [</Looks/B>, </G.collection:c>]
+    def Mesh "A" {}
+}
+def Mesh "Two" { rel material:binding = [</Looks/A>, </Looks/B>] }
+)");
+    EXPECT_EQ(r("/G/A"), "/Looks/B");
+    EXPECT_EQ(r("/Two"), "");  // a direct binding with two targets is not a binding
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("2 targets"), std::string::npos);
+}
+
+TEST(MaterialBinding, InheritedKeysFollowWhatIsPassedDownNotHowItIsWritten) {
+    // An instance repeating its parent's binding passes down the same material as one that
+    // inherits it: they share a prototype.
+    Resolved r(R"(
+def Xform "P" { rel material:binding = </Looks/A>
+    def Xform "Repeats" { rel material:binding = </Looks/A> }
+    def Xform "Inherits" {} }
+)");
+    auto key = [&](const std::string& p) { return r.resolver->inheritedKey(*r.stage->prim(p)); };
+    EXPECT_EQ(key("/P/Repeats"), key("/P/Inherits"));
+}

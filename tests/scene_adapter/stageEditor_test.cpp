@@ -595,3 +595,50 @@ TEST(StageEditor, LightLinkEditsRelightThePrimsTheyReach) {
     f.render();
     EXPECT_NEAR(f.colorOf("/World/Group/Right").z, before.z, 0.02f * before.z);
 }
+
+TEST(StageEditor, SubsetsFollowCollectionEditsAfterTheirOwnEdits) {
+    // A subset edit records what the subset resolves to, so a later collection edit that brings
+    // it back to an earlier material is still seen.
+    Fixture f;
+    f.edit().setAttribute("/World/Group/Right/Half", "indices", EditValue::of({0}));
+    f.edit().bindMaterial("/World/Group/Right/Half", "/World/Looks/Red");
+    f.render();
+    EXPECT_GT(f.colorOf("/World/Group/Right").x, 4.0f * f.colorOf("/World/Group/Right").z);
+    // On the subset itself a collection binding beats its direct one; its collection is empty yet.
+    f.edit().setRelationship("/World/Group/Right/Half", "material:binding:collection:x",
+                             {"/World/Group.collection:x", "/World/Looks/Blue"});
+    f.render();
+    f.edit().setRelationship("/World/Group", "collection:x:includes", {"/World/Group/Right/Half"});
+    EXPECT_EQ(f.rprims().count("/World/Group/Right"), 1u);
+    f.render();
+    const glm::vec3 c = f.colorOf("/World/Group/Right");
+    EXPECT_GT(c.z, 4.0f * c.x);
+}
+
+TEST(StageEditor, RemovingWhatACollectionBindingNeedsReResolves) {
+    {
+        // The prim holding the collection goes: the mesh falls back to its direct binding.
+        Fixture f;
+        f.edit().setRelationship("/World/Ball", "collection:c:includes", {"/World/Group/Left"});
+        f.edit().setRelationship("/World/Group/Left", "material:binding:collection:c",
+                                 {"/World/Ball.collection:c", "/World/Looks/Blue"});
+        f.render();
+        EXPECT_GT(f.colorOf("/World/Group/Left").z, 4.0f * f.colorOf("/World/Group/Left").x);
+        f.edit().removePrim("/World/Ball");
+        f.render();
+        EXPECT_GT(f.colorOf("/World/Group/Left").x, 4.0f * f.colorOf("/World/Group/Left").z);
+    }
+    {
+        // The Material a subset reaches through a collection goes: the subset takes the mesh's.
+        Fixture f;
+        f.edit().setAttribute("/World/Group/Right/Half", "indices", EditValue::of({0}));
+        f.edit().setRelationship("/World/Group/Right", "collection:warm:includes", {"/World/Group/Right/Half"});
+        f.edit().setRelationship("/World/Group/Right", "material:binding:collection:warm",
+                                 {"/World/Group/Right.collection:warm", "/World/Looks/Red"});
+        f.render();
+        EXPECT_GT(f.colorOf("/World/Group/Right").x, 4.0f * f.colorOf("/World/Group/Right").z);
+        f.edit().removePrim("/World/Looks/Red");
+        f.render();
+        EXPECT_GT(f.colorOf("/World/Group/Right").z, 4.0f * f.colorOf("/World/Group/Right").x);
+    }
+}

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -35,6 +36,37 @@ std::string writeExr(const std::string& name, int w, int h, const std::vector<fl
     if (!out || !out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb.data())) return "";
     out->close();
     return path;
+}
+
+// A black square card (no diffuse, ior 1: no specular but the grazing Schlick term) at height
+// y = 1 spanning [-half, half] in x and z, facing down (the camera above sees its back, which a
+// single-sided mesh hides from camera rays), for shadow tests; hidden when !visible.
+std::string blackCard(double half, bool visible = true) {
+    char points[256];
+    std::snprintf(points, sizeof points, "[(%g, 1, %g), (%g, 1, %g), (%g, 1, %g), (%g, 1, %g)]", -half, -half, half,
+                  -half, half, half, -half, half);
+    return std::string(R"(
+def Mesh "Card" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    )") + (visible ? "" : "token visibility = \"invisible\"") + R"(
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = )" + points + R"(
+    rel material:binding = </Black>
+}
+def Material "Black"
+{
+    token outputs:surface.connect = </Black/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0, 0, 0)
+        float inputs:ior = 1
+        token outputs:surface
+    }
+}
+)";
 }
 
 }  // namespace
@@ -616,27 +648,7 @@ def SphereLight "Bulb"
     double3 xformOp:translate = (0, 1.6, 0)
     uniform token[] xformOpOrder = ["xformOp:translate"]
 }
-def Mesh "Card" (prepend apiSchemas = ["MaterialBindingAPI"])
-{
-    )" + std::string(card ? "" : "token visibility = \"invisible\"") + R"(
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-0.6, 1, -0.6), (-0.6, 1, 0.6), (0.6, 1, 0.6), (0.6, 1, -0.6)]
-    rel material:binding = </Black>
-}
-def Material "Black"
-{
-    token outputs:surface.connect = </Black/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (0, 0, 0)
-        float inputs:ior = 1
-        token outputs:surface
-    }
-}
-)",
+)" + blackCard(0.6, card),
                           60.0);
     };
     // Disk: E = pi L R^2 / (h^2 + R^2); sphere (radius r, radiance Ls, distance d): E = pi Ls (r/d)^2.
@@ -762,27 +774,7 @@ def DomeLight "Sky"
     token inputs:texture:format = "latlong"
     bool inputs:shadow:enable = 0
 }
-)" + std::string(card ? R"(
-def Mesh "Card" (prepend apiSchemas = ["MaterialBindingAPI"])
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-40, 1, -40), (40, 1, -40), (40, 1, 40), (-40, 1, 40)]
-    rel material:binding = </Black>
-}
-def Material "Black"
-{
-    token outputs:surface.connect = </Black/S.outputs:surface>
-    def Shader "S"
-    {
-        uniform token info:id = "UsdPreviewSurface"
-        color3f inputs:diffuseColor = (0, 0, 0)
-        float inputs:ior = 1
-        token outputs:surface
-    }
-}
-)" : ""), 60.0);
+)" + (card ? blackCard(40.0) : std::string()), 60.0);
     };
     const double open = render(scene(false), 2048);
     const double covered = render(scene(true), 2048, {{"misCompensation", "0"}});

@@ -1282,7 +1282,12 @@ def light_params(light, obj_matrix):
     p = _light_params_by_type(light, obj_matrix)
     # Cycles' per-lamp "Cast Shadow" (light.cycles.cast_shadow): UsdLux ShadowAPI shadow:enable.
     if p[0] not in (None, "portal"):
-        p[1]["shadows"] = bool(getattr(getattr(light, "cycles", None), "cast_shadow", True))
+        # Blender 4.2 moved it to Light.use_shadow.
+        cycles = getattr(light, "cycles", None)
+        if cycles is not None and hasattr(cycles, "cast_shadow"):
+            p[1]["shadows"] = bool(cycles.cast_shadow)
+        else:
+            p[1]["shadows"] = bool(getattr(light, "use_shadow", True))
     return p
 
 

@@ -32,7 +32,7 @@ LightPick::LightPick(const SceneSnapshot& scene, bool enabled) : _scene(scene) {
     for (uint32_t i = 0; i < lights.size(); ++i) {
         const float base = lights[i].pickProbability;
         if (_bounds[i].w > 0.0f && base > 0.0f) {
-            items.push_back({glm::vec3(_bounds[i]), _bounds[i].w, base, i});
+            items.push_back({glm::vec3(_bounds[i]), _bounds[i].w, base, i, emissionCone(_reach[i])});
         } else {
             _flat.push_back(i);
         }
@@ -71,6 +71,23 @@ LightPick::Reach LightPick::reachOf(const LightRecord& l) {
         }
     }
     return r;
+}
+
+LightTree::Cone LightPick::emissionCone(const Reach& r) {
+    // The directions the reach tests allow, as the tree's cone: the one-sided plane's hemisphere
+    // about its normal, the shaping cone about its axis (both: the narrower, about the same axis,
+    // as light.cpp aims the shaping axis along the normal).
+    LightTree::Cone k;
+    if (r.tests & kCone) {
+        k.axis = r.axis;
+        k.cosThetaO = 1.0f;
+        k.cosThetaE = (r.tests & kBehindPlane) ? std::max(r.cosCone, 0.0f) : r.cosCone;
+    } else if (r.tests & kBehindPlane) {
+        k.axis = r.normal;
+        k.cosThetaO = 1.0f;
+        k.cosThetaE = 0.0f;
+    }
+    return k;
 }
 
 bool LightPick::reaches(uint32_t i, const glm::vec3& c, float r2, const glm::vec3& p, const glm::vec3& n) const {

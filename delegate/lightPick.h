@@ -69,6 +69,8 @@ private:
     };
     static constexpr uint8_t kBehindPlane = 1, kCone = 2, kHorizon = 4;
     static Reach reachOf(const LightRecord& l);
+    /// The tree's emission cone for a light with these reach tests (everywhere: none).
+    static LightTree::Cone emissionCone(const Reach& r);
     /// Can light i (bounding sphere centre c, radius^2 r2) reach p with receiver normal n?
     bool reaches(uint32_t i, const glm::vec3& c, float r2, const glm::vec3& p, const glm::vec3& n) const;
     float weight(uint32_t i, const glm::vec3& p, const glm::vec3& n) const;

@@ -32,6 +32,7 @@ void LightTree::build(std::vector<Item>& items, size_t begin, size_t end, int32_
         n.floor2 = it.radius2;  // inner nodes: the least of their lights'
 
         n.power = it.power;
+        n.cone = it.cone;
         n.left = -1;
         n.light = it.light;
         _leafOf[it.light] = self;
@@ -65,8 +66,51 @@ void LightTree::build(std::vector<Item>& items, size_t begin, size_t end, int32_
     n.radius2 = 0.25f * diagonal2;
     n.floor2 = std::min(a.floor2, b.floor2);  // > 0: every light's radius^2 is
     n.power = _nodes[size_t(left)].power + _nodes[size_t(left) + 1].power;
+    n.cone = merge(a.cone, b.cone);
     n.left = left;
     n.light = 0;
+}
+
+LightTree::Cone LightTree::merge(const Cone& a, const Cone& b) {
+    if (a.all()) return a;
+    if (b.all()) return b;
+    Cone out;
+    out.cosThetaE = std::min(a.cosThetaE, b.cosThetaE);  // the wider emission spread
+    const float thetaA = std::acos(std::clamp(a.cosThetaO, -1.0f, 1.0f));
+    const float thetaB = std::acos(std::clamp(b.cosThetaO, -1.0f, 1.0f));
+    const float thetaD = std::acos(std::clamp(glm::dot(a.axis, b.axis), -1.0f, 1.0f));
+    constexpr float kPi = 3.14159265358979323846f;
+    // One cone holds the other.
+    if (std::min(thetaD + thetaB, kPi) <= thetaA) return Cone{a.axis, a.cosThetaO, out.cosThetaE};
+    if (std::min(thetaD + thetaA, kPi) <= thetaB) return Cone{b.axis, b.cosThetaO, out.cosThetaE};
+    const float thetaO = 0.5f * (thetaA + thetaD + thetaB);
+    if (thetaO >= kPi) return Cone{a.axis, -1.0f, out.cosThetaE};
+    // Turn a's axis toward b's by thetaO - thetaA (Rodrigues, about a x b).
+    const float turn = thetaO - thetaA;
+    const glm::vec3 w = glm::cross(a.axis, b.axis);
+    const float lw = glm::length(w);
+    if (!(lw > 1e-7f)) return Cone{a.axis, -1.0f, out.cosThetaE};  // opposite axes (or rounding)
+    const glm::vec3 k = w / lw;
+    const glm::vec3 axis = a.axis * std::cos(turn) + glm::cross(k, a.axis) * std::sin(turn) +
+                           k * glm::dot(k, a.axis) * (1.0f - std::cos(turn));
+    // A little slack for the rounding of the rotation: the merged cone must hold both.
+    out.axis = glm::normalize(axis);
+    out.cosThetaO = std::cos(std::min(thetaO + 1e-3f, kPi));
+    return out;
+}
+
+float LightTree::orientation(const Cone& k, const glm::vec3& c, float r2, const glm::vec3& p) {
+    if (k.all()) return 1.0f;
+    const glm::vec3 v = p - c;
+    const float d2 = glm::dot(v, v);
+    if (!(d2 > r2)) return 1.0f;  // p inside the bounding sphere: any direction may reach it
+    auto sinOf = [](float cosine) { return std::sqrt(std::max(0.0f, 1.0f - cosine * cosine)); };
+    const float cosW = glm::dot(k.axis, v) / std::sqrt(d2);
+    // theta_x = max(0, theta_w - theta_o), then theta' = max(0, theta_x - theta_u), sin theta_u = r / d.
+    const float cosX = cosW >= k.cosThetaO ? 1.0f : cosW * k.cosThetaO + sinOf(cosW) * sinOf(k.cosThetaO);
+    const float cosU = std::sqrt(std::max(0.0f, 1.0f - r2 / d2));
+    const float cosP = cosX >= cosU ? 1.0f : cosX * cosU + sinOf(cosX) * std::sqrt(r2 / d2);
+    return cosP > k.cosThetaE ? std::max(cosP, 0.0f) : 0.0f;
 }
 
 bool LightTree::behind(const Node& n, const glm::vec3& p, const glm::vec3& nrm) {
@@ -77,15 +121,19 @@ bool LightTree::behind(const Node& n, const glm::vec3& p, const glm::vec3& nrm) 
 
 float LightTree::sphereWeight(const Node& n, const glm::vec3& p, const glm::vec3& nrm) const {
     if (behind(n, p, nrm)) return 0.0f;
+    const float facing = orientation(n.cone, n.center, n.radius2, p);
+    if (!(facing > 0.0f)) return 0.0f;
     const glm::vec3 d = n.center - p;
-    const float w = n.power * (_sceneRadius2 / std::max(glm::dot(d, d), n.radius2));
+    const float w = n.power * (_sceneRadius2 / std::max(glm::dot(d, d), n.radius2)) * facing;
     return std::isfinite(w) ? w : n.power;
 }
 
 float LightTree::weight(const Node& n, const glm::vec3& p, const glm::vec3& nrm) const {
     if (behind(n, p, nrm)) return 0.0f;
+    const float facing = orientation(n.cone, n.center, n.radius2, p);
+    if (!(facing > 0.0f)) return 0.0f;
     const glm::vec3 d = glm::max(glm::max(n.lo - p, p - n.hi), glm::vec3(0.0f));  // to the box
-    const float w = n.power * (_sceneRadius2 / std::max(glm::dot(d, d), n.floor2));
+    const float w = n.power * (_sceneRadius2 / std::max(glm::dot(d, d), n.floor2)) * facing;
     return std::isfinite(w) ? w : n.power;
 }
 

@@ -2,7 +2,7 @@
 // LightTree: a binary tree over local lights' bounding spheres, for picking one of many lights
 // at a shading point in O(log n) (Conty Estevez & Kulla 2018, "Importance Sampling of Many
 // Lights with Adaptive Tree Splitting", section 4: descend by the children's estimated
-// importance; here without orientation cones). A node's weight at p is power * R^2 / d^2, with
+// importance, orientation cones included; no splitting). A node's weight at p is power * R^2 / d^2, with
 // power the sum of the global pick probabilities below it and d^2 the squared distance from p to
 // the box around its lights' bounding spheres, at least the smallest of their radii^2: a cluster
 // around p outweighs one beside it, as the lamps next to p do in the linear pick. (Measured on
@@ -24,12 +24,29 @@ namespace principled::embree {
 
 class LightTree {
 public:
+    /// The directions an emitter sends light along: within thetaE of some direction within
+    /// thetaO of axis (Conty Estevez & Kulla 2018, section 4.1, the normal and emission
+    /// bounds). The default bounds nothing (thetaO = pi).
+    struct Cone {
+        glm::vec3 axis{0.0f, 0.0f, 1.0f};
+        float cosThetaO = -1.0f;
+        float cosThetaE = 0.0f;
+        bool all() const { return cosThetaO <= -1.0f; }
+    };
     struct Item {
         glm::vec3 center;  ///< bounding sphere of the emitter
         float radius2;     ///< its radius^2 (> 0)
         float power;       ///< global pick probability (> 0)
         uint32_t light;    ///< index in the snapshot's lights
+        Cone cone{};       ///< where it emits (default: everywhere)
     };
+    /// The smallest cone holding both (Conty Estevez & Kulla 2018, Algorithm 1).
+    static Cone merge(const Cone& a, const Cone& b);
+    /// Orientation factor of a cluster with bounding sphere (c, r^2) and cone k at p: the cosine
+    /// of the least angle between a direction it may emit along and p (0 when p lies outside every
+    /// such direction). Conty Estevez & Kulla 2018, eq. 3 (theta' = max(0, theta - theta_o -
+    /// theta_u)), with the cosines composed as in Pharr et al. 2023, section 12.6.3.
+    static float orientation(const Cone& k, const glm::vec3& c, float r2, const glm::vec3& p);
 
     LightTree() = default;
     /// sceneRadius2: the R^2 of the weights. Items with non-finite bounds or power <= 0 must be
@@ -74,6 +91,7 @@ private:
         glm::vec3 lo, hi;  ///< bounding box of the emitters' spheres (the other nodes' weight)
         float floor2;      ///< the least d^2 of the weight: the lights' smallest radius^2
         float power;
+        Cone cone;         ///< where its lights emit
         int32_t left;    ///< first child (the second is left + 1); -1 for a leaf
         int32_t parent;  ///< -1 for the root
         uint32_t light;  ///< leaves: the light

@@ -3,6 +3,7 @@
 // distribution at every point.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -103,4 +104,95 @@ TEST(LightTree, ShearedRectAndDiskLightsHaveNoFiniteBound) {
     disk.axisV = glm::vec3(0, 1, 0);
     disk.normal = glm::normalize(glm::vec3(0, 1, -1));  // normal not perpendicular to V
     EXPECT_TRUE(std::isinf(lightBoundingRadius(disk)));
+}
+
+namespace {
+float angleBetween(const glm::vec3& a, const glm::vec3& b) {
+    return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0f, 1.0f));
+}
+}  // namespace
+
+TEST(LightTree, MergedConesHoldBothCones) {
+    uint32_t state = 7u;
+    auto next = [&state]() {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    auto randomDir = [&]() {
+        const float z = 2.0f * next() - 1.0f, phi = 6.2831853f * next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    for (int trial = 0; trial < 2000; ++trial) {
+        LightTree::Cone a{randomDir(), std::cos(1.5f * next()), std::cos(1.5f * next())};
+        LightTree::Cone b{randomDir(), std::cos(1.5f * next()), std::cos(1.5f * next())};
+        const LightTree::Cone m = LightTree::merge(a, b);
+        EXPECT_LE(m.cosThetaE, std::min(a.cosThetaE, b.cosThetaE));
+        if (m.all()) continue;
+        const float thetaM = std::acos(m.cosThetaO);
+        for (const LightTree::Cone& c : {a, b}) {
+            // The input cone's axis and its rim (in a few directions) lie inside the merged one.
+            const float thetaC = std::acos(c.cosThetaO);
+            const glm::vec3 t = glm::normalize(glm::cross(c.axis, std::abs(c.axis.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+            const glm::vec3 u = glm::cross(c.axis, t);
+            for (int k = 0; k < 8; ++k) {
+                const float phi = 0.785398f * float(k);
+                const glm::vec3 rim = std::cos(thetaC) * c.axis + std::sin(thetaC) * (std::cos(phi) * t + std::sin(phi) * u);
+                EXPECT_LE(angleBetween(m.axis, rim), thetaM + 1e-3f) << trial;
+            }
+        }
+    }
+}
+
+TEST(LightTree, ConesTakeTheLightsThatFaceAwayOutOfThePickAndNoMore) {
+    // 120 one-sided emitters (radius 0.2) on a grid at height 2: most face down, every fifth up,
+    // every seventh a 20-degree spot aimed down. A light that can send light to p (some point of
+    // its sphere within its emission cone of p) always keeps a positive probability; well below
+    // the lamps the upward ones are hardly ever picked; the probabilities form a distribution.
+    std::vector<LightTree::Item> items;
+    for (uint32_t i = 0; i < 120; ++i) {
+        LightTree::Item it{glm::vec3(float(i % 12) * 1.5f - 8.0f, 2.0f, float(i / 12) * 1.5f - 7.0f), 0.04f,
+                           1.0f + float(i % 3), i, {}};
+        it.cone.axis = i % 5 == 0 ? glm::vec3(0, 1, 0) : glm::vec3(0, -1, 0);
+        it.cone.cosThetaO = 1.0f;
+        it.cone.cosThetaE = i % 7 == 0 ? std::cos(0.349f) : 0.0f;
+        items.push_back(it);
+    }
+    const LightTree tree(items, 400.0f);
+    uint32_t state = 3u;
+    auto next = [&state]() {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    double upward = 0.0;  // summed over the trials below y = 1
+    std::vector<glm::vec3> below;
+    for (int trial = 0; trial < 200; ++trial) {
+        const glm::vec3 p(24.0f * next() - 12.0f, 6.0f * next() - 2.0f, 24.0f * next() - 12.0f);
+        if (p.y < 1.0f) below.push_back(p);
+        double sum = 0.0;
+        for (const LightTree::Item& it : items) {
+            const float prob = tree.probability(it.light, p);
+            sum += prob;
+            // Can some point q of the sphere send light to p?
+            bool reaches = false;
+            for (int k = 0; k < 64 && !reaches; ++k) {
+                const float z = 2.0f * next() - 1.0f, phi = 6.2831853f * next(), r = std::sqrt(1.0f - z * z);
+                const glm::vec3 q = it.center + 0.2f * glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+                reaches = glm::dot(glm::normalize(p - q), it.cone.axis) > it.cone.cosThetaE + 1e-3f;
+            }
+            if (reaches) EXPECT_GT(prob, 0.0f) << "light " << it.light << " at trial " << trial;
+            if (it.light % 5 == 0 && p.y < 1.0f) upward += prob;
+        }
+        if (sum > 0.0) EXPECT_NEAR(sum, 1.0, 1e-4);
+    }
+    // Below the lamps the upward ones, a fifth of the power, are picked far less often than by
+    // distance alone (a cluster whose children both weigh 0 falls back to their powers, so they
+    // keep a share: 5.7 % against 20 % when this was written).
+    std::vector<LightTree::Item> plain = items;
+    for (LightTree::Item& it : plain) it.cone = LightTree::Cone{};
+    const LightTree distanceOnly(plain, 400.0f);
+    double upwardByDistance = 0.0;
+    for (const glm::vec3& p : below)
+        for (const LightTree::Item& it : plain)
+            if (it.light % 5 == 0) upwardByDistance += distanceOnly.probability(it.light, p);
+    EXPECT_LT(upward, 0.4 * upwardByDistance);
 }

@@ -92,7 +92,7 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
         const bool meshOk = l.kind != LightRecord::Kind::Mesh || (!l.texturedEmission && l.meshWorld && l.meshAreaCdf);
         // A light without shadows reaches through occluders, which its light paths cannot, and
         // a linked light lights some prims only: path tracing keeps their caustics.
-        if (isCausticLightKind(l.kind) && meshOk && l.castsShadows && l.linkBit < 0 && !l.point && luminance(power) > 0.0f && std::isfinite(luminance(power)) &&
+        if (isCausticLightKind(l.kind) && meshOk && !l.neeOnly() && l.linkBit < 0 && !l.point && luminance(power) > 0.0f && std::isfinite(luminance(power)) &&
             (l.kind == LightRecord::Kind::Distant || l.area > 0.0f)) {
             _lightFlag[i] = 1;
             anyLight = true;

@@ -281,9 +281,12 @@ float presenceAt(const SceneSnapshot& scene, const Hit& hit) {
 // (1 - presence) of the partly present surfaces it crosses. The camera path chooses to pass
 // through such a surface with probability 1 - presence, so both estimate the same expected
 // value; here the factor is exact, so cutout and partial-opacity shadows carry no extra noise.
+// light: the light a shadow ray goes to (null: a ray to the camera); prims outside its
+// shadow-link collection (delegate/sceneData.h) let it through.
 float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const glm::vec3& dir,
-                    float tfar) {
-    if (!scene.anyPartlyPresent) return occluded(scene, origin, dir, tfar) ? 0.0f : 1.0f;
+                    float tfar, const LightRecord* light = nullptr) {
+    const bool linked = light && light->shadowBit >= 0;
+    if (!scene.anyPartlyPresent && !linked) return occluded(scene, origin, dir, tfar) ? 0.0f : 1.0f;
     if (!embreeRayValid(origin, dir, 0.0f, tfar)) return 0.0f;
     const bool bounded = tfar < kInf;
     const glm::vec3 end = origin + (bounded ? tfar : 0.0f) * dir;
@@ -296,7 +299,7 @@ float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const g
     for (int layer = 0; layer < kMaxPassThrough; ++layer) {
         Hit h;
         if (!intersect(scene, r, &h)) return T;
-        const float p = presenceAt(scene, h);
+        const float p = !linked || light->shadowedBy(h.record->shadowLinks) ? presenceAt(scene, h) : 0.0f;
         T *= 1.0f - p;
         if (!(T > 0.0f)) return 0.0f;
         r.origin = offsetOrigin(h, dir);
@@ -527,14 +530,15 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // have found them. Without MIS, lights that NEE samples are counted only by NEE
         // (weight 0 here), except after a delta bounce, which NEE cannot follow; directions
         // NEE cannot produce (pdf 0, e.g. below the surface) always count fully.
-        // A light that casts no shadows is NEE's alone (it reaches through occluders, which a
-        // BSDF ray cannot), as every NEE-sampled light is without MIS.
+        // A light that casts no shadows, or whose shadows only some prims cast, is NEE's alone
+        // (it reaches through occluders, which a BSDF ray cannot), as every NEE-sampled light is
+        // without MIS.
         auto addEmitter = [&](const glm::vec3& Le, float lightPdf, uint32_t li) {
             // Light linking: a light that does not light the surface the ray left adds nothing
             // there (NEE skips it too); the camera sees every light.
             if (prevVertex && !lights[li].lights(prevLightLinks)) return;
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee) ? 1.0f
-                      : (_settings.mis && lights[li].castsShadows) ? powerHeuristic(prevBsdfPdf, lightPdf)
+                      : (_settings.mis && !lights[li].neeOnly()) ? powerHeuristic(prevBsdfPdf, lightPdf)
                                                                    : 0.0f;
             glm::vec3 c = beta * Le * w;
             if (prevVertex && lights[li].scalesLobes())
@@ -576,7 +580,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                 // Compensation leaves part of a dome to BSDF rays, which a shadowless light's
                 // occluders would block: such a light is sampled whole (NEE alone carries it).
                 if (environmentRadiance(light, prevP, ray.direction, prevNg, &Le, prevDelta ? nullptr : &pdf,
-                                        compensate && light.castsShadows))
+                                        compensate && !light.neeOnly()))
                     addEmitter(Le, pdf * _lightPick.probability(li, prevP, prevPickNormal, prevPickTotal), li);
             }
             break;
@@ -717,7 +721,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             if (!lights[li].lights(rec.lightLinks)) continue;  // light linking: not this prim's light
             const float lightPick = _lightPick.probability(uint32_t(li), hit.p, pickNormal, pickTotal);
             LightSample ls;
-            if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate && lights[li].castsShadows) && ls.pdf > 0.0f &&
+            if (sampleLight(lights[li], hit.p, hit.ng, u, &ls, compensate && !lights[li].neeOnly()) && ls.pdf > 0.0f &&
                 lightSideOk(ls.wi, hit.ng, frame, woLocal, neeThrough) &&
                 (!lights[li].texturedEmission || texturedEmission(lights[li], &ls))) {
                 float bsdfPdf = 0.0f;
@@ -738,10 +742,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                         float tfar = ls.distance >= kInf ? kInf
                                                           : std::max(0.0f, glm::length(hit.p + ls.distance * ls.wi - shadowOrigin) * (1.0f - 1e-4f));
                         if (_settings.recorder) _settings.recorder->record(shadowOrigin, ls.wi, 0.0f, tfar, true);
-                        visible = transmittance(_scene, shadowOrigin, ls.wi, tfar);
+                        visible = transmittance(_scene, shadowOrigin, ls.wi, tfar, &lights[li]);
                     }
                     if (visible > 0.0f) {
-                        float w = (ls.delta || !_settings.mis || !shadows) ? 1.0f : powerHeuristic(ls.pdf * lightPick, bsdfPdf);
+                        float w = (ls.delta || !_settings.mis || lights[li].neeOnly()) ? 1.0f
+                                                                                    : powerHeuristic(ls.pdf * lightPick, bsdfPdf);
                         glm::vec3 scale = beta * ls.Li * (visible * w / (ls.pdf * lightPick));
                         glm::vec3 c = scale * f;
                         if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)

@@ -115,6 +115,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
         glm::vec3 pointIntensity(0.0f);  // LightRecord::point lights
         _record.castsShadows = scalar("shadow:enable", 1.0f) > 0.5f;  // UsdLux ShadowAPI
         _record.linkCategory = getString(delegate->getLightParamValue(id(), Token("lightLink"))).value_or("");
+        _record.shadowCategory = getString(delegate->getLightParamValue(id(), Token("shadowLink"))).value_or("");
         _record.diffuseScale = std::max(0.0f, scalar("diffuse", 1.0f));
         _record.specularScale = std::max(0.0f, scalar("specular", 1.0f));
         if (getVec3(delegate->getLightParamValue(id(), Token("shadow:color"))).value_or(glm::vec3(0.0f)) != glm::vec3(0.0f) ||

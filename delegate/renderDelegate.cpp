@@ -233,25 +233,31 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
 }
 
 void EmbreeRenderDelegate::assignLightLinks() {
-    // One bit per linked light (UsdLux collection:lightLink), in the light table's order; a
-    // prim's bits say which linked lights reach it. Lights without a category light every prim.
-    std::unordered_map<std::string, int> bitOf;
+    // One bit per linked light (UsdLux collection:lightLink) and one per shadow-linked light
+    // (collection:shadowLink), in the light table's order; a prim's bits say which linked lights
+    // reach it and whose shadows it casts. Lights without a category light every prim and are
+    // shadowed by every prim.
+    std::unordered_map<std::string, int> linkBits, shadowBits;
+    auto assign = [&](std::unordered_map<std::string, int>& bits, const std::string& category, const char* what) {
+        if (category.empty()) return -1;
+        auto [it, added] = bits.emplace(category, int(bits.size()));
+        if (it->second < 64) return it->second;
+        if (added) _param->warn(hd::Path(category), std::string("more than 64 ") + what + ": this one is ignored");
+        return -1;
+    };
     for (LightRecord& l : _snapshot.lights) {
-        l.linkBit = -1;
-        if (l.linkCategory.empty()) continue;
-        auto [it, added] = bitOf.emplace(l.linkCategory, int(bitOf.size()));
-        if (it->second >= 64) {
-            if (added) _param->warn(hd::Path(l.linkCategory), "more than 64 linked lights: this one lights every prim");
-            continue;
-        }
-        l.linkBit = it->second;
+        l.linkBit = assign(linkBits, l.linkCategory, "light-linked lights");
+        l.shadowBit = assign(shadowBits, l.shadowCategory, "shadow-linked lights");
     }
     for (GeometrySource* g : _param->geometry()) {
-        uint64_t links = 0;
-        if (!bitOf.empty())
-            for (const hd::Token& c : g->categories())
-                if (auto it = bitOf.find(c.str()); it != bitOf.end() && it->second < 64) links |= uint64_t(1) << it->second;
+        uint64_t links = 0, shadows = 0;
+        if (!linkBits.empty() || !shadowBits.empty())
+            for (const hd::Token& c : g->categories()) {
+                if (auto it = linkBits.find(c.str()); it != linkBits.end() && it->second < 64) links |= uint64_t(1) << it->second;
+                if (auto it = shadowBits.find(c.str()); it != shadowBits.end() && it->second < 64) shadows |= uint64_t(1) << it->second;
+            }
         g->record()->lightLinks = links;
+        g->record()->shadowLinks = shadows;
     }
 }
 

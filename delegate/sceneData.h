@@ -64,6 +64,8 @@ struct GeometryRecord {
     /// Bit i set: lit by the linked light of LightRecord::linkBit i (lights without a link
     /// category light every prim).
     uint64_t lightLinks = 0;
+    /// Bit i set: casts the shadows of the light of LightRecord::shadowBit i.
+    uint64_t shadowLinks = 0;
     bool doubleSided = false;
     glm::mat4 objectToWorld{1.0f};
     glm::mat4 worldToObject{1.0f};
@@ -182,6 +184,16 @@ struct LightRecord {
     std::string linkCategory;
     int linkBit = -1;
     bool lights(uint64_t geometryLinks) const { return linkBit < 0 || ((geometryLinks >> linkBit) & 1u); }
+    /// Shadow linking: the category of the prims that cast this light's shadows, empty for all;
+    /// shadowBit is its bit in GeometryRecord::shadowLinks (-1: every prim casts them).
+    std::string shadowCategory;
+    int shadowBit = -1;
+    bool shadowedBy(uint64_t geometryShadowLinks) const {
+        return shadowBit < 0 || ((geometryShadowLinks >> shadowBit) & 1u);
+    }
+    /// Its light reaches points that BSDF rays from them cannot (no shadows, or prims that do
+    /// not cast them): next-event estimation alone carries it, with weight 1.
+    bool neeOnly() const { return !castsShadows || shadowBit >= 0; }
     // Area lights, in world space.
     glm::vec3 center{0.0f};
     glm::vec3 axisU{0.0f}, axisV{0.0f};  ///< rect: half extents; disk: radii; cylinder: U = half length along the axis

@@ -430,8 +430,9 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
 Value UsdSceneDelegate::getLightParamValue(const Path& id, const Token& param) const {
     const usd::Prim* p = prim(id);
     if (!p) return {};
-    if (param.str() == "lightLink") {
-        if (_lightLinks.count(p->path())) return Value(p->path());
+    if (param.str() == "lightLink" || param.str() == "shadowLink") {
+        std::string collection = p->path() + ".collection:" + param.str();
+        if (_lightLinks.count(collection)) return Value(std::move(collection));
         return {};
     }
     Value v = attributeValue(*p, "inputs:" + param.str());
@@ -442,8 +443,8 @@ std::vector<Token> UsdSceneDelegate::getCategories(const Path& id) const {
     std::vector<Token> out;
     const usd::Prim* p = prim(id);
     if (!p) return out;
-    for (const auto& [light, link] : _lightLinks)
-        if (link->includes(p->path())) out.emplace_back(light);
+    for (const auto& [collection, link] : _lightLinks)
+        if (link->includes(p->path())) out.emplace_back(collection);
     return out;
 }
 
@@ -452,13 +453,12 @@ void UsdSceneDelegate::readLightLinks() {
     auto warnFn = [this](const std::string& where, const std::string& message) { warn(where, message); };
     for (const auto& [id, e] : _entries) {
         if (!e.prim || !isLightTypeToken(e.type)) continue;
-        const std::string& path = e.prim->path();
-        if (!CollectionMembership::holdsEverything(_stage, path + ".collection:lightLink"))
-            _lightLinks[path] = std::make_shared<const CollectionMembership>(_stage, path + ".collection:lightLink",
-                                                                             warnFn, /*includeRootFallback=*/true);
-        if (!CollectionMembership::holdsEverything(_stage, path + ".collection:shadowLink"))
-            warn(e.prim->location().str() + ": " + path,
-                 "shadow linking (collection:shadowLink) is not supported; every prim casts this light's shadows");
+        for (const char* kind : {".collection:lightLink", ".collection:shadowLink"}) {
+            const std::string collection = e.prim->path() + kind;
+            if (!CollectionMembership::holdsEverything(_stage, collection))
+                _lightLinks[collection] =
+                    std::make_shared<const CollectionMembership>(_stage, collection, warnFn, /*includeRootFallback=*/true);
+        }
     }
 }
 

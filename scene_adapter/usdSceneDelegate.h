@@ -72,8 +72,9 @@ public:
                                         const hd::Path& prototypeId) const override;
     hd::MaterialNetwork getMaterialResource(const hd::Path& materialId) const override;
     hd::Value getLightParamValue(const hd::Path& id, const hd::Token& param) const override;
-    /// Light linking: the paths of the lights whose collection:lightLink holds this prim
-    /// (only lights that do not light everything name a category).
+    /// Light and shadow linking: the paths of the light-link and shadow-link collections
+    /// ("</Light.collection:lightLink>") that hold this prim (only collections that do not hold
+    /// everything name a category).
     std::vector<hd::Token> getCategories(const hd::Path& id) const override;
     hd::Value getCameraParamValue(const hd::Path& id, const hd::Token& param) const override;
 
@@ -154,8 +155,8 @@ private:
     /// A mesh's GeomSubsets changed: its rprims re-split (MaterialId) and record what the
     /// subsets now resolve to.
     void subsetsChanged(const usd::Prim& mesh, hd::RenderIndex* index);
-    /// Reads the light-link collections of every light entry into _lightLinks (lights whose
-    /// collection:lightLink holds everything are left out); warns about shadow links.
+    /// Reads the light-link and shadow-link collections of every light entry into _lightLinks
+    /// (collections that hold everything, the default, are left out).
     void readLightLinks();
     /// readLightLinks() after an edit, marking what linking may have changed.
     void refreshLightLinks(hd::RenderIndex* index);
@@ -184,7 +185,8 @@ private:
     std::mutex _warningsMutex;  ///< warn() may be called from parallel rprim syncs
     std::unordered_set<std::string> _warningSet;  ///< each warning is reported once
     MaterialBindingResolver _bindings;
-    /// Light path -> its collection:lightLink, for lights that do not light everything.
+    /// Collection path (</Light.collection:lightLink> or :shadowLink) -> its membership, for
+    /// the collections that do not hold everything.
     std::map<std::string, std::shared_ptr<const CollectionMembership>> _lightLinks;
     // Between primRemoving and primRemoved.
     const usd::Prim* _removing = nullptr;

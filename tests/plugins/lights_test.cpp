@@ -781,3 +781,30 @@ def DomeLight "Sky"
     EXPECT_NEAR(render(scene(true), 2048), covered, 0.005 * covered);
     EXPECT_NEAR(covered, open, 0.03 * open);
 }
+
+TEST(Lights, ShadowLinkingLetsTheLightThroughPrimsOutsideTheCollection) {
+    // UsdLux collection:shadowLink: the black card between the disk light and the plane casts
+    // the light's shadow only while it is in the collection (the schema's includeRoot = true).
+    // Excluded, the plane gets the closed form with and without MIS; named in a collection that
+    // leaves out the root, it shadows as by default.
+    auto scene = [](const std::string& link) {
+        return planeScene(0.5, R"(
+def DiskLight "Disk"
+{
+    float inputs:radius = 1
+    float inputs:intensity = 10
+    )" + link + R"(
+    double3 xformOp:translate = (0, 2, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)" + blackCard(0.6), 60.0);
+    };
+    const double expected = 0.5 * 10.0 * 1.0 / (4.0 + 1.0);
+    const std::string excluded = "rel collection:shadowLink:excludes = </Card>";
+    for (const auto& strategy : std::vector<std::map<std::string, std::string>>{{}, {{"mis", "0"}}})
+        EXPECT_NEAR(render(scene(excluded), 1024, strategy), expected, 0.03 * expected);
+    EXPECT_LT(render(scene(""), 256), 0.25 * expected);
+    EXPECT_LT(render(scene("uniform bool collection:shadowLink:includeRoot = 0\n    rel collection:shadowLink:includes = </Card>"), 256),
+              0.25 * expected);
+}

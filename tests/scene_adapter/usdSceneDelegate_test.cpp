@@ -489,7 +489,7 @@ def Xform "World" (
     EXPECT_TRUE(p.scene->warnings().empty());
 }
 
-TEST(UsdSceneDelegate, LightLinksNameTheirPrimsAsCategories) {
+TEST(UsdSceneDelegate, LightAndShadowLinksNameTheirPrimsAsCategories) {
     Populated p(R"(#usda 1.0
 def Xform "World"
 {
@@ -505,11 +505,14 @@ def Xform "World"
 }
 )");
     using V = std::vector<hd::Token>;
-    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Face")), (V{hd::Token("/World/Key")}));
-    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Body")), (V{hd::Token("/World/Fill"), hd::Token("/World/Key")}));
-    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Prop")), (V{hd::Token("/World/Fill")}));
-    EXPECT_EQ(hd::getString(p.scene->getLightParamValue(hd::Path("/World/Key"), hd::Token("lightLink"))), "/World/Key");
+    const hd::Token key("/World/Key.collection:lightLink"), fill("/World/Fill.collection:lightLink"),
+        rim("/World/Rim.collection:shadowLink");
+    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Face")), (V{key}));
+    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Body")), (V{fill, key}));
+    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Prop")), (V{fill, rim}));
+    EXPECT_EQ(hd::getString(p.scene->getLightParamValue(hd::Path("/World/Key"), hd::Token("lightLink"))), key.str());
     EXPECT_TRUE(hd::isEmpty(p.scene->getLightParamValue(hd::Path("/World/Rim"), hd::Token("lightLink"))));
-    ASSERT_EQ(p.scene->warnings().size(), 1u);  // shadow linking is not modelled
-    EXPECT_NE(p.scene->warnings()[0].find("shadowLink"), std::string::npos);
+    EXPECT_EQ(hd::getString(p.scene->getLightParamValue(hd::Path("/World/Rim"), hd::Token("shadowLink"))), rim.str());
+    EXPECT_TRUE(hd::isEmpty(p.scene->getLightParamValue(hd::Path("/World/Key"), hd::Token("shadowLink"))));
+    EXPECT_TRUE(p.scene->warnings().empty());
 }

@@ -139,7 +139,7 @@ ShapeParams shapeFallbacks(const std::string& type) {
 }
 
 bool isImplicitShape(const std::string& t) {
-    return t == "Cube" || t == "Cylinder" || t == "Cone" || t == "Capsule";
+    return t == "Cube" || t == "Cylinder" || t == "Cone" || t == "Capsule" || t == "Plane";
 }
 
 bool buildImplicitShape(const std::string& type, const ShapeParams& p, ShapeMesh* out,
@@ -151,6 +151,29 @@ bool buildImplicitShape(const std::string& type, const ShapeParams& p, ShapeMesh
         buildCube(p.size, out);
         out->extentMin = glm::vec3(float(-0.5 * p.size));
         out->extentMax = glm::vec3(float(0.5 * p.size));
+        return true;
+    }
+    if (type == "Plane") {
+        if (!validLength(p.width) || !validLength(p.length))
+            return *error = "width and length must be finite numbers >= 0", false;
+        // One quad facing +axis: width along x (axis Z, Y) or z (axis X), length along y (axis
+        // Z, X) or z (axis Y) (UsdGeomPlane schema), counter-clockwise seen from the front.
+        const float w = float(0.5 * p.width), l = float(0.5 * p.length);
+        glm::vec3 n(0.0f, 0.0f, 1.0f);
+        if (axis == 'X') {
+            out->points = {{0, -l, -w}, {0, l, -w}, {0, l, w}, {0, -l, w}};
+            n = glm::vec3(1, 0, 0);
+        } else if (axis == 'Y') {
+            out->points = {{-w, 0, l}, {w, 0, l}, {w, 0, -l}, {-w, 0, -l}};
+            n = glm::vec3(0, 1, 0);
+        } else {
+            out->points = {{-w, -l, 0}, {w, -l, 0}, {w, l, 0}, {-w, l, 0}};
+        }
+        out->faceVertexCounts = {4};
+        out->faceVertexIndices = {0, 1, 2, 3};
+        out->normals.assign(4, n);
+        out->extentMin = glm::min(out->points[0], out->points[2]);
+        out->extentMax = glm::max(out->points[0], out->points[2]);
         return true;
     }
     if (!validLength(p.radius) || !validLength(p.height))

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Implicit UsdGeom shapes (Cube, Cylinder, Cone, Capsule) as polygon meshes, served to the
+// Implicit UsdGeom shapes (Cube, Cylinder, Cone, Capsule, Plane) as polygon meshes, served to the
 // render index through the mesh pull API (subdivisionScheme none, face-varying normals: smooth
 // on curved parts, flat on caps and cube faces). Sphere is not here: it is ray traced exactly.
 //
@@ -24,7 +24,9 @@ struct ShapeParams {
     double size = 2.0;    ///< Cube edge length
     double radius = 1.0;  ///< Cylinder, Cone, Capsule (fallback 0.5)
     double height = 2.0;  ///< Cylinder, Cone; Capsule (fallback 1): the cylinder part, caps excluded
-    char axis = 'Z';      ///< 'X', 'Y' or 'Z'
+    double width = 2.0;   ///< Plane: along x (axis Z or Y) or z (axis X)
+    double length = 2.0;  ///< Plane: along y (axis Z or X) or z (axis Y)
+    char axis = 'Z';      ///< 'X', 'Y' or 'Z' (Plane: its normal)
 };
 
 struct ShapeMesh {
@@ -38,7 +40,7 @@ struct ShapeMesh {
 /// The schema fallbacks of a shape type: those above, except Capsule (radius 0.5, height 1).
 ShapeParams shapeFallbacks(const std::string& typeName);
 
-/// True for "Cube", "Cylinder", "Cone", "Capsule".
+/// True for "Cube", "Cylinder", "Cone", "Capsule", "Plane" (UsdGeomPlane, USD 22.11).
 bool isImplicitShape(const std::string& typeName);
 
 /// Builds the mesh of the shape; false (with *error) for non-finite or negative sizes.

@@ -111,7 +111,7 @@ bool isLightType(const std::string& t) {
 const std::vector<std::string>& StageEditor::supportedPrimTypes() {
     static const std::vector<std::string> t{
         "Xform",     "Scope",       "Mesh",      "Sphere",         "Points",  "BasisCurves", "Cube",
-        "Cylinder",  "Cone",        "Capsule",   "PointInstancer", "Camera",
+        "Cylinder",  "Cone",        "Capsule",   "Plane",     "PointInstancer", "Camera",
         "Material",  "Shader",      "NodeGraph", "GeomSubset",     "DistantLight",
         "DomeLight", "SphereLight", "RectLight", "DiskLight",      "CylinderLight", "PortalLight"};
     return t;
@@ -145,7 +145,8 @@ std::string StageEditor::schemaType(const std::string& primType, const std::stri
         {"primvars:st", "texCoord2f[]"},
         {"primvars:normals", "normal3f[]"}};
     static const std::map<std::string, std::string> shapes{
-        {"radius", "double"}, {"size", "double"}, {"height", "double"}, {"axis", "token"}};
+        {"radius", "double"}, {"size", "double"}, {"height", "double"}, {"axis", "token"},
+        {"width", "double"},  {"length", "double"}};
     static const std::map<std::string, std::string> instancer{
         {"positions", "point3f[]"}, {"orientations", "quath[]"}, {"scales", "float3[]"},
         {"protoIndices", "int[]"},  {"ids", "int64[]"},          {"invisibleIds", "int64[]"}};
@@ -201,7 +202,7 @@ std::string StageEditor::schemaType(const std::string& primType, const std::stri
     std::string t = find(common);
     if (t.empty() && primType == "Mesh") t = find(mesh);
     if (t.empty() && (primType == "Sphere" || primType == "Cube" || primType == "Cylinder" ||
-                      primType == "Cone" || primType == "Capsule"))
+                      primType == "Cone" || primType == "Capsule" || primType == "Plane"))
         t = find(shapes);
     if (t.empty() && (primType == "Points" || primType == "BasisCurves")) t = find(curves);
     if (t.empty() && primType == "PointInstancer") t = find(instancer);

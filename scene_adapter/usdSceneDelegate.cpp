@@ -280,7 +280,8 @@ bool UsdSceneDelegate::getDoubleSided(const Path& id) const {
     if (!p) return false;
     Value v = attributeValue(*p, "doubleSided");
     auto* b = getIf<bool>(v);
-    return b && *b;
+    if (!b) return p->typeName() == "Plane";  // UsdGeomPlane's fallback is doubleSided = 1
+    return *b;
 }
 
 Value UsdSceneDelegate::get(const Path& id, const Token& key) const {

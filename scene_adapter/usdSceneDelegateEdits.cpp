@@ -439,7 +439,8 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
             DirtyBits bits = meshAttributeBits(attr);
             if (e.type == tokens::sphere() && attr == "radius") bits = RprimDirty::Points;
             if (e.shape &&
-                (attr == "size" || attr == "radius" || attr == "height" || attr == "axis")) {
+                (attr == "size" || attr == "radius" || attr == "height" || attr == "axis" || attr == "width" ||
+                 attr == "length")) {
                 prepareShape(*p, &e);  // keeps the previous mesh (and warns) when invalid
                 bits = RprimDirty::Points | RprimDirty::Normals;
             }

@@ -50,6 +50,8 @@ bool UsdSceneDelegate::prepareShape(const usd::Prim& prim, Entry* e) {
     params.size = number("size", params.size);
     params.radius = number("radius", params.radius);
     params.height = number("height", params.height);
+    params.width = number("width", params.width);
+    params.length = number("length", params.length);
     std::string axis = tokenOf(prim, "axis", _time, "Z");
     if (axis != "X" && axis != "Y" && axis != "Z") {
         warn(prim.location().str() + ": " + prim.path(), "axis '" + axis + "' is not X, Y or Z; using Z");

@@ -139,3 +139,35 @@ TEST(ImplicitShapes, UsdWgPrimitivesMatchTheirAuthoredExtents) {
     }
     EXPECT_GE(checked, 4);
 }
+
+TEST(ImplicitShapes, PlanesLieAcrossTheirAxisWithWidthAndLengthWhereTheSchemaPutsThem) {
+    // UsdGeomPlane: width along x (axis Z or Y) or z (axis X), length along y (axis Z or X) or z
+    // (axis Y); one quad facing +axis, wound counter-clockwise seen from the front.
+    struct Case {
+        char axis;
+        glm::vec3 normal, extent;
+    };
+    for (const Case& c : {Case{'Z', {0, 0, 1}, {1.5f, 2.5f, 0}}, Case{'Y', {0, 1, 0}, {1.5f, 0, 2.5f}},
+                          Case{'X', {1, 0, 0}, {0, 2.5f, 1.5f}}}) {
+        adapter::ShapeParams p = adapter::shapeFallbacks("Plane");
+        p.width = 3.0;
+        p.length = 5.0;
+        p.axis = c.axis;
+        adapter::ShapeMesh m;
+        std::string error;
+        ASSERT_TRUE(adapter::buildImplicitShape("Plane", p, &m, &error)) << error;
+        ASSERT_EQ(m.points.size(), 4u);
+        EXPECT_EQ(m.faceVertexCounts, std::vector<int>{4});
+        EXPECT_EQ(m.extentMax, c.extent) << c.axis;
+        EXPECT_EQ(m.extentMin, -c.extent) << c.axis;
+        const glm::vec3 n = glm::cross(m.points[1] - m.points[0], m.points[2] - m.points[0]);
+        EXPECT_GT(glm::dot(n, c.normal), 0.0f) << c.axis;
+        for (const glm::vec3& v : m.normals) EXPECT_EQ(v, c.normal);
+    }
+    adapter::ShapeParams bad = adapter::shapeFallbacks("Plane");
+    bad.width = -1.0;
+    adapter::ShapeMesh m;
+    std::string error;
+    EXPECT_FALSE(adapter::buildImplicitShape("Plane", bad, &m, &error));
+    EXPECT_NE(error.find("width"), std::string::npos);
+}

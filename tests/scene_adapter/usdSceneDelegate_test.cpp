@@ -516,3 +516,22 @@ def Xform "World"
     EXPECT_TRUE(hd::isEmpty(p.scene->getLightParamValue(hd::Path("/World/Key"), hd::Token("shadowLink"))));
     EXPECT_TRUE(p.scene->warnings().empty());
 }
+
+TEST(UsdSceneDelegate, PlanesAreTwoSidedQuadsByDefault) {
+    Populated p(R"(#usda 1.0
+def Plane "Ground" { double width = 4  double length = 6  uniform token axis = "Y" }
+def Plane "Card" { uniform bool doubleSided = 0 }
+)");
+    const hd::Value value = p.scene->get(hd::Path("/Ground"), hd::Token("points"));
+    const auto* points = hd::getIf<std::vector<glm::vec3>>(value);
+    ASSERT_TRUE(points);
+    ASSERT_EQ(points->size(), 4u);
+    for (const glm::vec3& v : *points) {
+        EXPECT_EQ(v.y, 0.0f);
+        EXPECT_EQ(std::abs(v.x), 2.0f);
+        EXPECT_EQ(std::abs(v.z), 3.0f);
+    }
+    EXPECT_TRUE(p.scene->getDoubleSided(hd::Path("/Ground")));
+    EXPECT_FALSE(p.scene->getDoubleSided(hd::Path("/Card")));
+    EXPECT_TRUE(p.scene->warnings().empty());
+}

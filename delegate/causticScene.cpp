@@ -90,9 +90,10 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
         const glm::vec3 power = l.kind == LightRecord::Kind::Distant ? l.irradiance + l.radiance : l.radiance;
         // A textured mesh light's radiance is only an estimate of its mean: path tracing keeps it.
         const bool meshOk = l.kind != LightRecord::Kind::Mesh || (!l.texturedEmission && l.meshWorld && l.meshAreaCdf);
-        // A light without shadows reaches through occluders, which its light paths cannot, and
-        // a linked light lights some prims only: path tracing keeps their caustics.
-        if (isCausticLightKind(l.kind) && meshOk && !l.neeOnly() && l.linkBit < 0 && !l.point && luminance(power) > 0.0f && std::isfinite(luminance(power)) &&
+        // A light without shadows reaches through occluders, which its light paths cannot, a
+        // linked light lights some prims only, lobe multipliers act at the vertex that sees the
+        // light: path tracing keeps their caustics.
+        if (isCausticLightKind(l.kind) && meshOk && !l.neeOnly() && l.linkBit < 0 && !l.point && !l.scalesLobes() && luminance(power) > 0.0f && std::isfinite(luminance(power)) &&
             (l.kind == LightRecord::Kind::Distant || l.area > 0.0f)) {
             _lightFlag[i] = 1;
             anyLight = true;

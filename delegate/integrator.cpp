@@ -541,13 +541,26 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
                       : (_settings.mis && !lights[li].neeOnly()) ? powerHeuristic(prevBsdfPdf, lightPdf)
                                                                    : 0.0f;
             glm::vec3 c = beta * Le * w;
-            if (prevVertex && lights[li].scalesLobes())
+            if (caustic && caustic->isCausticLight(li)) c *= glm::vec3(1.0f) - causticCovered;
+            // Lobe multipliers: the light through the sampled vertex's diffuse and specular
+            // classes. Leaving the first vertex with the lobe split on, each lobe's AOV takes its
+            // own class's multiplier (the split is by that vertex's lobes).
+            const bool scaled = prevVertex && lights[li].scalesLobes();
+            const bool splitByClass = scaled && pathSplit && depth == 1;
+            glm::vec3 unscaled = c;
+            if (scaled)
                 c *= lights[li].diffuseScale * prevDiffuseShare +
                      lights[li].specularScale * (glm::vec3(1.0f) - prevDiffuseShare);
-            if (caustic && caustic->isCausticLight(li)) c *= glm::vec3(1.0f) - causticCovered;
+            float clamp = 1.0f;
             if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
-                c *= _settings.clampIndirect / maxComponent(c);
-            credit(c);
+                clamp = _settings.clampIndirect / maxComponent(c);
+            if (splitByClass) {
+                for (int i = 0; i < bsdf::kLobeCount; ++i)
+                    out.lobes[i] += unscaled * clamp * pathShare[i] *
+                                    ((kDiffuseClass & (1u << i)) ? lights[li].diffuseScale : lights[li].specularScale);
+                return;
+            }
+            credit(c * clamp);
         };
         float tHit = found ? hit.t : kInf;
         auto reachAreaLight = [&](uint32_t li) {

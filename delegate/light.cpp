@@ -116,8 +116,9 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
         _record.castsShadows = scalar("shadow:enable", 1.0f) > 0.5f;  // UsdLux ShadowAPI
         _record.linkCategory = getString(delegate->getLightParamValue(id(), Token("lightLink"))).value_or("");
         _record.shadowCategory = getString(delegate->getLightParamValue(id(), Token("shadowLink"))).value_or("");
-        _record.diffuseScale = std::max(0.0f, scalar("diffuse", 1.0f));
-        _record.specularScale = std::max(0.0f, scalar("specular", 1.0f));
+        // Non-physical multipliers, capped so that light times multiplier stays finite.
+        _record.diffuseScale = std::clamp(scalar("diffuse", 1.0f), 0.0f, 1e6f);
+        _record.specularScale = std::clamp(scalar("specular", 1.0f), 0.0f, 1e6f);
         if (getVec3(delegate->getLightParamValue(id(), Token("shadow:color"))).value_or(glm::vec3(0.0f)) != glm::vec3(0.0f) ||
             getFloat(delegate->getLightParamValue(id(), Token("shadow:distance"))).value_or(-1.0f) >= 0.0f)
             param->warn(id(), "shadow:color and shadow:distance are not supported; shadows are black and unbounded");
@@ -184,10 +185,11 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 // radiant intensity I = L pi r^2 (normalized: scaled / 4, the same for any r). A
                 // zero radius has no unnormalized power; it is read as normalized (as Arnold reads
                 // Maya's radius-0 point lights) rather than rendering black.
-                if (scalar("treatAsPoint", 0.0f) > 0.5f || !(r * s > 0.0f)) {
+                // An authored radius of 0 is the point; a zero scale keeps the sphere (black, as
+                // it was: a light scaled to nothing to hide it stays hidden).
+                if (scalar("treatAsPoint", 0.0f) > 0.5f || !(r > 0.0f)) {
                     _record.point = true;
-                    pointIntensity = normalize || !(r * s > 0.0f) ? scaled / 4.0f
-                                                                  : scaled * (kPi * (r * s) * (r * s));
+                    pointIntensity = normalize || !(r > 0.0f) ? scaled / 4.0f : scaled * (kPi * (r * s) * (r * s));
                 }
             } else if (_type == tokens::rectLight() || _type == tokens::portalLight()) {
                 _record.kind = LightRecord::Kind::Rect;

@@ -113,7 +113,11 @@ const CollectionMembership::RuleMap& CollectionMembership::ruleMap(Build& b, con
     if (includes)
         for (const std::string& t : includes->targets()) {
             if (t.find(kCollectionMarker) != std::string::npos) {
-                for (const auto& [p, r] : ruleMap(b, t, false, depth + 1)) rules[p] = r;
+                // UsdLux declares includeRoot true for lightLink and shadowLink collections.
+                std::string nestedPrim, nestedName;
+                const bool luxLink = splitCollectionPath(t, &nestedPrim, &nestedName) &&
+                                     (nestedName == "lightLink" || nestedName == "shadowLink");
+                for (const auto& [p, r] : ruleMap(b, t, luxLink, depth + 1)) rules[p] = r;
             } else if (t.find('.') == std::string::npos) {
                 rules[t] = own;  // a prim (property targets do not hold prims)
             }

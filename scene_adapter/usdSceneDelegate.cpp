@@ -88,8 +88,8 @@ void UsdSceneDelegate::populate(RenderIndex* index) {
     invalidateInstancerCache();
     const usd::Prim* root = _stage.pseudoRoot();
     if (!root) return;
+    readLightLinks();  // instance groups are keyed by link membership (visitInstance)
     for (const usd::Prim* child : root->children()) visit(*child, glm::dmat4(1.0), true, index);
-    readLightLinks();  // rprims ask for their categories when they first sync, after this
 }
 
 void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorld,
@@ -443,19 +443,44 @@ Value UsdSceneDelegate::getLightParamValue(const Path& id, const Token& param) c
 std::vector<Token> UsdSceneDelegate::getCategories(const Path& id) const {
     std::vector<Token> out;
     const usd::Prim* p = prim(id);
-    if (!p) return out;
+    if (!p || _lightLinks.empty()) return out;
+    // A PointInstancer's prototype may live outside it: its instances are the instancer's, so a
+    // link holding the instancer holds them.
+    const usd::Prim* instancer = nullptr;
+    if (const Entry* e = entry(id); e && !e->instancer.empty())
+        if (const usd::Prim* ip = _stage.prim(e->instancer.str()); ip && ip->typeName() == "PointInstancer")
+            instancer = ip;
     for (const auto& [collection, link] : _lightLinks)
-        if (link->includes(p->path())) out.emplace_back(collection);
+        if (link->includes(p->path()) || (instancer && link->includes(instancer->path()))) out.emplace_back(collection);
     return out;
+}
+
+std::string UsdSceneDelegate::lightLinkKey(const usd::Prim& root) const {
+    // Which link collections hold each prim of the subtree: instances whose subtrees are held
+    // alike may share a prototype (its rprims' categories are read at the first instance's paths).
+    std::string key;
+    if (_lightLinks.empty()) return key;
+    std::vector<const usd::Prim*> stack{&root};
+    while (!stack.empty()) {
+        const usd::Prim* p = stack.back();
+        stack.pop_back();
+        for (const auto& [collection, link] : _lightLinks) key += link->includes(p->path()) ? '1' : '0';
+        key += '/';
+        for (auto it = p->children().rbegin(); it != p->children().rend(); ++it) stack.push_back(*it);
+    }
+    return key;
 }
 
 void UsdSceneDelegate::readLightLinks() {
     _lightLinks.clear();
     auto warnFn = [this](const std::string& where, const std::string& message) { warn(where, message); };
-    for (const auto& [id, e] : _entries) {
-        if (!e.prim || !isLightTypeToken(e.type)) continue;
+    for (const usd::Prim* light : _stage.traverse()) {
+        static const std::unordered_set<std::string> kLightTypes = {"DistantLight", "DomeLight", "SphereLight",
+                                                                    "RectLight", "DiskLight", "CylinderLight"};
+        if (!light->isActive() || light->isAbstract() || !light->isDefined() || !kLightTypes.count(light->typeName()))
+            continue;
         for (const char* kind : {".collection:lightLink", ".collection:shadowLink"}) {
-            const std::string collection = e.prim->path() + kind;
+            const std::string collection = light->path() + kind;
             if (!CollectionMembership::holdsEverything(_stage, collection))
                 _lightLinks[collection] =
                     std::make_shared<const CollectionMembership>(_stage, collection, warnFn, /*includeRootFallback=*/true);

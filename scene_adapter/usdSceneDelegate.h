@@ -158,6 +158,8 @@ private:
     /// Reads the light-link and shadow-link collections of every light entry into _lightLinks
     /// (collections that hold everything, the default, are left out).
     void readLightLinks();
+    /// Instance groups: which link collections hold each prim below root ("" without links).
+    std::string lightLinkKey(const usd::Prim& root) const;
     /// readLightLinks() after an edit, marking what linking may have changed.
     void refreshLightLinks(hd::RenderIndex* index);
     void materialNetworkChanged(const usd::Prim& prim, hd::DirtyBits bits, hd::RenderIndex* index);

@@ -209,7 +209,9 @@ void UsdSceneDelegate::primAdded(const std::string& path, RenderIndex* index) {
     for (const Path& inst : drawing)
         if (const Entry* e = entry(inst); e && e->prim) resyncSubtree(e->prim->path(), index);
     const std::string& type = p->typeName();
-    if (type.size() > 5 && type.compare(type.size() - 5, 5, "Light") == 0) refreshLightLinks(index);
+    // A new light, or a prim that a link collection holds or includes a collection from.
+    if (!_lightLinks.empty() || (type.size() > 5 && type.compare(type.size() - 5, 5, "Light") == 0))
+        refreshLightLinks(index);
     if (type == "Material") rebind("/", "", index);  // bindings waiting for it now resolve
     if (type == "Shader" || type == "NodeGraph")
         materialNetworkChanged(*p, SprimDirty::Resource, index);
@@ -244,7 +246,8 @@ void UsdSceneDelegate::primRemoved(const std::string& path, RenderIndex* index) 
     rebind(_bindings.sawCollectionBindings() ? "/" : "", path, index);
     if (!removed) return;
     const std::string& type = removed->typeName();
-    if (type.size() > 5 && type.compare(type.size() - 5, 5, "Light") == 0) refreshLightLinks(index);
+    if (!_lightLinks.empty() || (type.size() > 5 && type.compare(type.size() - 5, 5, "Light") == 0))
+        refreshLightLinks(index);
     const usd::Prim* parent = removed->parent();  // still allocated (StageEdit keeps it)
     if ((type == "Shader" || type == "NodeGraph") && parent)
         materialNetworkChanged(*parent, SprimDirty::Resource, index);

@@ -189,7 +189,7 @@ bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& wo
         return false;  // an instanceable gprim is simply drawn
     if (!onlyPrototypeGeometry(prim)) return false;
     // Instances of one prototype share its BLAS unless an inherited binding differs.
-    std::string key = prim.instanceKey() + "|" + _bindings.inheritedKey(prim);
+    std::string key = prim.instanceKey() + "|" + _bindings.inheritedKey(prim) + "|" + lightLinkKey(prim);
     auto it = _instanceGroups.find(key);
     if (it == _instanceGroups.end()) {
         // The first instance's subtree is the prototype; its rprims keep their own paths and

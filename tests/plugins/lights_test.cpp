@@ -808,3 +808,193 @@ def DiskLight "Disk"
     EXPECT_LT(render(scene("uniform bool collection:shadowLink:includeRoot = 0\n    rel collection:shadowLink:includes = </Card>"), 256),
               0.25 * expected);
 }
+
+namespace {
+// A glossy Lambert-and-GGX plane (roughness 0.4, ior 1.5) seen at 45 degrees; the diffuse and
+// specular AOV means of a 4 x 4 render.
+std::map<std::string, double> lobeAovMeans(const std::string& lights, int spp, std::map<std::string, std::string> settings) {
+    const std::string usda = R"(#usda 1.0
+def Mesh "Plane" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-50, 0, -50), (-50, 0, 50), (50, 0, 50), (50, 0, -50)]
+    rel material:binding = </Mat>
+}
+def Material "Mat"
+{
+    token outputs:surface.connect = </Mat/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0.5, 0.5, 0.5)
+        float inputs:roughness = 0.4
+        float inputs:ior = 1.5
+        token outputs:surface
+    }
+}
+def Camera "Cam"
+{
+    token projection = "orthographic"
+    float horizontalAperture = 0.01
+    float verticalAperture = 0.01
+    float2 clippingRange = (0.001, 1000)
+    double3 xformOp:translate = (0, 35.355, 35.355)
+    float xformOp:rotateX = -45
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)" + lights;
+    host::SessionOptions o;
+    o.width = o.height = 4;
+    o.samplesPerPixel = spp;
+    o.aovs = {"diffuse", "specular"};
+    o.settings = std::move(settings);
+    auto s = host::RenderSession::openString(usda, "glossy.usda", o);
+    while (!s->step()) {
+    }
+    std::map<std::string, double> out;
+    for (const auto& a : s->aovs()) {
+        if (a.isInt) continue;
+        double sum = 0;
+        for (int i = 0; i < 16; ++i) sum += static_cast<const float*>(a.pixels)[a.components * i];
+        out[a.name] = sum / 16;
+    }
+    return out;
+}
+}  // namespace
+
+TEST(Lights, LobeAovsFollowTheMultipliersOfTheLightTheyShow) {
+    // inputs:diffuse = 0 on a disk light over a glossy plane: the diffuse AOV is 0 whether the
+    // light is found by NEE or by BSDF sampling (it was 0.20 with BSDF sampling alone).
+    const std::string light = R"(
+def DiskLight "Disk"
+{
+    float inputs:radius = 3
+    float inputs:intensity = 10
+    float inputs:diffuse = 0
+    double3 xformOp:translate = (0, 4, -4)
+    float xformOp:rotateX = -135
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+    for (const auto& st : std::vector<std::map<std::string, std::string>>{{}, {{"mis", "0"}}, {{"nee", "0"}}}) {
+        auto m = lobeAovMeans(light, st.count("nee") ? 4096 : 1024, st);
+        EXPECT_LT(m["diffuse"], 1e-3 * m["specular"]);
+        EXPECT_GT(m["specular"], 0.3);
+    }
+}
+
+TEST(Lights, AZeroScaleSphereLightStaysDark) {
+    // Scaling a sphere light to nothing hides it (a zero radius authored is a point; a zero
+    // scale is not).
+    const std::string l = R"(
+def SphereLight "Bulb"
+{
+    float inputs:radius = 0.5
+    float inputs:intensity = 40
+    double3 xformOp:translate = (0, 2, 0)
+    float3 xformOp:scale = (0, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:scale"]
+}
+)";
+    EXPECT_LT(render(planeScene(0.5, l, 45.0), 64), 1e-6);
+}
+
+namespace {
+// Two instances (or PointInstancer placements) of a unit quad at x = -2 and x = 2, lit by a
+// head-on sun linked to `target`; the red sums of the left and right halves of a 48 x 36 image.
+std::pair<double, double> linkedHalves(const std::string& scene) {
+    host::SessionOptions o;
+    o.width = 48;
+    o.height = 36;
+    o.samplesPerPixel = 4;
+    auto s = host::RenderSession::openString(scene, "linked.usda", o);
+    while (!s->step()) {
+    }
+    const float* c = s->color();
+    double l = 0, r = 0;
+    for (int y = 0; y < 36; ++y)
+        for (int x = 0; x < 48; ++x) (x < 24 ? l : r) += c[4 * (y * 48 + x)];
+    return {l, r};
+}
+const char* kLinkedHead = R"(#usda 1.0
+def Xform "Proto" ( active = false )
+{
+    def Mesh "Quad"
+    {
+        uniform token subdivisionScheme = "none"
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+    }
+}
+def Camera "Cam"
+{
+    float focalLength = 18.15
+    float horizontalAperture = 20.955
+    float verticalAperture = 15.2908
+    double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)";
+std::string linkedSun(const std::string& target) {
+    return R"(
+def DistantLight "Sun"
+{
+    float inputs:intensity = 3
+    float inputs:angle = 0
+    uniform bool collection:lightLink:includeRoot = 0
+    rel collection:lightLink:includes = <)" + target + R"(>
+}
+)";
+}
+}  // namespace
+
+TEST(Lights, LightLinksReachOneInstanceOfAPrototype) {
+    auto scene = [](const std::string& target) {
+        return std::string(kLinkedHead) + linkedSun(target) + R"(
+def Xform "I0" ( instanceable = true  references = </Proto>  active = true )
+{
+    double3 xformOp:translate = (-2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "I1" ( instanceable = true  references = </Proto>  active = true )
+{
+    double3 xformOp:translate = (2, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)";
+    };
+    const auto [l0, r0] = linkedHalves(scene("/I0"));
+    EXPECT_GT(l0, 1.0);
+    EXPECT_EQ(r0, 0.0);
+    const auto [l1, r1] = linkedHalves(scene("/I1"));
+    EXPECT_EQ(l1, 0.0);
+    EXPECT_GT(r1, 1.0);
+}
+
+TEST(Lights, LightLinksHoldingAPointInstancerReachItsOutsidePrototypes) {
+    const std::string scene = std::string(kLinkedHead) + linkedSun("/PI") + R"(
+def PointInstancer "PI"
+{
+    rel prototypes = [</Prototypes/Quad>]
+    point3f[] positions = [(-2, 0, 0), (2, 0, 0)]
+    int[] protoIndices = [0, 0]
+}
+def Xform "Prototypes" ( active = true )
+{
+    token visibility = "invisible"
+    def Mesh "Quad"
+    {
+        uniform token subdivisionScheme = "none"
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
+    }
+}
+)";
+    const auto [l, r] = linkedHalves(scene);
+    EXPECT_GT(l, 1.0);
+    EXPECT_GT(r, 1.0);
+}

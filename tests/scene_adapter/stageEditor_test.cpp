@@ -642,3 +642,18 @@ TEST(StageEditor, RemovingWhatACollectionBindingNeedsReResolves) {
         EXPECT_GT(f.colorOf("/World/Group/Right").z, 4.0f * f.colorOf("/World/Group/Right").x);
     }
 }
+
+TEST(StageEditor, RemovingTheHolderOfANestedLightLinkCollectionUnlinks) {
+    // The sun lights what /World/Ball's collection c holds (the right quad); removing the Ball
+    // removes c, so the sun lights nothing (as a stage authored that way from the start).
+    Fixture f;
+    f.edit().setRelationship("/World/Ball", "collection:c:includes", {"/World/Group/Right"});
+    f.edit().setAttribute("/World/Sun", "collection:lightLink:includeRoot", EditValue::of({0}), "bool");
+    f.edit().setRelationship("/World/Sun", "collection:lightLink:includes", {"/World/Ball.collection:c"});
+    f.render();
+    const float linked = f.colorOf("/World/Group/Right").z;
+    EXPECT_GT(linked, 0.1f);
+    f.edit().removePrim("/World/Ball");
+    f.render();
+    EXPECT_LT(f.colorOf("/World/Group/Right").z, 0.05f * linked);
+}

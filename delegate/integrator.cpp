@@ -296,19 +296,27 @@ float transmittance(const SceneSnapshot& scene, const glm::vec3& origin, const g
     r.tnear = 0.0f;
     r.tfar = tfar;
     float T = 1.0f;
-    for (int layer = 0; layer < kMaxPassThrough; ++layer) {
+    // Partly present layers count toward kMaxPassThrough (beyond it: blocked); prims a
+    // shadow-linked light's shadows ignore count toward kMaxIgnoredLayers (beyond it: what is
+    // left passes, as those prims would let it).
+    constexpr int kMaxIgnoredLayers = 1024;
+    int layers = 0, ignored = 0;
+    for (;;) {
         Hit h;
         if (!intersect(scene, r, &h)) return T;
-        const float p = !linked || light->shadowedBy(h.record->shadowLinks) ? presenceAt(scene, h) : 0.0f;
-        T *= 1.0f - p;
-        if (!(T > 0.0f)) return 0.0f;
+        if (linked && !light->shadowedBy(h.record->shadowLinks)) {
+            if (++ignored > kMaxIgnoredLayers) return T;
+        } else {
+            if (++layers > kMaxPassThrough) return 0.0f;  // more layers than a path may cross
+            T *= 1.0f - presenceAt(scene, h);
+            if (!(T > 0.0f)) return 0.0f;
+        }
         r.origin = offsetOrigin(h, dir);
         if (bounded) {
             r.tfar = glm::dot(end - r.origin, dir);
             if (!(r.tfar > 0.0f)) return T;
         }
     }
-    return 0.0f;  // more layers than a path may cross: treat as blocked
 }
 
 

@@ -80,9 +80,11 @@ LightTree::Cone LightTree::merge(const Cone& a, const Cone& b) {
     const float thetaB = std::acos(std::clamp(b.cosThetaO, -1.0f, 1.0f));
     const float thetaD = std::acos(std::clamp(glm::dot(a.axis, b.axis), -1.0f, 1.0f));
     constexpr float kPi = 3.14159265358979323846f;
-    // One cone holds the other.
-    if (std::min(thetaD + thetaB, kPi) <= thetaA) return Cone{a.axis, a.cosThetaO, out.cosThetaE};
-    if (std::min(thetaD + thetaA, kPi) <= thetaB) return Cone{b.axis, b.cosThetaO, out.cosThetaE};
+    // One cone holds the other (with the slack below: acos cannot tell axes within ~2e-4 apart).
+    if (std::min(thetaD + thetaB, kPi) <= thetaA)
+        return Cone{a.axis, std::cos(std::min(thetaA + 1e-3f, kPi)), out.cosThetaE};
+    if (std::min(thetaD + thetaA, kPi) <= thetaB)
+        return Cone{b.axis, std::cos(std::min(thetaB + 1e-3f, kPi)), out.cosThetaE};
     const float thetaO = 0.5f * (thetaA + thetaD + thetaB);
     if (thetaO >= kPi) return Cone{a.axis, -1.0f, out.cosThetaE};
     // Turn a's axis toward b's by thetaO - thetaA (Rodrigues, about a x b).
@@ -110,7 +112,9 @@ float LightTree::orientation(const Cone& k, const glm::vec3& c, float r2, const 
     const float cosX = cosW >= k.cosThetaO ? 1.0f : cosW * k.cosThetaO + sinOf(cosW) * sinOf(k.cosThetaO);
     const float cosU = std::sqrt(std::max(0.0f, 1.0f - r2 / d2));
     const float cosP = cosX >= cosU ? 1.0f : cosX * cosU + sinOf(cosX) * std::sqrt(r2 / d2);
-    return cosP > k.cosThetaE ? std::max(cosP, 0.0f) : 0.0f;
+    // Inside the cone but more than 90 degrees off (a spot cone wider than a hemisphere): a
+    // small positive weight, not 0, so the light stays reachable.
+    return cosP > k.cosThetaE ? std::max(cosP, 1e-3f) : 0.0f;
 }
 
 bool LightTree::behind(const Node& n, const glm::vec3& p, const glm::vec3& nrm) {

@@ -343,10 +343,11 @@ void UsdSceneDelegate::subsetsChanged(const usd::Prim& mesh, RenderIndex* index)
 }
 
 void UsdSceneDelegate::collectionChanged(RenderIndex* index) {
-    refreshLightLinks(index);
     // Membership can reach any prim below a collection binding: every binding is resolved
-    // again (instance groups are keyed by bindings, so a stage with instances is rebuilt).
+    // again (instance groups are keyed by bindings and links, so a stage with instances is
+    // rebuilt, links included).
     if (subtreeHasInstances("/")) return repopulate(index);
+    refreshLightLinks(index);
     rebind("/", "", index);
 }
 
@@ -356,6 +357,8 @@ void UsdSceneDelegate::refreshLightLinks(RenderIndex* index) {
     const bool hadLinks = !_lightLinks.empty();
     readLightLinks();
     if (!hadLinks && _lightLinks.empty()) return;
+    // Instance groups are keyed by link membership (lightLinkKey): regroup them.
+    if (subtreeHasInstances("/")) return repopulate(index);
     ChangeTracker& tracker = index->changeTracker();
     for (const auto& [id, e] : _entries) {
         if (isRprimType(e.type)) tracker.markRprimDirty(id, RprimDirty::MaterialId);

@@ -196,3 +196,24 @@ TEST(LightTree, ConesTakeTheLightsThatFaceAwayOutOfThePickAndNoMore) {
             if (it.light % 5 == 0) upwardByDistance += distanceOnly.probability(it.light, p);
     EXPECT_LT(upward, 0.4 * upwardByDistance);
 }
+
+TEST(LightTree, SpotConesWiderThanAHemisphereStayConservative) {
+    // 80 spots with 120-degree cones, axes down or along +x: a point 100 degrees off a spot's
+    // axis is inside its cone, so the spot must keep a positive probability there.
+    std::vector<LightTree::Item> items;
+    for (uint32_t i = 0; i < 80; ++i) {
+        LightTree::Item it{glm::vec3(float(i % 10) * 2.0f - 9.0f, 4.0f, float(i / 10) * 2.0f - 7.0f), 0.01f, 1.0f, i, {}};
+        it.cone.axis = i % 2 ? glm::vec3(1, 0, 0) : glm::vec3(0, -1, 0);
+        it.cone.cosThetaO = 1.0f;
+        it.cone.cosThetaE = std::cos(2.0944f);  // 120 degrees
+        items.push_back(it);
+    }
+    const LightTree tree(items, 400.0f);
+    for (const LightTree::Item& it : items) {
+        // 100 degrees off the axis, 3 units away, in the plane of the axis and +z.
+        const float a = 1.745f;
+        const glm::vec3 side = glm::normalize(glm::cross(it.cone.axis, glm::vec3(0, 0, 1)));
+        const glm::vec3 p = it.center + 3.0f * (std::cos(a) * it.cone.axis + std::sin(a) * side);
+        EXPECT_GT(tree.probability(it.light, p), 0.0f) << it.light;
+    }
+}

@@ -16,8 +16,9 @@ namespace principled::test {
 // A Lambert plane (y = 0, facing +Y) seen by a tiny orthographic camera aimed at the origin,
 // tilted by `tilt` degrees from straight down (so it can look past a light in the way), plus
 // the given light prims. Render with the UE4 model so the diffuse is exactly Lambertian at
-// any view angle.
-inline std::string planeScene(double albedo, const std::string& lights, double tilt = 0.0) {
+// any view angle. ior and roughness make the plane glossy (ior 1: no specular lobe).
+inline std::string planeScene(double albedo, const std::string& lights, double tilt = 0.0, double ior = 1.0,
+                              double roughness = 1.0) {
     double rad = tilt * 3.14159265358979323846 / 180.0;
     char head[2048];
     std::snprintf(head, sizeof head, R"(#usda 1.0
@@ -36,8 +37,8 @@ def Material "Mat"
     {
         uniform token info:id = "UsdPreviewSurface"
         color3f inputs:diffuseColor = (%g, %g, %g)
-        float inputs:ior = 1
-        float inputs:roughness = 1
+        float inputs:ior = %g
+        float inputs:roughness = %g
         token outputs:surface
     }
 }
@@ -52,7 +53,7 @@ def Camera "Cam"
     uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
 }
 )",
-                  albedo, albedo, albedo, 50.0 * std::cos(rad), 50.0 * std::sin(rad), -90.0 + tilt);
+                  albedo, albedo, albedo, ior, roughness, 50.0 * std::cos(rad), 50.0 * std::sin(rad), -90.0 + tilt);
     return std::string(head) + lights;
 }
 

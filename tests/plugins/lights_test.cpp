@@ -41,6 +41,22 @@ std::string writeExr(const std::string& name, int w, int h, const std::vector<fl
 // A black square card (no diffuse, ior 1: no specular but the grazing Schlick term) at height
 // y = 1 spanning [-half, half] in x and z, facing down (the camera above sees its back, which a
 // single-sided mesh hides from camera rays), for shadow tests; hidden when !visible.
+// The disk light of the closed-form tests: radius 1, radiance 10, 2 above the plane, aimed
+// down (on-axis E = pi L R^2 / (h^2 + R^2) = 2 pi), with extra inputs.
+std::string unitDisk(const std::string& inputs) {
+    return R"(
+def DiskLight "Disk"
+{
+    float inputs:radius = 1
+    float inputs:intensity = 10
+    )" + inputs + R"(
+    double3 xformOp:translate = (0, 2, 0)
+    float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
+}
+)";
+}
+
 std::string blackCard(double half, bool visible = true) {
     char points[256];
     std::snprintf(points, sizeof points, "[(%g, 1, %g), (%g, 1, %g), (%g, 1, %g), (%g, 1, %g)]", -half, -half, half,
@@ -630,16 +646,7 @@ TEST(Lights, ShadowDisabledLightsReachThroughOccluders) {
     // between them; the camera looks at the origin from 60 degrees off vertical, past the card.
     // UsdLux ShadowAPI shadow:enable = 0: the card casts no shadow, the closed form holds.
     auto scene = [](const std::string& shadowInput, bool card = true) {
-        return planeScene(0.5, R"(
-def DiskLight "Disk"
-{
-    float inputs:radius = 1
-    float inputs:intensity = 10
-    )" + shadowInput + R"(
-    double3 xformOp:translate = (0, 2, 0)
-    float xformOp:rotateX = -90
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
+        return planeScene(0.5, unitDisk(shadowInput) + R"(
 def SphereLight "Bulb"
 {
     float inputs:radius = 0.1
@@ -670,16 +677,7 @@ TEST(Lights, DiffuseAndSpecularMultipliersScaleTheirLobesUnderEveryStrategy) {
     // over the Lambertian plane: the diffuse multiplier scales the closed form, the specular one
     // leaves it (the plane has no specular lobe); NEE alone, BSDF sampling alone and MIS agree.
     auto scene = [](const std::string& inputs) {
-        return planeScene(0.5, R"(
-def DiskLight "Disk"
-{
-    float inputs:radius = 1
-    float inputs:intensity = 10
-    )" + inputs + R"(
-    double3 xformOp:translate = (0, 2, 0)
-    float xformOp:rotateX = -90
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
+        return planeScene(0.5, unitDisk(inputs) + R"(
 )");
     };
     const double expected = 0.5 * 10.0 * 1.0 / (4.0 + 1.0);  // a E / pi
@@ -698,16 +696,7 @@ TEST(Lights, LightLinkingLightsOnlyTheLinkedPrimsUnderEveryStrategy) {
     // form; with the plane excluded, or only another prim included, nothing (NEE skips the
     // light, BSDF rays that reach it add nothing).
     auto scene = [](const std::string& link) {
-        return planeScene(0.5, R"(
-def DiskLight "Disk"
-{
-    float inputs:radius = 1
-    float inputs:intensity = 10
-    )" + link + R"(
-    double3 xformOp:translate = (0, 2, 0)
-    float xformOp:rotateX = -90
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
+        return planeScene(0.5, unitDisk(link) + R"(
 def Sphere "Other" { double radius = 0.1
     double3 xformOp:translate = (30, 1, 0)
     uniform token[] xformOpOrder = ["xformOp:translate"] }
@@ -788,16 +777,7 @@ TEST(Lights, ShadowLinkingLetsTheLightThroughPrimsOutsideTheCollection) {
     // Excluded, the plane gets the closed form with and without MIS; named in a collection that
     // leaves out the root, it shadows as by default.
     auto scene = [](const std::string& link) {
-        return planeScene(0.5, R"(
-def DiskLight "Disk"
-{
-    float inputs:radius = 1
-    float inputs:intensity = 10
-    )" + link + R"(
-    double3 xformOp:translate = (0, 2, 0)
-    float xformOp:rotateX = -90
-    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateX"]
-}
+        return planeScene(0.5, unitDisk(link) + R"(
 )" + blackCard(0.6), 60.0);
     };
     const double expected = 0.5 * 10.0 * 1.0 / (4.0 + 1.0);

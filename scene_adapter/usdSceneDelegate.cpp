@@ -267,7 +267,17 @@ SubdivTags UsdSceneDelegate::getSubdivTags(const Path& id) const {
 glm::dmat4 UsdSceneDelegate::getTransform(const Path& id) const {
     if (id == _defaultCamera) return _defaultCameraXform;
     const Entry* e = entry(id);
-    return e ? e->world : glm::dmat4(1.0);
+    if (!e) return glm::dmat4(1.0);
+    // UsdLuxDomeLight_1 poleAxis: "Z", or "scene" on a Z-up stage, turns the dome (only the
+    // dome, not its children) by +90 degrees about X so its top pole is +Z.
+    if (e->prim && e->prim->typeName() == "DomeLight_1") {
+        const std::string pole = tokenAttr(*e->prim, "poleAxis", _time, "scene");
+        if (pole == "Z" || (pole == "scene" && _stage.upAxis() == "Z")) {
+            const glm::dmat4 zUp(1, 0, 0, 0,  0, 0, 1, 0,  0, -1, 0, 0,  0, 0, 0, 1);  // columns: x, y -> z, z -> -y
+            return e->world * zUp;
+        }
+    }
+    return e->world;
 }
 
 bool UsdSceneDelegate::getVisible(const Path& id) const {

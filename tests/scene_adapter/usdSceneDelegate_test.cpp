@@ -535,3 +535,26 @@ def Plane "Card" { uniform bool doubleSided = 0 }
     EXPECT_FALSE(p.scene->getDoubleSided(hd::Path("/Card")));
     EXPECT_TRUE(p.scene->warnings().empty());
 }
+
+TEST(UsdSceneDelegate, DomeLight1TurnsItsPoleToTheSceneUpAxis) {
+    // UsdLuxDomeLight_1 poleAxis: "scene" on a Z-up stage, or "Z", turns the dome +90 degrees
+    // about X (its +Y pole to +Z), the dome only; DomeLight and poleAxis "Y" stay as authored.
+    auto pole = [](const std::string& upAxis, const std::string& prim) {
+        Populated p("#usda 1.0\n(\n    upAxis = \"" + upAxis + "\"\n)\n" + prim);
+        const glm::dmat4 m = p.scene->getTransform(hd::Path("/Sky"));
+        return glm::dvec3(m * glm::dvec4(0, 1, 0, 0));
+    };
+    EXPECT_EQ(pole("Z", "def DomeLight_1 \"Sky\" {}"), glm::dvec3(0, 0, 1));
+    EXPECT_EQ(pole("Y", "def DomeLight_1 \"Sky\" { uniform token poleAxis = \"Z\" }"), glm::dvec3(0, 0, 1));
+    EXPECT_EQ(pole("Z", "def DomeLight_1 \"Sky\" { uniform token poleAxis = \"Y\" }"), glm::dvec3(0, 1, 0));
+    EXPECT_EQ(pole("Y", "def DomeLight_1 \"Sky\" {}"), glm::dvec3(0, 1, 0));
+    EXPECT_EQ(pole("Z", "def DomeLight \"Sky\" {}"), glm::dvec3(0, 1, 0));
+    // Composed with the dome's own transform (the offset applies first, in the dome's frame).
+    const std::string turned = R"(def DomeLight_1 "Sky" { uniform token poleAxis = "Z"
+    float xformOp:rotateZ = 90
+    uniform token[] xformOpOrder = ["xformOp:rotateZ"] })";
+    const glm::dvec3 d = pole("Y", turned);
+    EXPECT_NEAR(d.x, 0.0, 1e-12);
+    EXPECT_NEAR(d.y, 0.0, 1e-12);
+    EXPECT_NEAR(d.z, 1.0, 1e-12);
+}

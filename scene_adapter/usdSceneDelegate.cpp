@@ -22,9 +22,16 @@ namespace {
 // UsdGeomCamera stores lengths in tenths of a scene unit (GfCamera::APERTURE_UNIT).
 constexpr double kCameraUnit = 0.1;
 
-bool isLightTypeToken(const Token& t) {
-    return t == tokens::distantLight() || t == tokens::domeLight() || t == tokens::sphereLight() ||
-           t == tokens::rectLight() || t == tokens::diskLight() || t == tokens::cylinderLight();
+// The light sprim type of a UsdLux prim type; empty for anything else.
+Token lightTypeOf(const std::string& type) {
+    if (type == "DistantLight") return tokens::distantLight();
+    if (type == "DomeLight" || type == "DomeLight_1") return tokens::domeLight();
+    if (type == "SphereLight") return tokens::sphereLight();
+    if (type == "RectLight") return tokens::rectLight();
+    if (type == "DiskLight") return tokens::diskLight();
+    if (type == "CylinderLight") return tokens::cylinderLight();
+    if (type == "PortalLight") return tokens::portalLight();
+    return Token();
 }
 
 std::string tokenAttr(const usd::Prim& prim, const char* name, double time,
@@ -122,13 +129,7 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     }
     else if (type == "Camera") hdType = tokens::camera();
     else if (type == "Material") hdType = tokens::material();
-    else if (type == "DistantLight") hdType = tokens::distantLight();
-    else if (type == "DomeLight" || type == "DomeLight_1") hdType = tokens::domeLight();
-    else if (type == "SphereLight") hdType = tokens::sphereLight();
-    else if (type == "RectLight") hdType = tokens::rectLight();
-    else if (type == "DiskLight") hdType = tokens::diskLight();
-    else if (type == "CylinderLight") hdType = tokens::cylinderLight();
-    else if (type == "PortalLight") hdType = tokens::portalLight();
+    else if (Token light = lightTypeOf(type); !light.empty()) hdType = light;
     else if (!ignoredTypes().count(type))
         warn(prim.location().str() + ": " + prim.path(),
              "prim type '" + type + "' is not supported yet; skipped");
@@ -485,9 +486,8 @@ void UsdSceneDelegate::readLightLinks() {
     _lightLinks.clear();
     auto warnFn = [this](const std::string& where, const std::string& message) { warn(where, message); };
     for (const usd::Prim* light : _stage.traverse()) {
-        static const std::unordered_set<std::string> kLightTypes = {"DistantLight", "DomeLight", "SphereLight",
-                                                                    "RectLight", "DiskLight", "CylinderLight"};
-        if (!light->isActive() || light->isAbstract() || !light->isDefined() || !kLightTypes.count(light->typeName()))
+        const Token t = lightTypeOf(light->typeName());  // a portal emits nothing to link
+        if (!light->isActive() || light->isAbstract() || !light->isDefined() || t.empty() || t == tokens::portalLight())
             continue;
         for (const char* kind : {".collection:lightLink", ".collection:shadowLink"}) {
             const std::string collection = light->path() + kind;

@@ -500,15 +500,16 @@ def Xform "World"
     }
     def SphereLight "Fill" { rel collection:lightLink:excludes = </World/Hero/Face> }
     def SphereLight "Rim" { rel collection:shadowLink:excludes = </World/Hero> }
+    def DomeLight_1 "Sky" { rel collection:lightLink:excludes = </World/Prop> }
     def Xform "Hero" { def Sphere "Face" {} def Sphere "Body" {} }
     def Sphere "Prop" {}
 }
 )");
     using V = std::vector<hd::Token>;
     const hd::Token key("/World/Key.collection:lightLink"), fill("/World/Fill.collection:lightLink"),
-        rim("/World/Rim.collection:shadowLink");
-    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Face")), (V{key}));
-    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Body")), (V{fill, key}));
+        rim("/World/Rim.collection:shadowLink"), sky("/World/Sky.collection:lightLink");
+    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Face")), (V{key, sky}));
+    EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Hero/Body")), (V{fill, key, sky}));
     EXPECT_EQ(p.scene->getCategories(hd::Path("/World/Prop")), (V{fill, rim}));
     EXPECT_EQ(hd::getString(p.scene->getLightParamValue(hd::Path("/World/Key"), hd::Token("lightLink"))), key.str());
     EXPECT_TRUE(hd::isEmpty(p.scene->getLightParamValue(hd::Path("/World/Rim"), hd::Token("lightLink"))));

@@ -249,9 +249,13 @@ void EmbreeRenderDelegate::assignLightLinks() {
         l.linkBit = assign(linkBits, l.linkCategory, "light-linked lights");
         l.shadowBit = assign(shadowBits, l.shadowCategory, "shadow-linked lights");
     }
+    // Without links, now or at the last assignment, every prim's bits are already 0.
+    const bool anyLinks = !linkBits.empty() || !shadowBits.empty();
+    if (!anyLinks && !_lightLinksAssigned) return;
+    _lightLinksAssigned = anyLinks;
     for (GeometrySource* g : _param->geometry()) {
         uint64_t links = 0, shadows = 0;
-        if (!linkBits.empty() || !shadowBits.empty())
+        if (anyLinks)
             for (const hd::Token& c : g->categories()) {
                 if (auto it = linkBits.find(c.str()); it != linkBits.end() && it->second < 64) links |= uint64_t(1) << it->second;
                 if (auto it = shadowBits.find(c.str()); it != shadowBits.end() && it->second < 64) shadows |= uint64_t(1) << it->second;

@@ -100,6 +100,7 @@ private:
     float sceneRadius() const;
     /// LightRecord::linkBit of the linked lights and GeometryRecord::lightLinks of every prim.
     void assignLightLinks();
+    bool _lightLinksAssigned = false;  ///< some prim may hold link bits (assignLightLinks)
     bool mayEmit(const GeometryRecord* r) const;
     /// Whether material `materialIndex` of the table may emit (MaterialRecord::mayEmit).
     bool materialMayEmit(int materialIndex) const;

@@ -9,8 +9,6 @@
 namespace principled::adapter {
 namespace {
 
-constexpr std::string_view kCollectionMarker = ".collection:";
-
 std::string parentPath(std::string_view path) {
     const size_t slash = path.rfind('/');
     if (slash == std::string_view::npos || path.size() <= 1) return "";
@@ -26,9 +24,9 @@ std::string tokenValue(const usd::Prim& prim, const std::string& name, const std
 }  // namespace
 
 bool CollectionMembership::splitCollectionPath(std::string_view path, std::string* prim, std::string* name) {
-    const size_t at = path.find(kCollectionMarker);
+    const size_t at = path.find(kMarker);
     if (at == std::string_view::npos || at == 0 || path[0] != '/') return false;
-    const std::string_view n = path.substr(at + kCollectionMarker.size());
+    const std::string_view n = path.substr(at + kMarker.size());
     if (n.empty() || n.find_first_of(":./") != std::string_view::npos) return false;
     *prim = std::string(path.substr(0, at));
     *name = std::string(n);
@@ -112,7 +110,7 @@ const CollectionMembership::RuleMap& CollectionMembership::ruleMap(Build& b, con
     if (includeRoot) rules["/"] = own;
     if (includes)
         for (const std::string& t : includes->targets()) {
-            if (t.find(kCollectionMarker) != std::string::npos) {
+            if (isCollectionPath(t)) {
                 // UsdLux declares includeRoot true for lightLink and shadowLink collections.
                 std::string nestedPrim, nestedName;
                 const bool luxLink = splitCollectionPath(t, &nestedPrim, &nestedName) &&

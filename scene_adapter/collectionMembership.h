@@ -42,6 +42,10 @@ public:
     /// member.
     bool includes(std::string_view primPath) const;
 
+    /// What separates a collection's prim from its name in a collection path.
+    static constexpr std::string_view kMarker = ".collection:";
+    /// Whether a relationship target names a collection ("/A/B.collection:name").
+    static bool isCollectionPath(std::string_view path) { return path.find(kMarker) != std::string_view::npos; }
     /// Splits "/A/B.collection:name" into "/A/B" and "name"; false if it is not that form.
     static bool splitCollectionPath(std::string_view path, std::string* prim, std::string* name);
 

@@ -65,6 +65,15 @@ std::vector<const usd::Relationship*> collectionBindings(const usd::Prim& prim, 
     return out;
 }
 
+// A collection binding's targets: the collection and the Material, in either order; -1 when
+// neither or both are collections.
+int collectionTargetIndex(const usd::Relationship& r) {
+    if (r.targets().size() != 2) return -1;
+    const bool first = CollectionMembership::isCollectionPath(r.targets()[0]);
+    const bool second = CollectionMembership::isCollectionPath(r.targets()[1]);
+    return first == second ? -1 : (first ? 0 : 1);
+}
+
 }  // namespace
 
 std::string MaterialBindingResolver::materialTarget(const usd::Relationship& rel, size_t targetIndex,
@@ -86,17 +95,6 @@ std::string MaterialBindingResolver::directTarget(const usd::Relationship& rel, 
               rel.name() + " has " + std::to_string(rel.targets().size()) + " targets (a direct binding names one Material); ignored");
     return "";
 }
-
-namespace {
-// A collection binding's targets: the collection and the Material, in either order; -1 when
-// neither or both are collections.
-int collectionTargetIndex(const usd::Relationship& r) {
-    if (r.targets().size() != 2) return -1;
-    const bool first = r.targets()[0].find(".collection:") != std::string::npos;
-    const bool second = r.targets()[1].find(".collection:") != std::string::npos;
-    return first == second ? -1 : (first ? 0 : 1);
-}
-}  // namespace
 
 bool MaterialBindingResolver::collectionIncludes(const std::string& collectionPath, const std::string& primPath) const {
     std::shared_ptr<const CollectionMembership> c;
@@ -143,14 +141,14 @@ std::string MaterialBindingResolver::inheritedKey(const usd::Prim& prim) const {
 std::string MaterialBindingResolver::resolve(const usd::Prim& subject) const {
     for (const bool full : {true, false}) {
         const char* directName = full ? "material:binding:full" : "material:binding";
-        Candidate bound;
+        std::string bound;  // the Material bound so far
         bool boundDirectHere = false;  // the binding taken so far is the current prim's direct one
         for (const usd::Prim* p = &subject; p && p->path() != "/"; p = p->parent()) {
             boundDirectHere = false;
             if (const usd::Relationship* r = p->relationship(directName); r && !r->targets().empty()) {
-                if (bound.material.empty() || strongerThanDescendants(*r)) {
+                if (bound.empty() || strongerThanDescendants(*r)) {
                     if (std::string m = directTarget(*r, subject); !m.empty()) {
-                        bound = {std::move(m), p};
+                        bound = std::move(m);
                         boundDirectHere = true;
                     }
                 }
@@ -165,14 +163,14 @@ std::string MaterialBindingResolver::resolve(const usd::Prim& subject) const {
                     continue;
                 }
                 if (!collectionIncludes(r->targets()[size_t(c)], subject.path())) continue;
-                if (!bound.material.empty() && !boundDirectHere && !strongerThanDescendants(*r)) continue;
+                if (!bound.empty() && !boundDirectHere && !strongerThanDescendants(*r)) continue;
                 if (std::string m = materialTarget(*r, size_t(1 - c), subject); !m.empty()) {
-                    bound = {std::move(m), p};
+                    bound = std::move(m);
                     break;
                 }
             }
         }
-        if (!bound.material.empty()) return bound.material;
+        if (!bound.empty()) return bound;
     }
     return "";
 }

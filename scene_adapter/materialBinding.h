@@ -48,10 +48,6 @@ public:
     bool sawCollectionBindings() const { return _sawCollections.load(std::memory_order_relaxed); }
 
 private:
-    struct Candidate {
-        std::string material;
-        const usd::Prim* at = nullptr;
-    };
     /// The Material a binding relationship's `targetIndex`-th target names, "" (with a
     /// warning when `warn`) when it is not a Material.
     std::string materialTarget(const usd::Relationship& rel, size_t targetIndex, const usd::Prim& subject,

@@ -5,12 +5,15 @@
 #include <cstring>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <sys/resource.h>
+#include <utility>
 
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
 #include "delegate/primvarUtil.h"
 #include "delegate/subdiv/adaptiveLevel.h"
+#include "delegate/transformCheck.h"
 #include "delegate/triangulate.h"
 
 namespace principled::embree {
@@ -53,26 +56,77 @@ DirtyBits Mesh::geometryBits() const {
            RprimDirty::DisplayStyle | RprimDirty::SubdivTags;
 }
 
-int Mesh::chooseLevel(const MeshTopology& topo, const std::vector<glm::vec3>& points,
-                      EmbreeRenderParam* param) const {
-    if (topo.scheme == Token("none")) return 0;
-    if (topo.refineLevel >= 0) return std::min(topo.refineLevel, 8);  // per-prim override
-    EmbreeRenderParam::Dicing d = param->dicing();
-    if (d.level >= 0) return std::min(d.level, 8);
-    if (!d.haveView) return d.fallbackLevel;
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const auto& p : points) {
-        glm::vec3 w = glm::vec3(_record.objectToWorld * glm::vec4(p, 1.0f));
-        lo = glm::min(lo, w);
-        hi = glm::max(hi, w);
+namespace {
+
+// The level a mesh asks for, as a budget plan: fixed (per-prim refineLevel, the refineLevel
+// setting, or the fallback without a view) or adaptive from its world bounds.
+subdiv::LevelPlan planLevel(const MeshTopology& topo, const std::vector<glm::vec3>& points,
+                            const glm::mat4& objectToWorld, const EmbreeRenderParam::Dicing& d) {
+    subdiv::LevelPlan plan;
+    auto fixed = [&](int level) {
+        plan.log2Ratio = float(level);
+        plan.maxLevel = level;
+    };
+    if (topo.refineLevel >= 0) {
+        fixed(std::min(topo.refineLevel, 8));  // per-prim override
+    } else if (d.level >= 0) {
+        fixed(std::min(d.level, 8));
+    } else if (!d.haveView) {
+        fixed(d.fallbackLevel);
+    } else {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (const auto& p : points) {
+            glm::vec3 w = glm::vec3(objectToWorld * glm::vec4(p, 1.0f));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+        subdiv::ScreenMetric view;
+        view.cameraPosition = d.cameraPosition;
+        view.verticalFov = d.verticalFov;
+        view.imageHeight = d.imageHeight;
+        view.targetEdgePixels = d.targetEdgePixels;
+        view.maxLevel = d.maxLevel;
+        plan.log2Ratio = subdiv::adaptiveLog2Ratio(lo, hi, topo.faceVertexCounts.size(), view);
+        plan.maxLevel = d.maxLevel;
     }
-    subdiv::ScreenMetric view;
-    view.cameraPosition = d.cameraPosition;
-    view.verticalFov = d.verticalFov;
-    view.imageHeight = d.imageHeight;
-    view.targetEdgePixels = d.targetEdgePixels;
-    view.maxLevel = d.maxLevel;
-    return subdiv::adaptiveLevel(lo, hi, topo.faceVertexCounts.size(), view);
+    // Triangles per level: the cage fan-triangulated; after the first step an n-gon is n quads
+    // (two triangles each) under Catmull-Clark and bilinear, a triangle four under Loop.
+    const bool loop = topo.scheme == Token("loop");
+    double level1 = 0.0;
+    for (int n : topo.faceVertexCounts) {
+        if (n < 3) continue;
+        plan.cageTriangles += size_t(n - 2);
+        level1 += loop ? 4.0 : 2.0 * double(n);
+    }
+    plan.trianglesAtLevel1 = level1;
+    // SubdivTopology lowers a level past its per-mesh face cap; the budget counts what it builds.
+    const size_t cap = subdiv::BuildOptions{}.maxRefinedFaces;
+    plan.faceCapLevel = 0;
+    while (plan.faceCapLevel < 8 && subdiv::refinedFaceEstimate(topo, loop, plan.faceCapLevel + 1) <= cap)
+        ++plan.faceCapLevel;
+    return plan;
+}
+
+}  // namespace
+
+int Mesh::chooseLevel(const MeshTopology& topo, const std::vector<glm::vec3>& points,
+                      EmbreeRenderParam* param) {
+    if (topo.scheme == Token("none")) return 0;
+    // The budget's level (prepared before this sync from the same inputs), once.
+    if (const int granted = std::exchange(_grantedLevel, -1); granted >= 0) return granted;
+    return planLevel(topo, points, _record.objectToWorld, param->dicing()).levelAt(0);
+}
+
+std::optional<subdiv::LevelPlan> Mesh::levelPlan(SceneDelegate* delegate, EmbreeRenderParam* param) const {
+    MeshTopology topo = delegate->getMeshTopology(id());
+    if (topo.scheme == Token("none")) return std::nullopt;
+    Value pointsValue = delegate->get(id(), tokens::points());
+    const auto* points = getIf<std::vector<glm::vec3>>(pointsValue);
+    if (!points || points->empty()) return std::nullopt;
+    // The transform as GeometryPrim::sync will take it (an unusable one draws nothing).
+    const glm::mat4 m(delegate->getTransform(id()));
+    if (unusableTransform(m)) return std::nullopt;
+    return planLevel(topo, *points, m, param->dicing());
 }
 
 RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* param) {
@@ -90,6 +144,7 @@ RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* pa
     MeshTopology topo = delegate->getMeshTopology(id());
     // GeometryPrim syncs the transform before the geometry, so adaptive dicing sees it.
     int level = chooseLevel(topo, *points, param);
+    _subdivided = topo.scheme != Token("none");
     bool ok = level > 0 ? buildSubdivided(delegate, param, topo, *points, level)
                         : buildCage(delegate, param, topo, *points);
     if (!ok || _record.triangles.empty()) return nullptr;

@@ -7,7 +7,10 @@
 
 #include <memory>
 
+#include <optional>
+
 #include "delegate/geometryPrim.h"
+#include "delegate/subdiv/levelBudget.h"
 #include "delegate/subdiv/refinedMesh.h"
 #include "delegate/subdiv/subdivTopology.h"
 
@@ -24,13 +27,25 @@ public:
     /// The subdivision level used at the last rebuild (0: the polygons themselves).
     int refineLevel() const { return _level; }
 
+    /// Whether a sync with these dirty bits rebuilds the geometry (and so picks a level).
+    bool rebuildsOn(hd::DirtyBits bits) const { return (bits & geometryBits()) != 0; }
+    /// What a rebuild now would ask of the scene-wide subdivision budget, read from the scene
+    /// delegate (before sync: the transform may not be pulled yet); none for a polygon mesh
+    /// (scheme "none") or one that would not render.
+    std::optional<subdiv::LevelPlan> levelPlan(hd::SceneDelegate* delegate, EmbreeRenderParam* param) const;
+    /// The level the budget gives the next rebuild (instead of the plan's own); -1: none.
+    void grantLevel(int level) { _grantedLevel = level; }
+    /// Triangles this mesh holds against the budget: all of a subdivision mesh's (its cage's
+    /// at level 0), none of a polygon mesh's.
+    size_t budgetTriangles() const { return _subdivided ? _record.triangles.size() : 0; }
+
 protected:
     hd::DirtyBits geometryBits() const override;
     RTCGeometry rebuildGeometry(hd::SceneDelegate* delegate, EmbreeRenderParam* param) override;
 
 private:
     int chooseLevel(const hd::MeshTopology& topo, const std::vector<glm::vec3>& points,
-                    EmbreeRenderParam* param) const;
+                    EmbreeRenderParam* param);
     bool buildCage(hd::SceneDelegate* delegate, EmbreeRenderParam* param,
                    const hd::MeshTopology& topo, const std::vector<glm::vec3>& points);
     bool buildSubdivided(hd::SceneDelegate* delegate, EmbreeRenderParam* param,
@@ -42,6 +57,8 @@ private:
     /// built in _record's own arrays, so re-posing copies points and normals only.
     uint64_t _refinedTopologyId = 0;
     int _level = 0;
+    int _grantedLevel = -1;
+    bool _subdivided = false;  ///< the last rebuild was of a subdivision scheme (any level)
 };
 
 }  // namespace principled::embree

@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <set>
+
+#include <tbb/parallel_for.h>
 
 #include "delegate/aovs.h"
 #include "delegate/hd/camera.h"
@@ -612,6 +615,9 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Refine level", Token("refineLevel"), Value(-1), "subdivision level for every mesh; -1 = adaptive from the projected size"},
         {"Dicing rate", Token("dicingRate"), Value(1.5f), "adaptive subdivision: target refined edge length in pixels"},
         {"Max refine level", Token("maxRefineLevel"), Value(6), "adaptive subdivision: highest level"},
+        {"Subdivision budget", Token("subdivisionBudget"), Value(16000000),
+         "triangles all subdivision meshes may refine to together; over it every level is lowered in half steps "
+         "(the dicing rate times sqrt 2 each) until the scene fits; 0 = no limit"},
         {"Dome visible to camera", Token("domeLightCameraVisibility"), Value(1), "camera rays see the dome light"},
         {"Lights visible to camera", Token("lightCameraVisibility"), Value(0),
          "camera rays see the shapes of sphere, rect, disk and cylinder lights (0, as Cycles, Karma and hdEmbree: "
@@ -651,6 +657,56 @@ void EmbreeRenderDelegate::setRenderSetting(const Token& key, const Value& value
     // Subdivision settings apply to meshes (re)built afterwards.
     if (key == Token("refineLevel") || key == Token("dicingRate") || key == Token("maxRefineLevel"))
         updateDicing();
+}
+
+void EmbreeRenderDelegate::prepareRprimSync(const std::vector<hd::Rprim*>& prims,
+                                            const std::vector<hd::SceneDelegate*>& delegates,
+                                            const std::vector<hd::DirtyBits>& bits) {
+    // The meshes this sync rebuilds, and what each would refine to on its own.
+    std::vector<size_t> rebuilt;
+    std::set<const Mesh*> rebuilding;
+    for (size_t i = 0; i < prims.size(); ++i)
+        if (auto* m = dynamic_cast<Mesh*>(prims[i]); m && m->rebuildsOn(bits[i])) {
+            rebuilt.push_back(i);
+            rebuilding.insert(m);
+        }
+    if (rebuilt.empty()) return;
+    std::vector<std::optional<subdiv::LevelPlan>> planned(rebuilt.size());
+    tbb::parallel_for(size_t(0), rebuilt.size(), [&](size_t j) {
+        const size_t i = rebuilt[j];
+        planned[j] = static_cast<Mesh*>(prims[i])->levelPlan(delegates[i], _param.get());
+    });
+    std::vector<subdiv::LevelPlan> plans;
+    std::vector<Mesh*> planMeshes;
+    for (size_t j = 0; j < rebuilt.size(); ++j)
+        if (planned[j]) {
+            plans.push_back(*planned[j]);
+            planMeshes.push_back(static_cast<Mesh*>(prims[rebuilt[j]]));
+        }
+    if (plans.empty()) return;
+    // Meshes not rebuilt keep their triangles; the rebuilt ones share what is left.
+    const double budget = std::max(0.0f, floatSetting("subdivisionBudget", 16e6f));
+    double held = 0.0;
+    for (GeometrySource* g : _param->geometry())
+        if (auto* m = dynamic_cast<const Mesh*>(g); m && !rebuilding.count(m)) held += double(m->budgetTriangles());
+    const double left = budget > 0.0 ? std::max(budget - held, 1.0) : 0.0;
+    const subdiv::LevelBudgetFit fit = subdiv::fitLevelBudget(plans, left);
+    for (size_t j = 0; j < plans.size(); ++j) planMeshes[j]->grantLevel(fit.levels[j]);
+    if (fit.steps > 0) {
+        int before = 0, after = 0;
+        for (size_t j = 0; j < plans.size(); ++j) {
+            before = std::max(before, std::min(plans[j].levelAt(0), plans[j].faceCapLevel));
+            after = std::max(after, fit.levels[j]);
+        }
+        char text[400];
+        std::snprintf(text, sizeof text,
+                      "subdivision: %zu mesh(es) would refine to %.3g triangles, over the scene budget of %.3g "
+                      "(%.3g held by meshes not rebuilt; render setting subdivisionBudget): levels lowered in %d half "
+                      "step(s), the highest from %d to %d, to %.3g triangles%s",
+                      plans.size(), fit.requested, budget, held, fit.steps, before, after, fit.triangles,
+                      fit.fits ? "" : "; still over the budget with every mesh at its lowest level");
+        _param->warn(hd::Path::absoluteRoot(), text);
+    }
 }
 
 void EmbreeRenderDelegate::updateDicing() {

@@ -32,6 +32,10 @@ public:
     std::unique_ptr<hd::RenderPass> createRenderPass(hd::RenderIndex* index) override;
 
     hd::RenderParam* renderParam() override { return _param.get(); }
+    /// The scene-wide subdivision budget (render setting subdivisionBudget): plans the levels
+    /// of the meshes this sync rebuilds (delegate/subdiv/levelBudget.h).
+    void prepareRprimSync(const std::vector<hd::Rprim*>& prims, const std::vector<hd::SceneDelegate*>& delegates,
+                          const std::vector<hd::DirtyBits>& bits) override;
     void commitResources(hd::ChangeTracker* tracker) override;
 
     hd::AovDescriptor defaultAovDescriptor(const hd::Token& aovName) const override;

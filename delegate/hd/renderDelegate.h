@@ -33,6 +33,13 @@ public:
     virtual std::unique_ptr<RenderPass> createRenderPass(RenderIndex* index) = 0;
 
     virtual RenderParam* renderParam() = 0;
+    /// Called once per sync before the dirty rprims sync (in parallel): prims[i] will sync
+    /// through delegates[i] with bits[i]. For plans that need every rprim at once (a
+    /// scene-wide budget); the default does nothing.
+    virtual void prepareRprimSync(const std::vector<Rprim*>& prims, const std::vector<SceneDelegate*>& delegates,
+                                  const std::vector<DirtyBits>& bits) {
+        (void)prims, (void)delegates, (void)bits;
+    }
     /// Called once after every sync: build acceleration structures, upload, etc.
     virtual void commitResources(ChangeTracker* tracker) = 0;
 

@@ -148,10 +148,15 @@ void RenderIndex::sync() {
         bits[i] = _tracker.dirtyBits(K::Rprim, dirty[i]);
         _lastSync.rprims.emplace_back(dirty[i], bits[i]);
     }
-    tbb::parallel_for(size_t(0), dirty.size(), [&](size_t i) {
+    std::vector<Rprim*> prims(dirty.size());
+    std::vector<SceneDelegate*> delegates(dirty.size());
+    for (size_t i = 0; i < dirty.size(); ++i) {
         auto& e = _rprims.at(dirty[i]);
-        e.prim->sync(e.sceneDelegate, param, &bits[i]);
-    });
+        prims[i] = e.prim.get();
+        delegates[i] = e.sceneDelegate;
+    }
+    _renderDelegate->prepareRprimSync(prims, delegates, bits);
+    tbb::parallel_for(size_t(0), dirty.size(), [&](size_t i) { prims[i]->sync(delegates[i], param, &bits[i]); });
     for (size_t i = 0; i < dirty.size(); ++i) _tracker.setClean(K::Rprim, dirty[i], bits[i]);
     _renderDelegate->commitResources(&_tracker);
 }

@@ -7,15 +7,15 @@
 
 namespace principled::subdiv {
 
-int adaptiveLevel(const glm::vec3& boundsMin, const glm::vec3& boundsMax, size_t faceCount,
-                  const ScreenMetric& view) {
-    const int maxLevel = std::max(view.maxLevel, 0);
+float adaptiveLog2Ratio(const glm::vec3& boundsMin, const glm::vec3& boundsMax, size_t faceCount,
+                        const ScreenMetric& view) {
+    constexpr float kNone = -std::numeric_limits<float>::infinity();
     const glm::vec3 size = boundsMax - boundsMin;
     const float area = 2.0f * (size.x * size.y + size.y * size.z + size.z * size.x);
     if (!(area > 0.0f) || !std::isfinite(area) || faceCount == 0 || view.imageHeight <= 0 ||
         !(view.verticalFov > 0.0f) || !(view.verticalFov < 3.14159265f) ||
         !(view.targetEdgePixels > 0.0f))
-        return 0;
+        return kNone;
     const float edge = std::sqrt(area / float(faceCount));
     const glm::vec3 center = 0.5f * (boundsMin + boundsMax);
     const float radius = 0.5f * glm::length(size);
@@ -25,10 +25,21 @@ int adaptiveLevel(const glm::vec3& boundsMin, const glm::vec3& boundsMax, size_t
     const float pixelsPerUnit =
         float(view.imageHeight) / (2.0f * distance * std::tan(0.5f * view.verticalFov));
     const float ratio = edge * pixelsPerUnit / view.targetEdgePixels;
-    if (!(ratio > 1.0f)) return 0;
-    if (!std::isfinite(ratio)) return maxLevel;
-    const int level = int(std::ceil(std::log2(ratio)));
-    return std::clamp(level, 0, maxLevel);
+    if (!(ratio > 1.0f)) return kNone;
+    if (!std::isfinite(ratio)) return std::numeric_limits<float>::infinity();
+    return std::log2(ratio);
+}
+
+int levelFromLog2Ratio(float x, int maxLevel) {
+    maxLevel = std::max(maxLevel, 0);
+    if (std::isnan(x) || x == -std::numeric_limits<float>::infinity()) return 0;
+    if (x == std::numeric_limits<float>::infinity() || x > float(maxLevel)) return maxLevel;
+    return std::clamp(int(std::ceil(x)), 0, maxLevel);
+}
+
+int adaptiveLevel(const glm::vec3& boundsMin, const glm::vec3& boundsMax, size_t faceCount,
+                  const ScreenMetric& view) {
+    return levelFromLog2Ratio(adaptiveLog2Ratio(boundsMin, boundsMax, faceCount, view), view.maxLevel);
 }
 
 int adaptiveLevel(const std::vector<glm::vec3>& objectPoints, const glm::dmat4& objectToWorld,

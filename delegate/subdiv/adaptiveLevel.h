@@ -29,6 +29,16 @@ struct ScreenMetric {
 int adaptiveLevel(const glm::vec3& boundsMin, const glm::vec3& boundsMax, size_t faceCount,
                   const ScreenMetric& view);
 
+/// log2(e0 * ppu / target) of adaptiveLevel(), before the ceiling and the clamp: -inf where
+/// adaptiveLevel() gives 0 for want of refinement or of a usable input, +inf where the ratio
+/// overflows (adaptiveLevel() gives maxLevel). adaptiveLevel() == levelFromLog2Ratio(this,
+/// view.maxLevel); a scene-wide budget (delegate/subdivBudget.h) lowers it in half steps.
+float adaptiveLog2Ratio(const glm::vec3& boundsMin, const glm::vec3& boundsMax, size_t faceCount,
+                        const ScreenMetric& view);
+
+/// clamp(ceil(x), 0, maxLevel), with -inf -> 0 and +inf -> maxLevel.
+int levelFromLog2Ratio(float x, int maxLevel);
+
 /// Convenience: the same for object-space cage points under objectToWorld (the world box
 /// of the transformed object-space box, a conservative bound).
 int adaptiveLevel(const std::vector<glm::vec3>& objectPoints, const glm::dmat4& objectToWorld,

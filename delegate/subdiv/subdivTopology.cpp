@@ -67,14 +67,16 @@ Scheme toScheme(Sdc::SchemeType s) {
     }
 }
 
-/// Faces after `level` uniform steps: a quad-splitting scheme turns an n-gon into n quads and
-/// then quadruples them; loop quadruples triangles.
+}  // namespace
+
 size_t refinedFaceEstimate(const hd::MeshTopology& t, bool loop, int level) {
     const double grow = std::pow(4.0, level - 1);
     double faces = 0.0;
     for (int n : t.faceVertexCounts) faces += loop ? 4.0 * grow : (n == 4 ? 4.0 : double(n)) * grow;
     return faces > 1e18 ? size_t(-1) : size_t(faces);
 }
+
+namespace {
 
 /// True when row r of s is exactly "1 x element r" for every row: the table is a no-op.
 bool isIdentity(const Stencils& s) {

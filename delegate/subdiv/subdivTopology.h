@@ -68,6 +68,11 @@ struct BuildTimings {
 /// refine() and the primvar calls keep per-thread scratch buffers (about 12 bytes per refined
 /// point for positions) so that re-posing does not fault in fresh pages every frame; they stay
 /// allocated at the largest size a thread has used.
+/// Faces after `level` uniform steps: a quad-splitting scheme turns an n-gon into n quads and
+/// then quadruples them; loop quadruples triangles. What SubdivTopology's face budget
+/// (BuildOptions::maxRefinedFaces) is checked against.
+size_t refinedFaceEstimate(const hd::MeshTopology& t, bool loop, int level);
+
 class SubdivTopology {
   public:
     /// Validates and builds. Returns nullptr with *error for unusable topology (bad counts,

@@ -110,3 +110,60 @@ TEST(SubdivMemory, ReposeReusesTheRecordArrays) {
     EXPECT_EQ(rec.vertexNormals.size(), rec.points.size());
 }
 
+
+namespace {
+
+size_t triangles(hd::RenderIndex& index, const std::vector<hd::Path>& ids, std::vector<int>* levels) {
+    size_t sum = 0;
+    levels->clear();
+    for (const hd::Path& id : ids) {
+        auto* mesh = dynamic_cast<embree::Mesh*>(index.rprim(id));
+        sum += mesh->record()->triangles.size();
+        levels->push_back(mesh->refineLevel());
+    }
+    return sum;
+}
+
+bool warnedAboutBudget(embree::EmbreeRenderDelegate& delegate) {
+    for (const std::string& w : delegate.takeWarnings())
+        if (w.find("subdivisionBudget") != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+// The scene-wide budget (render setting subdivisionBudget): meshes that together would refine
+// past it are lowered alike until they fit; under it nothing changes.
+TEST(SubdivMemory, TheSceneBudgetLowersEveryMeshAlikeUntilTheSceneFits) {
+    std::vector<hd::Path> ids{hd::Path("/a"), hd::Path("/b"), hd::Path("/c")};
+    std::vector<int> levels;
+    {
+        embree::EmbreeRenderDelegate delegate;  // default budget 16M triangles: no change
+        hd::RenderIndex index{&delegate};
+        TestSceneDelegate scene{&index};
+        for (const auto& id : ids) addGrid(scene, id, 8, 4);  // 32768 triangles each
+        index.sync();
+        EXPECT_EQ(triangles(index, ids, &levels), size_t(3 * 32768));
+        EXPECT_EQ(levels, (std::vector<int>{4, 4, 4}));
+        EXPECT_FALSE(warnedAboutBudget(delegate));
+    }
+    embree::EmbreeRenderDelegate delegate;
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(50000));
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    for (const auto& id : ids) addGrid(scene, id, 8, 4);
+    index.sync();
+    // Level 3 would be 3 x 8192 = 24576 triangles; level 4 is 98304. Fixed levels lose one
+    // level every two half steps, so all three stand at 3.
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(3 * 8192));
+    EXPECT_EQ(levels, (std::vector<int>{3, 3, 3}));
+    EXPECT_TRUE(warnedAboutBudget(delegate));
+    // A mesh added later gets what the others leave: 50000 - 24576 = 25424, so level 4 (32768)
+    // does not fit and level 3 (8192) does.
+    const hd::Path late("/d");
+    addGrid(scene, late, 8, 4);
+    index.sync();
+    auto* mesh = dynamic_cast<embree::Mesh*>(index.rprim(late));
+    EXPECT_EQ(mesh->refineLevel(), 3);
+    EXPECT_TRUE(warnedAboutBudget(delegate));
+}

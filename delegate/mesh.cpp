@@ -13,6 +13,7 @@
 #include "delegate/hd/tokens.h"
 #include "delegate/primvarUtil.h"
 #include "delegate/subdiv/adaptiveLevel.h"
+#include "delegate/subdiv/deviationLevel.h"
 #include "delegate/transformCheck.h"
 #include "delegate/triangulate.h"
 
@@ -60,7 +61,7 @@ namespace {
 
 // The level a mesh asks for, as a budget plan: fixed (per-prim refineLevel, the refineLevel
 // setting, or the fallback without a view) or adaptive from its world bounds.
-subdiv::LevelPlan planLevel(const MeshTopology& topo, const std::vector<glm::vec3>& points,
+subdiv::LevelPlan planLevel(const MeshTopology& topo, const SubdivTags& tags, const std::vector<glm::vec3>& points,
                             const glm::mat4& objectToWorld, const EmbreeRenderParam::Dicing& d) {
     subdiv::LevelPlan plan;
     auto fixed = [&](int level) {
@@ -75,10 +76,13 @@ subdiv::LevelPlan planLevel(const MeshTopology& topo, const std::vector<glm::vec
         fixed(d.fallbackLevel);
     } else {
         glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        std::vector<glm::vec3> world;
+        world.reserve(points.size());
         for (const auto& p : points) {
             glm::vec3 w = glm::vec3(objectToWorld * glm::vec4(p, 1.0f));
             lo = glm::min(lo, w);
             hi = glm::max(hi, w);
+            world.push_back(w);
         }
         subdiv::ScreenMetric view;
         view.cameraPosition = d.cameraPosition;
@@ -87,34 +91,65 @@ subdiv::LevelPlan planLevel(const MeshTopology& topo, const std::vector<glm::vec
         view.targetEdgePixels = d.targetEdgePixels;
         view.maxLevel = d.maxLevel;
         plan.log2Ratio = subdiv::adaptiveLog2Ratio(lo, hi, topo.faceVertexCounts.size(), view);
+        // Edges need not shrink below the dicing rate where the surface already lies within
+        // the tolerance of its limit (flat parts need no refinement at all).
+        if (d.tolerancePixels > 0.0f)
+            plan.log2Ratio = std::min(plan.log2Ratio, subdiv::deviationLevel(world, topo, tags, view, d.tolerancePixels));
         plan.maxLevel = d.maxLevel;
     }
     // Triangles per level: the cage fan-triangulated; after the first step an n-gon is n quads
-    // (two triangles each) under Catmull-Clark and bilinear, a triangle four under Loop.
-    const bool loop = topo.scheme == Token("loop");
-    double level1 = 0.0;
+    // (two triangles each) under Catmull-Clark and bilinear, a triangle four under Loop (which
+    // sdcSetup applies to all-triangle meshes only; others refine as Catmull-Clark).
+    bool loop = topo.scheme == Token("loop");
+    for (int n : topo.faceVertexCounts) loop = loop && n == 3;
+    double level1 = 0.0, faces1 = 0.0;  // triangles and faces after one step
     for (int n : topo.faceVertexCounts) {
-        if (n < 3) continue;
+        if (n < 3) continue;  // an invalid face (the build rejects the mesh)
         plan.cageTriangles += size_t(n - 2);
         level1 += loop ? 4.0 : 2.0 * double(n);
+        faces1 += loop ? 4.0 : double(n);
     }
     plan.trianglesAtLevel1 = level1;
-    // SubdivTopology lowers a level past its per-mesh face cap; the budget counts what it builds.
-    const size_t cap = subdiv::BuildOptions{}.maxRefinedFaces;
+    // SubdivTopology lowers a level past its per-mesh face cap (refinedFaceEstimate: faces1
+    // times 4 per further step); the budget counts what it builds.
+    const double cap = double(subdiv::BuildOptions{}.maxRefinedFaces);
     plan.faceCapLevel = 0;
-    while (plan.faceCapLevel < 8 && subdiv::refinedFaceEstimate(topo, loop, plan.faceCapLevel + 1) <= cap)
-        ++plan.faceCapLevel;
+    for (double faces = faces1; plan.faceCapLevel < 8 && faces <= cap; faces *= 4.0) ++plan.faceCapLevel;
     return plan;
 }
 
+// The checks the cage and OpenSubdiv builds make before refining: finite points, faces of at
+// least three corners whose counts add up to the indices, indices in range.
+bool cageIsValid(const MeshTopology& topo, const std::vector<glm::vec3>& points) {
+    for (const glm::vec3& p : points)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+    size_t corners = 0;
+    for (int n : topo.faceVertexCounts) {
+        if (n < 3) return false;
+        corners += size_t(n);
+    }
+    if (topo.faceVertexCounts.empty() || corners != topo.faceVertexIndices.size()) return false;
+    for (int i : topo.faceVertexIndices)
+        if (i < 0 || size_t(i) >= points.size()) return false;
+    return true;
+}
+
+// The transform GeometryPrim::sync renders with: the authored one, or identity when unusable.
+glm::mat4 renderedTransform(const glm::mat4& m) { return unusableTransform(m) ? glm::mat4(1.0f) : m; }
+
 }  // namespace
 
-int Mesh::chooseLevel(const MeshTopology& topo, const std::vector<glm::vec3>& points,
-                      EmbreeRenderParam* param) {
-    if (topo.scheme == Token("none")) return 0;
-    // The budget's level (prepared before this sync from the same inputs), once.
-    if (const int granted = std::exchange(_grantedLevel, -1); granted >= 0) return granted;
-    return planLevel(topo, points, _record.objectToWorld, param->dicing()).levelAt(0);
+int Mesh::chooseLevel(const MeshTopology& topo, const SubdivTags& tags, const std::vector<glm::vec3>& points,
+                      EmbreeRenderParam* param, int granted) {
+    if (topo.scheme == Token("none")) {
+        _plan.reset();
+        return 0;
+    }
+    // The budget's level, planned before this sync from the same inputs.
+    if (granted >= 0 && _plan) return granted;
+    const subdiv::LevelPlan plan = planLevel(topo, tags, points, _record.objectToWorld, param->dicing());
+    _plan = cageIsValid(topo, points) ? std::optional(plan) : std::nullopt;  // else not built
+    return plan.levelAt(0);
 }
 
 std::optional<subdiv::LevelPlan> Mesh::levelPlan(SceneDelegate* delegate, EmbreeRenderParam* param) const {
@@ -122,14 +157,20 @@ std::optional<subdiv::LevelPlan> Mesh::levelPlan(SceneDelegate* delegate, Embree
     if (topo.scheme == Token("none")) return std::nullopt;
     Value pointsValue = delegate->get(id(), tokens::points());
     const auto* points = getIf<std::vector<glm::vec3>>(pointsValue);
-    if (!points || points->empty()) return std::nullopt;
-    // The transform as GeometryPrim::sync will take it (an unusable one draws nothing).
-    const glm::mat4 m(delegate->getTransform(id()));
-    if (unusableTransform(m)) return std::nullopt;
-    return planLevel(topo, *points, m, param->dicing());
+    if (!points || !cageIsValid(topo, *points)) return std::nullopt;  // not built: takes nothing
+    const glm::mat4 m = renderedTransform(glm::mat4(delegate->getTransform(id())));
+    return planLevel(topo, delegate->getSubdivTags(id()), *points, m, param->dicing());
 }
 
 RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* param) {
+    // A level granted for this rebuild is used by it or by nothing (never by a later one).
+    const int granted = std::exchange(_grantedLevel, -1);
+    RTCGeometry geom = buildGeometry(delegate, param, granted);
+    if (!geom) _plan.reset();  // nothing built: holds nothing against the budget
+    return geom;
+}
+
+RTCGeometry Mesh::buildGeometry(SceneDelegate* delegate, EmbreeRenderParam* param, int granted) {
     Value pointsValue = delegate->get(id(), tokens::points());
     const auto* points = getIf<std::vector<glm::vec3>>(pointsValue);
     if (!points || points->empty()) {
@@ -143,8 +184,7 @@ RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* pa
         }
     MeshTopology topo = delegate->getMeshTopology(id());
     // GeometryPrim syncs the transform before the geometry, so adaptive dicing sees it.
-    int level = chooseLevel(topo, *points, param);
-    _subdivided = topo.scheme != Token("none");
+    int level = chooseLevel(topo, delegate->getSubdivTags(id()), *points, param, granted);
     bool ok = level > 0 ? buildSubdivided(delegate, param, topo, *points, level)
                         : buildCage(delegate, param, topo, *points);
     if (!ok || _record.triangles.empty()) return nullptr;

@@ -31,21 +31,24 @@ public:
     bool rebuildsOn(hd::DirtyBits bits) const { return (bits & geometryBits()) != 0; }
     /// What a rebuild now would ask of the scene-wide subdivision budget, read from the scene
     /// delegate (before sync: the transform may not be pulled yet); none for a polygon mesh
-    /// (scheme "none") or one that would not render.
+    /// (scheme "none") or a cage that will not build.
     std::optional<subdiv::LevelPlan> levelPlan(hd::SceneDelegate* delegate, EmbreeRenderParam* param) const;
-    /// The level the budget gives the next rebuild (instead of the plan's own); -1: none.
-    void grantLevel(int level) { _grantedLevel = level; }
-    /// Triangles this mesh holds against the budget: all of a subdivision mesh's (its cage's
-    /// at level 0), none of a polygon mesh's.
-    size_t budgetTriangles() const { return _subdivided ? _record.triangles.size() : 0; }
+    /// The plan the mesh was last built from (none: a polygon mesh, or nothing built).
+    const std::optional<subdiv::LevelPlan>& plan() const { return _plan; }
+    /// The level the next rebuild uses, from `plan` (the budget's fit); level -1: its own.
+    void grantLevel(int level, const std::optional<subdiv::LevelPlan>& plan) {
+        _grantedLevel = level;
+        _plan = plan;
+    }
 
 protected:
     hd::DirtyBits geometryBits() const override;
     RTCGeometry rebuildGeometry(hd::SceneDelegate* delegate, EmbreeRenderParam* param) override;
 
 private:
-    int chooseLevel(const hd::MeshTopology& topo, const std::vector<glm::vec3>& points,
-                    EmbreeRenderParam* param);
+    RTCGeometry buildGeometry(hd::SceneDelegate* delegate, EmbreeRenderParam* param, int granted);
+    int chooseLevel(const hd::MeshTopology& topo, const hd::SubdivTags& tags, const std::vector<glm::vec3>& points,
+                    EmbreeRenderParam* param, int granted);
     bool buildCage(hd::SceneDelegate* delegate, EmbreeRenderParam* param,
                    const hd::MeshTopology& topo, const std::vector<glm::vec3>& points);
     bool buildSubdivided(hd::SceneDelegate* delegate, EmbreeRenderParam* param,
@@ -58,7 +61,7 @@ private:
     uint64_t _refinedTopologyId = 0;
     int _level = 0;
     int _grantedLevel = -1;
-    bool _subdivided = false;  ///< the last rebuild was of a subdivision scheme (any level)
+    std::optional<subdiv::LevelPlan> _plan;
 };
 
 }  // namespace principled::embree

@@ -615,7 +615,10 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Refine level", Token("refineLevel"), Value(-1), "subdivision level for every mesh; -1 = adaptive from the projected size"},
         {"Dicing rate", Token("dicingRate"), Value(1.5f), "adaptive subdivision: target refined edge length in pixels"},
         {"Max refine level", Token("maxRefineLevel"), Value(6), "adaptive subdivision: highest level"},
-        {"Subdivision budget", Token("subdivisionBudget"), Value(16000000),
+        {"Dicing tolerance", Token("dicingTolerance"), Value(0.1f),
+         "adaptive subdivision: refine no further once the surface lies within this many pixels of its limit "
+         "(flat cages stay unrefined); 0 = edge length (dicingRate) only"},
+        {"Subdivision budget", Token("subdivisionBudget"), Value(16e6f),
          "triangles all subdivision meshes may refine to together; over it every level is lowered in half steps "
          "(the dicing rate times sqrt 2 each) until the scene fits; 0 = no limit"},
         {"Dome visible to camera", Token("domeLightCameraVisibility"), Value(1), "camera rays see the dome light"},
@@ -655,14 +658,18 @@ void EmbreeRenderDelegate::setRenderSetting(const Token& key, const Value& value
     }
     if (key == Token("defaultLighting")) _param->markTablesDirty();
     // Subdivision settings apply to meshes (re)built afterwards.
-    if (key == Token("refineLevel") || key == Token("dicingRate") || key == Token("maxRefineLevel"))
+    if (key == Token("refineLevel") || key == Token("dicingRate") || key == Token("maxRefineLevel") ||
+        key == Token("dicingTolerance"))
         updateDicing();
 }
 
 void EmbreeRenderDelegate::prepareRprimSync(const std::vector<hd::Rprim*>& prims,
                                             const std::vector<hd::SceneDelegate*>& delegates,
-                                            const std::vector<hd::DirtyBits>& bits) {
-    // The meshes this sync rebuilds, and what each would refine to on its own.
+                                            const std::vector<hd::DirtyBits>& bits,
+                                            std::vector<std::pair<hd::Rprim*, hd::DirtyBits>>* alsoSync) {
+    // The meshes this sync rebuilds, planned afresh; every other mesh keeps the plan it was
+    // built from. The fit covers the whole scene, so a scene's levels do not depend on the
+    // order of its edits.
     std::vector<size_t> rebuilt;
     std::set<const Mesh*> rebuilding;
     for (size_t i = 0; i < prims.size(); ++i)
@@ -670,40 +677,52 @@ void EmbreeRenderDelegate::prepareRprimSync(const std::vector<hd::Rprim*>& prims
             rebuilt.push_back(i);
             rebuilding.insert(m);
         }
-    if (rebuilt.empty()) return;
-    std::vector<std::optional<subdiv::LevelPlan>> planned(rebuilt.size());
+    std::vector<std::optional<subdiv::LevelPlan>> fresh(rebuilt.size());
     tbb::parallel_for(size_t(0), rebuilt.size(), [&](size_t j) {
         const size_t i = rebuilt[j];
-        planned[j] = static_cast<Mesh*>(prims[i])->levelPlan(delegates[i], _param.get());
+        fresh[j] = static_cast<Mesh*>(prims[i])->levelPlan(delegates[i], _param.get());
     });
     std::vector<subdiv::LevelPlan> plans;
-    std::vector<Mesh*> planMeshes;
-    for (size_t j = 0; j < rebuilt.size(); ++j)
-        if (planned[j]) {
-            plans.push_back(*planned[j]);
-            planMeshes.push_back(static_cast<Mesh*>(prims[rebuilt[j]]));
-        }
-    if (plans.empty()) return;
-    // Meshes not rebuilt keep their triangles; the rebuilt ones share what is left.
-    const double budget = std::max(0.0f, floatSetting("subdivisionBudget", 16e6f));
-    double held = 0.0;
+    std::vector<Mesh*> owners;
+    std::vector<char> isRebuilt;
+    for (size_t j = 0; j < rebuilt.size(); ++j) {
+        auto* m = static_cast<Mesh*>(prims[rebuilt[j]]);
+        m->grantLevel(-1, fresh[j]);
+        if (!fresh[j]) continue;
+        plans.push_back(*fresh[j]);
+        owners.push_back(m);
+        isRebuilt.push_back(1);
+    }
+    if (plans.empty()) return;  // nothing to refine in this sync
     for (GeometrySource* g : _param->geometry())
-        if (auto* m = dynamic_cast<const Mesh*>(g); m && !rebuilding.count(m)) held += double(m->budgetTriangles());
-    const double left = budget > 0.0 ? std::max(budget - held, 1.0) : 0.0;
-    const subdiv::LevelBudgetFit fit = subdiv::fitLevelBudget(plans, left);
-    for (size_t j = 0; j < plans.size(); ++j) planMeshes[j]->grantLevel(fit.levels[j]);
+        if (auto* m = dynamic_cast<Mesh*>(g); m && !rebuilding.count(m) && m->plan()) {
+            plans.push_back(*m->plan());
+            owners.push_back(m);
+            isRebuilt.push_back(0);
+        }
+    const double budget = std::max(0.0f, floatSetting("subdivisionBudget", 16e6f));
+    const subdiv::LevelBudgetFit fit = subdiv::fitLevelBudget(plans, budget);
+    for (size_t j = 0; j < plans.size(); ++j) {
+        if (isRebuilt[j]) {
+            owners[j]->grantLevel(fit.levels[j], plans[j]);
+        } else if (std::min(fit.levels[j], plans[j].faceCapLevel) != owners[j]->refineLevel()) {
+            // A clean mesh the new fit moves: rebuilt at its new level in this sync.
+            owners[j]->grantLevel(fit.levels[j], plans[j]);
+            alsoSync->emplace_back(owners[j], hd::RprimDirty::Topology);
+        }
+    }
     if (fit.steps > 0) {
         int before = 0, after = 0;
         for (size_t j = 0; j < plans.size(); ++j) {
             before = std::max(before, std::min(plans[j].levelAt(0), plans[j].faceCapLevel));
-            after = std::max(after, fit.levels[j]);
+            after = std::max(after, std::min(fit.levels[j], plans[j].faceCapLevel));
         }
         char text[400];
         std::snprintf(text, sizeof text,
                       "subdivision: %zu mesh(es) would refine to %.3g triangles, over the scene budget of %.3g "
-                      "(%.3g held by meshes not rebuilt; render setting subdivisionBudget): levels lowered in %d half "
-                      "step(s), the highest from %d to %d, to %.3g triangles%s",
-                      plans.size(), fit.requested, budget, held, fit.steps, before, after, fit.triangles,
+                      "(render setting subdivisionBudget): levels lowered in %d half step(s), the highest from %d "
+                      "to %d, to %.3g triangles%s",
+                      plans.size(), fit.requested, budget, fit.steps, before, after, fit.triangles,
                       fit.fits ? "" : "; still over the budget with every mesh at its lowest level");
         _param->warn(hd::Path::absoluteRoot(), text);
     }
@@ -714,6 +733,8 @@ void EmbreeRenderDelegate::updateDicing() {
     d.level = intSetting("refineLevel", -1);
     d.targetEdgePixels = std::max(0.05f, floatSetting("dicingRate", 1.5f));
     d.maxLevel = std::clamp(intSetting("maxRefineLevel", 6), 0, 8);
+    const float tolerance = floatSetting("dicingTolerance", 0.1f);
+    d.tolerancePixels = std::isfinite(tolerance) ? std::max(0.0f, tolerance) : 0.0f;
     _param->setDicing(d);
 }
 

@@ -35,7 +35,8 @@ public:
     /// The scene-wide subdivision budget (render setting subdivisionBudget): plans the levels
     /// of the meshes this sync rebuilds (delegate/subdiv/levelBudget.h).
     void prepareRprimSync(const std::vector<hd::Rprim*>& prims, const std::vector<hd::SceneDelegate*>& delegates,
-                          const std::vector<hd::DirtyBits>& bits) override;
+                          const std::vector<hd::DirtyBits>& bits,
+                          std::vector<std::pair<hd::Rprim*, hd::DirtyBits>>* alsoSync) override;
     void commitResources(hd::ChangeTracker* tracker) override;
 
     hd::AovDescriptor defaultAovDescriptor(const hd::Token& aovName) const override;

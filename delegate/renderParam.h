@@ -152,6 +152,8 @@ public:
         float verticalFov = 0.8f;
         int imageHeight = 720;
         float targetEdgePixels = 1.5f;
+        /// How far (pixels) the refined surface may lie from its limit; 0: edge length only.
+        float tolerancePixels = 0.1f;
         int maxLevel = 6;
         int fallbackLevel = 2;  ///< adaptive without a view
     };

@@ -2,6 +2,8 @@
 #include "plugins/renderSession.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <limits>
 
 #include "delegate/hd/renderIndex.h"
 #include "delegate/aovs.h"
@@ -72,9 +74,15 @@ void RenderSession::applySettings() {
         }
         Value v;
         char* end = nullptr;
+        errno = 0;
         long i = std::strtol(text.c_str(), &end, 10);
         if (!text.empty() && *end == '\0') {
-            v = Value(int(i));
+            // An integer past int's range stays a number (a float): a budget of 3e9 must not wrap.
+            const bool fits = errno != ERANGE && i >= std::numeric_limits<int>::min() && i <= std::numeric_limits<int>::max();
+            if (!fits && std::holds_alternative<int>(d->defaultValue))
+                throw UserError("render setting '" + key + "' expects an integer within +-" +
+                                std::to_string(std::numeric_limits<int>::max()) + ", not '" + text + "'");
+            v = fits ? Value(int(i)) : Value(std::strtof(text.c_str(), nullptr));
         } else {
             float f = std::strtof(text.c_str(), &end);
             v = (!text.empty() && *end == '\0') ? Value(f) : Value(Token(text));

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "delegate/hd/aov.h"
@@ -35,10 +36,12 @@ public:
     virtual RenderParam* renderParam() = 0;
     /// Called once per sync before the dirty rprims sync (in parallel): prims[i] will sync
     /// through delegates[i] with bits[i]. For plans that need every rprim at once (a
-    /// scene-wide budget); the default does nothing.
+    /// scene-wide budget). Rprims the plan changes that are not dirty go into *alsoSync with
+    /// the bits to sync them with. The default does nothing.
     virtual void prepareRprimSync(const std::vector<Rprim*>& prims, const std::vector<SceneDelegate*>& delegates,
-                                  const std::vector<DirtyBits>& bits) {
-        (void)prims, (void)delegates, (void)bits;
+                                  const std::vector<DirtyBits>& bits,
+                                  std::vector<std::pair<Rprim*, DirtyBits>>* alsoSync) {
+        (void)prims, (void)delegates, (void)bits, (void)alsoSync;
     }
     /// Called once after every sync: build acceleration structures, upload, etc.
     virtual void commitResources(ChangeTracker* tracker) = 0;

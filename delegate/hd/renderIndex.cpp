@@ -2,6 +2,7 @@
 #include "delegate/hd/renderIndex.h"
 
 #include <algorithm>
+#include <unordered_set>
 
 #include <tbb/parallel_for.h>
 
@@ -155,7 +156,20 @@ void RenderIndex::sync() {
         prims[i] = e.prim.get();
         delegates[i] = e.sceneDelegate;
     }
-    _renderDelegate->prepareRprimSync(prims, delegates, bits);
+    std::vector<std::pair<Rprim*, DirtyBits>> also;
+    _renderDelegate->prepareRprimSync(prims, delegates, bits, &also);
+    std::unordered_set<Rprim*> syncing;
+    if (!also.empty()) syncing.insert(prims.begin(), prims.end());
+    for (const auto& [prim, extra] : also) {
+        auto it = _rprims.find(prim->id());
+        if (it == _rprims.end() || it->second.prim.get() != prim) continue;
+        if (!syncing.insert(prim).second) continue;  // already syncing
+        dirty.push_back(prim->id());
+        bits.push_back(extra);
+        _lastSync.rprims.emplace_back(prim->id(), extra);
+        prims.push_back(prim);
+        delegates.push_back(it->second.sceneDelegate);
+    }
     tbb::parallel_for(size_t(0), dirty.size(), [&](size_t i) { prims[i]->sync(delegates[i], param, &bits[i]); });
     for (size_t i = 0; i < dirty.size(); ++i) _tracker.setClean(K::Rprim, dirty[i], bits[i]);
     _renderDelegate->commitResources(&_tracker);

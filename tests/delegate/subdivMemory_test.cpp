@@ -158,12 +158,44 @@ TEST(SubdivMemory, TheSceneBudgetLowersEveryMeshAlikeUntilTheSceneFits) {
     EXPECT_EQ(triangles(index, ids, &levels), size_t(3 * 8192));
     EXPECT_EQ(levels, (std::vector<int>{3, 3, 3}));
     EXPECT_TRUE(warnedAboutBudget(delegate));
-    // A mesh added later gets what the others leave: 50000 - 24576 = 25424, so level 4 (32768)
-    // does not fit and level 3 (8192) does.
+    // A colour edit rebuilds /a alone; the fit still covers the whole scene, so it stays at 3.
+    index.changeTracker().markRprimDirty(ids[0], hd::RprimDirty::Primvar);
+    index.sync();
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(3 * 8192));
+    EXPECT_EQ(levels, (std::vector<int>{3, 3, 3}));
+    // A fourth mesh: four at level 3 (32768) still fit, so it gets 3 and nothing else moves.
     const hd::Path late("/d");
     addGrid(scene, late, 8, 4);
     index.sync();
-    auto* mesh = dynamic_cast<embree::Mesh*>(index.rprim(late));
-    EXPECT_EQ(mesh->refineLevel(), 3);
+    ids.push_back(late);
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(4 * 8192));
+    EXPECT_EQ(levels, (std::vector<int>{3, 3, 3, 3}));
+    // A tighter budget and a fifth mesh: five at level 3 (40960) do not fit 35000, so all five
+    // go to level 2, the four clean ones rebuilt in the same sync, as a fresh scene would be.
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(35000));
+    const hd::Path fifth("/e");
+    addGrid(scene, fifth, 8, 4);
+    index.sync();
+    ids.push_back(fifth);
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(5 * 2048));
+    EXPECT_EQ(levels, (std::vector<int>{2, 2, 2, 2, 2}));
     EXPECT_TRUE(warnedAboutBudget(delegate));
+}
+
+// Meshes that will not be built ask nothing of the budget: a broken cage does not push the
+// others down.
+TEST(SubdivMemory, MeshesThatWillNotBuildTakeNoBudget) {
+    embree::EmbreeRenderDelegate delegate;
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(40000));
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    addGrid(scene, hd::Path("/good"), 8, 4);  // 32768 triangles: fits alone
+    addGrid(scene, hd::Path("/broken"), 8, 4);
+    scene.prim(hd::Path("/broken")).topology.faceVertexCounts[0] = 1000000000;
+    addGrid(scene, hd::Path("/nan"), 8, 4);
+    std::get<std::vector<glm::vec3>>(scene.prim(hd::Path("/nan")).values[hd::tokens::points()])[3].x = NAN;
+    index.sync();
+    auto* good = dynamic_cast<embree::Mesh*>(index.rprim(hd::Path("/good")));
+    EXPECT_EQ(good->refineLevel(), 4);
+    EXPECT_FALSE(warnedAboutBudget(delegate));
 }

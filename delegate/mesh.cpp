@@ -5,6 +5,7 @@
 #include <cstring>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <sys/resource.h>
 #include <utility>
@@ -62,7 +63,8 @@ namespace {
 // The level a mesh asks for, as a budget plan: fixed (per-prim refineLevel, the refineLevel
 // setting, or the fallback without a view) or adaptive from its world bounds.
 subdiv::LevelPlan planLevel(const MeshTopology& topo, const SubdivTags& tags, const std::vector<glm::vec3>& points,
-                            const glm::mat4& objectToWorld, const EmbreeRenderParam::Dicing& d) {
+                            const glm::mat4& objectToWorld, const EmbreeRenderParam::Dicing& d,
+                            const std::function<bool()>& primvarsFollowTheCage) {
     subdiv::LevelPlan plan;
     auto fixed = [&](int level) {
         plan.log2Ratio = float(level);
@@ -93,8 +95,12 @@ subdiv::LevelPlan planLevel(const MeshTopology& topo, const SubdivTags& tags, co
         plan.log2Ratio = subdiv::adaptiveLog2Ratio(lo, hi, topo.faceVertexCounts.size(), view);
         // Edges need not shrink below the dicing rate where the surface already lies within
         // the tolerance of its limit (flat parts need no refinement at all).
-        if (d.tolerancePixels > 0.0f)
-            plan.log2Ratio = std::min(plan.log2Ratio, subdiv::deviationLevel(world, topo, tags, view, d.tolerancePixels));
+        // Only where every primvar the refinement smooths is already its own limit: else the
+        // refined values differ from the cage's whatever the shape (asked last: it reads them).
+        if (d.tolerancePixels > 0.0f) {
+            const float deviation = subdiv::deviationLevel(world, topo, tags, view, d.tolerancePixels);
+            if (deviation < plan.log2Ratio && primvarsFollowTheCage()) plan.log2Ratio = deviation;
+        }
         plan.maxLevel = d.maxLevel;
     }
     // Triangles per level: the cage fan-triangulated; after the first step an n-gon is n quads
@@ -134,20 +140,67 @@ bool cageIsValid(const MeshTopology& topo, const std::vector<glm::vec3>& points)
     return true;
 }
 
+// Whether every vertex and face-varying primvar of the mesh equals its own limit under the
+// subdivision rules (subdiv::valuesFollowTheCage, 1e-4 of its range): then the cage and the
+// refined surface carry the same values. Varying primvars are linear in both; constant and
+// uniform ones do not vary over a face.
+bool primvarsFollowTheCage(SceneDelegate* delegate, const Path& id, const MeshTopology& topo, const SubdivTags& tags) {
+    constexpr double kTolerance = 1e-4;
+    for (const auto& desc : delegate->getPrimvarDescriptors(id, Interpolation::Vertex)) {
+        if (isGeometryPrimvar(desc.name)) continue;
+        std::vector<int> valueIndices;
+        std::vector<float> flat;
+        int components = 0;
+        if (!flattenFloats(delegate->getIndexedPrimvar(id, desc.name, &valueIndices), &flat, &components)) continue;
+        if (components <= 0) continue;
+        if (!valueIndices.empty()) {  // one value per point through the indices
+            std::vector<float> perPoint;
+            perPoint.reserve(valueIndices.size() * size_t(components));
+            for (int i : valueIndices) {
+                if (i < 0 || size_t(i + 1) * size_t(components) > flat.size()) return false;
+                perPoint.insert(perPoint.end(), flat.begin() + std::ptrdiff_t(size_t(i) * size_t(components)),
+                                flat.begin() + std::ptrdiff_t(size_t(i + 1) * size_t(components)));
+            }
+            flat.swap(perPoint);
+        }
+        if (!subdiv::valuesFollowTheCage(flat, components, topo, topo.faceVertexIndices,
+                                         tags.interpolateBoundary == Token("edgeAndCorner"), kTolerance))
+            return false;
+    }
+    const Token fvarRule = tags.faceVaryingLinearInterpolation;
+    if (fvarRule == Token("all")) return true;  // face-varying values stay linear
+    for (const auto& desc : delegate->getPrimvarDescriptors(id, Interpolation::FaceVarying)) {
+        if (isGeometryPrimvar(desc.name)) continue;
+        std::vector<int> valueIndices;
+        std::vector<float> flat;
+        int components = 0;
+        if (!flattenFloats(delegate->getIndexedPrimvar(id, desc.name, &valueIndices), &flat, &components)) continue;
+        if (components <= 0) continue;
+        if (valueIndices.empty()) {  // one value per corner: every face its own island
+            valueIndices.resize(flat.size() / size_t(components));
+            for (size_t i = 0; i < valueIndices.size(); ++i) valueIndices[i] = int(i);
+        }
+        if (!subdiv::valuesFollowTheCage(flat, components, topo, valueIndices, fvarRule != Token("none"), kTolerance))
+            return false;
+    }
+    return true;
+}
+
 // The transform GeometryPrim::sync renders with: the authored one, or identity when unusable.
 glm::mat4 renderedTransform(const glm::mat4& m) { return unusableTransform(m) ? glm::mat4(1.0f) : m; }
 
 }  // namespace
 
-int Mesh::chooseLevel(const MeshTopology& topo, const SubdivTags& tags, const std::vector<glm::vec3>& points,
-                      EmbreeRenderParam* param, int granted) {
+int Mesh::chooseLevel(SceneDelegate* delegate, const MeshTopology& topo, const SubdivTags& tags,
+                      const std::vector<glm::vec3>& points, EmbreeRenderParam* param, int granted) {
     if (topo.scheme == Token("none")) {
         _plan.reset();
         return 0;
     }
     // The budget's level, planned before this sync from the same inputs.
     if (granted >= 0 && _plan) return granted;
-    const subdiv::LevelPlan plan = planLevel(topo, tags, points, _record.objectToWorld, param->dicing());
+    const subdiv::LevelPlan plan = planLevel(topo, tags, points, _record.objectToWorld, param->dicing(),
+                                             [&] { return primvarsFollowTheCage(delegate, id(), topo, tags); });
     _plan = cageIsValid(topo, points) ? std::optional(plan) : std::nullopt;  // else not built
     return plan.levelAt(0);
 }
@@ -159,7 +212,9 @@ std::optional<subdiv::LevelPlan> Mesh::levelPlan(SceneDelegate* delegate, Embree
     const auto* points = getIf<std::vector<glm::vec3>>(pointsValue);
     if (!points || !cageIsValid(topo, *points)) return std::nullopt;  // not built: takes nothing
     const glm::mat4 m = renderedTransform(glm::mat4(delegate->getTransform(id())));
-    return planLevel(topo, delegate->getSubdivTags(id()), *points, m, param->dicing());
+    const SubdivTags tags = delegate->getSubdivTags(id());
+    return planLevel(topo, tags, *points, m, param->dicing(),
+                     [&] { return primvarsFollowTheCage(delegate, id(), topo, tags); });
 }
 
 RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* param) {
@@ -184,7 +239,7 @@ RTCGeometry Mesh::buildGeometry(SceneDelegate* delegate, EmbreeRenderParam* para
         }
     MeshTopology topo = delegate->getMeshTopology(id());
     // GeometryPrim syncs the transform before the geometry, so adaptive dicing sees it.
-    int level = chooseLevel(topo, delegate->getSubdivTags(id()), *points, param, granted);
+    int level = chooseLevel(delegate, topo, delegate->getSubdivTags(id()), *points, param, granted);
     bool ok = level > 0 ? buildSubdivided(delegate, param, topo, *points, level)
                         : buildCage(delegate, param, topo, *points);
     if (!ok || _record.triangles.empty()) return nullptr;
@@ -236,9 +291,12 @@ bool Mesh::buildCage(SceneDelegate* delegate, EmbreeRenderParam* param, const Me
     _record.triangleFace = std::move(tri.triangleFace);
     CornerLayout layout{points.size(), topo.faceVertexCounts.size(), topo.faceVertexIndices.size(),
                         &_record.triangles, &tri.corners, &_record.triangleFace};
-    _record.cornerNormals = authoredCornerNormals(delegate, id(), layout);
-    // A subdivision surface drawn as its cage is shaded smooth; polygons ("none") stay faceted.
-    if (_record.cornerNormals.empty() && topo.scheme != Token("none"))
+    // A subdivision surface drawn as its cage is shaded smooth, from its own shape: authored
+    // normals are for polygons (UsdGeomMesh: a subdivided mesh defines its own), as at any
+    // refined level. Polygons ("none") keep theirs or stay faceted.
+    if (topo.scheme == Token("none"))
+        _record.cornerNormals = authoredCornerNormals(delegate, id(), layout);
+    else
         _record.cornerNormals = smoothCornerNormals(_record.points, _record.triangles);
     _record.primvars.clear();
     for (Interpolation interp : kInterpolations)

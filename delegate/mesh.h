@@ -47,8 +47,8 @@ protected:
 
 private:
     RTCGeometry buildGeometry(hd::SceneDelegate* delegate, EmbreeRenderParam* param, int granted);
-    int chooseLevel(const hd::MeshTopology& topo, const hd::SubdivTags& tags, const std::vector<glm::vec3>& points,
-                    EmbreeRenderParam* param, int granted);
+    int chooseLevel(hd::SceneDelegate* delegate, const hd::MeshTopology& topo, const hd::SubdivTags& tags,
+                    const std::vector<glm::vec3>& points, EmbreeRenderParam* param, int granted);
     bool buildCage(hd::SceneDelegate* delegate, EmbreeRenderParam* param,
                    const hd::MeshTopology& topo, const std::vector<glm::vec3>& points);
     bool buildSubdivided(hd::SceneDelegate* delegate, EmbreeRenderParam* param,

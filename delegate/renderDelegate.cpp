@@ -734,7 +734,7 @@ void EmbreeRenderDelegate::updateDicing() {
     d.targetEdgePixels = std::max(0.05f, floatSetting("dicingRate", 1.5f));
     d.maxLevel = std::clamp(intSetting("maxRefineLevel", 6), 0, 8);
     const float tolerance = floatSetting("dicingTolerance", 0.1f);
-    d.tolerancePixels = std::isfinite(tolerance) ? std::max(0.0f, tolerance) : 0.0f;
+    d.tolerancePixels = std::isnan(tolerance) ? 0.0f : std::max(0.0f, tolerance);  // inf: never refine for shape
     _param->setDicing(d);
 }
 

@@ -2,7 +2,7 @@
 #include "delegate/hd/renderIndex.h"
 
 #include <algorithm>
-#include <unordered_set>
+#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 
@@ -158,12 +158,17 @@ void RenderIndex::sync() {
     }
     std::vector<std::pair<Rprim*, DirtyBits>> also;
     _renderDelegate->prepareRprimSync(prims, delegates, bits, &also);
-    std::unordered_set<Rprim*> syncing;
-    if (!also.empty()) syncing.insert(prims.begin(), prims.end());
+    std::unordered_map<Rprim*, size_t> syncing;
+    if (!also.empty())
+        for (size_t i = 0; i < prims.size(); ++i) syncing.emplace(prims[i], i);
     for (const auto& [prim, extra] : also) {
         auto it = _rprims.find(prim->id());
         if (it == _rprims.end() || it->second.prim.get() != prim) continue;
-        if (!syncing.insert(prim).second) continue;  // already syncing
+        if (auto s = syncing.find(prim); s != syncing.end()) {  // already syncing: for more now
+            bits[s->second] |= extra;
+            continue;
+        }
+        syncing.emplace(prim, prims.size());
         dirty.push_back(prim->id());
         bits.push_back(extra);
         _lastSync.rprims.emplace_back(prim->id(), extra);

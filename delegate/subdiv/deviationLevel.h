@@ -23,7 +23,10 @@ namespace principled::subdiv {
 ///   px(v) = |d(v)| * H / (2 D(v) tan(fov/2)), D(v) the nearest incident face's bounding
 ///           sphere distance (floored at 1e-3 of its radius), so a face passing near the
 ///           camera counts as near;
-///   level = 0.5 log2(max px / tolerance)   (the gap shrinks about 4x per uniform level).
+///   face  = for a polygon of 4+ corners, the largest corner height over the plane through its
+///           centroid (Newell normal) in pixels at the face's distance: a twisted quad, a
+///           saddle or a bent n-gon strays from its fan triangles whatever its corners do;
+///   level = 0.5 log2(max(px, face) / tolerance)   (both shrink about 4x per uniform level).
 /// -inf when the cage is its own limit (flat regular grids, flat triangles with sharp corners):
 /// such a mesh needs no refinement. +inf where the inputs do not allow an estimate (a
 /// boundary under interpolateBoundary "none", whose limit drops the boundary faces; degenerate
@@ -31,5 +34,14 @@ namespace principled::subdiv {
 /// the surface nearer the cage, so the estimate errs toward more refinement).
 float deviationLevel(const std::vector<glm::vec3>& worldPoints, const hd::MeshTopology& topology,
                      const hd::SubdivTags& tags, const ScreenMetric& view, float tolerancePixels);
+
+/// Whether a primvar (components per value; indices per face corner into the values: the
+/// topology's own for vertex primvars, the channel's for face-varying ones) already equals its
+/// own limit under the smooth rules, within relativeTolerance of its value range: linear data
+/// over a regular grid does, a painted colour or a stretched UV layout does not. Only then do
+/// the cage and the refined surface carry the same values, and deviationLevel() alone may
+/// decide the level. sharpCorners: corners of the value topology keep their values.
+bool valuesFollowTheCage(const std::vector<float>& values, int components, const hd::MeshTopology& topology,
+                         const std::vector<int>& indices, bool sharpCorners, double relativeTolerance);
 
 }  // namespace principled::subdiv

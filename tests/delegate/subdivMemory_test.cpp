@@ -199,3 +199,24 @@ TEST(SubdivMemory, MeshesThatWillNotBuildTakeNoBudget) {
     EXPECT_EQ(good->refineLevel(), 4);
     EXPECT_FALSE(warnedAboutBudget(delegate));
 }
+
+// A mesh dirty for another reason (its transform) that the fit moves is rebuilt at the new
+// level in the same sync, not left at its old one.
+TEST(SubdivMemory, AMeshDirtyForAnotherReasonStillFollowsTheFit) {
+    embree::EmbreeRenderDelegate delegate;
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(35000));
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    std::vector<hd::Path> ids{hd::Path("/a"), hd::Path("/b"), hd::Path("/c"), hd::Path("/d")};
+    for (const auto& id : ids) addGrid(scene, id, 8, 4);
+    index.sync();  // four at level 3: 32768
+    std::vector<int> levels;
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(4 * 8192));
+    index.changeTracker().markRprimDirty(ids[0], hd::RprimDirty::Transform);
+    const hd::Path fifth("/e");
+    addGrid(scene, fifth, 8, 4);
+    index.sync();  // five at level 3 would be 40960: all go to 2, /a included
+    ids.push_back(fifth);
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(5 * 2048));
+    EXPECT_EQ(levels, (std::vector<int>{2, 2, 2, 2, 2}));
+}

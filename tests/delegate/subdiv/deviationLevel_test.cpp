@@ -99,3 +99,52 @@ TEST(DeviationLevel, BadInputGivesNoEstimate) {
     nan[0].x = NAN;
     EXPECT_EQ(deviationLevel(nan, t, hd::SubdivTags{}, camera({0, 0, 5}), 0.1f), INFINITY);
 }
+
+TEST(DeviationLevel, SaddlesTwistedQuadsAndBentPolygonsAreNotFlat) {
+    // z = x y over a 3 x 3 grid: every interior vertex already lies on its limit and the
+    // boundary is straight, so only the faces' own twist shows that it is not flat.
+    std::vector<glm::vec3> points;
+    hd::MeshTopology t;
+    grid(3, 0.0f, &points, &t);
+    for (glm::vec3& p : points) p.z = 0.3f * (p.x - 1.5f) * (p.y - 1.5f);
+    EXPECT_GT(deviationLevel(points, t, hd::SubdivTags{}, camera({1.5f, 1.5f, 6}), 0.1f), 2.0f);
+    // One twisted quad: all four corners are sharp corners, the face term alone sees it.
+    std::vector<glm::vec3> quad{{0, 0, 0}, {1, 0, 0.3f}, {1, 1, 0}, {0, 1, 0.3f}};
+    hd::MeshTopology one;
+    one.faceVertexCounts = {4};
+    one.faceVertexIndices = {0, 1, 2, 3};
+    EXPECT_GT(deviationLevel(quad, one, hd::SubdivTags{}, camera({0.5f, 0.5f, 5}), 0.1f), 2.0f);
+    // The same quad flat: nothing to refine.
+    for (glm::vec3& p : quad) p.z = 0.0f;
+    EXPECT_EQ(deviationLevel(quad, one, hd::SubdivTags{}, camera({0.5f, 0.5f, 5}), 0.1f), -INFINITY);
+}
+
+TEST(DeviationLevel, AConcavePolygonGetsNoEstimate) {
+    // A flat ten-point star: the level-0 fan would fill its notches.
+    std::vector<glm::vec3> star;
+    hd::MeshTopology t;
+    for (int k = 0; k < 10; ++k) {
+        const float a = float(k) * 0.6283185f, r = k % 2 ? 0.4f : 1.0f;
+        star.emplace_back(r * std::cos(a), r * std::sin(a), 0.0f);
+        t.faceVertexIndices.push_back(k);
+    }
+    t.faceVertexCounts = {10};
+    EXPECT_EQ(deviationLevel(star, t, hd::SubdivTags{}, camera({0, 0, 5}), 0.1f), INFINITY);
+}
+
+TEST(DeviationLevel, PrimvarsFollowTheCageOnlyWhenTheyAreTheirOwnLimit) {
+    std::vector<glm::vec3> points;
+    hd::MeshTopology t;
+    grid(4, 0.0f, &points, &t);
+    // st linear over the regular grid (planar projection): its own limit.
+    std::vector<float> st;
+    for (const glm::vec3& p : points) st.insert(st.end(), {0.25f * p.x, 0.25f * p.y});
+    EXPECT_TRUE(valuesFollowTheCage(st, 2, t, t.faceVertexIndices, true, 1e-4));
+    // A painted colour (one bright vertex) is smoothed by the refinement.
+    std::vector<float> color(points.size() * 3, 0.2f);
+    color[3 * 12] = 1.0f;
+    EXPECT_FALSE(valuesFollowTheCage(color, 3, t, t.faceVertexIndices, true, 1e-4));
+    // A stretched layout (s = x^2) is not linear either.
+    for (size_t i = 0; i < points.size(); ++i) st[2 * i] = points[i].x * points[i].x;
+    EXPECT_FALSE(valuesFollowTheCage(st, 2, t, t.faceVertexIndices, true, 1e-4));
+}

@@ -217,6 +217,11 @@ std::optional<subdiv::LevelPlan> Mesh::levelPlan(SceneDelegate* delegate, Embree
                      [&] { return primvarsFollowTheCage(delegate, id(), topo, tags); });
 }
 
+void Mesh::finalize(RenderParam* param) {
+    if (_plan) static_cast<EmbreeRenderParam*>(param)->requestSubdivisionRefit();
+    GeometryPrim::finalize(param);
+}
+
 RTCGeometry Mesh::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderParam* param) {
     // A level granted for this rebuild is used by it or by nothing (never by a later one).
     const int granted = std::exchange(_grantedLevel, -1);

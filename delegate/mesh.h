@@ -27,6 +27,9 @@ public:
     /// The subdivision level used at the last rebuild (0: the polygons themselves).
     int refineLevel() const { return _level; }
 
+    /// Asks for a refit of the subdivision budget when this mesh held part of it.
+    void finalize(hd::RenderParam* param) override;
+
     /// Whether a sync with these dirty bits rebuilds the geometry (and so picks a level).
     bool rebuildsOn(hd::DirtyBits bits) const { return (bits & geometryBits()) != 0; }
     /// What a rebuild now would ask of the scene-wide subdivision budget, read from the scene

@@ -659,8 +659,10 @@ void EmbreeRenderDelegate::setRenderSetting(const Token& key, const Value& value
     if (key == Token("defaultLighting")) _param->markTablesDirty();
     // Subdivision settings apply to meshes (re)built afterwards.
     if (key == Token("refineLevel") || key == Token("dicingRate") || key == Token("maxRefineLevel") ||
-        key == Token("dicingTolerance"))
+        key == Token("dicingTolerance") || key == Token("subdivisionBudget")) {
         updateDicing();
+        _subdivisionSettingsChanged = true;  // the next sync re-plans every subdivision mesh
+    }
 }
 
 void EmbreeRenderDelegate::prepareRprimSync(const std::vector<hd::Rprim*>& prims,
@@ -677,6 +679,14 @@ void EmbreeRenderDelegate::prepareRprimSync(const std::vector<hd::Rprim*>& prims
             rebuilt.push_back(i);
             rebuilding.insert(m);
         }
+    // Dicing settings changed since the last sync: every subdivision mesh is planned afresh
+    // (this call hands them back to be rebuilt; the next one plans them).
+    if (_subdivisionSettingsChanged.exchange(false)) {
+        for (GeometrySource* g : _param->geometry())
+            if (auto* m = dynamic_cast<Mesh*>(g); m && m->plan() && !rebuilding.count(m))
+                alsoSync->emplace_back(m, hd::RprimDirty::Topology);
+        if (!alsoSync->empty()) return;
+    }
     std::vector<std::optional<subdiv::LevelPlan>> fresh(rebuilt.size());
     tbb::parallel_for(size_t(0), rebuilt.size(), [&](size_t j) {
         const size_t i = rebuilt[j];
@@ -693,13 +703,15 @@ void EmbreeRenderDelegate::prepareRprimSync(const std::vector<hd::Rprim*>& prims
         owners.push_back(m);
         isRebuilt.push_back(1);
     }
-    if (plans.empty()) return;  // nothing to refine in this sync
+    // Nothing to refine in this sync and no mesh removed: the last fit stands.
+    if (!_param->takeSubdivisionRefit() && plans.empty()) return;
     for (GeometrySource* g : _param->geometry())
         if (auto* m = dynamic_cast<Mesh*>(g); m && !rebuilding.count(m) && m->plan()) {
             plans.push_back(*m->plan());
             owners.push_back(m);
             isRebuilt.push_back(0);
         }
+    if (plans.empty()) return;
     const double budget = std::max(0.0f, floatSetting("subdivisionBudget", 16e6f));
     const subdiv::LevelBudgetFit fit = subdiv::fitLevelBudget(plans, budget);
     for (size_t j = 0; j < plans.size(); ++j) {

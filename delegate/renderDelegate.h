@@ -106,6 +106,7 @@ private:
     /// LightRecord::linkBit of the linked lights and GeometryRecord::lightLinks of every prim.
     void assignLightLinks();
     bool _lightLinksAssigned = false;  ///< some prim may hold link bits (assignLightLinks)
+    std::atomic<bool> _subdivisionSettingsChanged{false};  ///< re-plan every mesh at the next sync
     bool mayEmit(const GeometryRecord* r) const;
     /// Whether material `materialIndex` of the table may emit (MaterialRecord::mayEmit).
     bool materialMayEmit(int materialIndex) const;

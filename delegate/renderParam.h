@@ -169,6 +169,11 @@ public:
     shading::TextureCache* textureCache() const { return _textures; }
     void setTextureCache(shading::TextureCache* t) { _textures = t; }
 
+    /// A subdivision mesh went away: the scene-wide budget is fitted again at the next sync
+    /// (EmbreeRenderDelegate::prepareRprimSync), from the plans the others were built with.
+    void requestSubdivisionRefit() { _subdivisionRefit = true; }
+    bool takeSubdivisionRefit() { return _subdivisionRefit.exchange(false); }
+
     // Counters for render stats and for tests of incremental updates.
     std::atomic<long> blasBuilds{0};
     std::atomic<long> meshesRebuilt{0};
@@ -191,6 +196,7 @@ private:
     std::atomic<bool> _sceneDirty{true};
     std::atomic<bool> _tablesDirty{true};
     std::atomic<bool> _lightsDirty{false};
+    std::atomic<bool> _subdivisionRefit{false};
     bool _materialSetChanged = false, _geometrySetChanged = false;
     std::set<MaterialSource*> _changedMaterials;
     std::set<GeometrySource*> _changedBindings, _changedGeometry;

@@ -36,8 +36,9 @@ public:
     virtual RenderParam* renderParam() = 0;
     /// Called once per sync before the dirty rprims sync (in parallel): prims[i] will sync
     /// through delegates[i] with bits[i]. For plans that need every rprim at once (a
-    /// scene-wide budget). Rprims the plan changes that are not dirty go into *alsoSync with
-    /// the bits to sync them with. The default does nothing.
+    /// scene-wide budget). Rprims the plan changes go into *alsoSync with the bits to sync
+    /// them with (added to this sync, or to the bits of one already in it); while it adds any,
+    /// the render index calls it again with the extended lists. The default does nothing.
     virtual void prepareRprimSync(const std::vector<Rprim*>& prims, const std::vector<SceneDelegate*>& delegates,
                                   const std::vector<DirtyBits>& bits,
                                   std::vector<std::pair<Rprim*, DirtyBits>>* alsoSync) {

@@ -156,24 +156,31 @@ void RenderIndex::sync() {
         prims[i] = e.prim.get();
         delegates[i] = e.sceneDelegate;
     }
-    std::vector<std::pair<Rprim*, DirtyBits>> also;
-    _renderDelegate->prepareRprimSync(prims, delegates, bits, &also);
+    // The plan may pull more rprims into this sync (a scene-wide fit that moves clean ones);
+    // it is asked again with them until it adds none, so it plans from every prim it syncs.
     std::unordered_map<Rprim*, size_t> syncing;
-    if (!also.empty())
-        for (size_t i = 0; i < prims.size(); ++i) syncing.emplace(prims[i], i);
-    for (const auto& [prim, extra] : also) {
-        auto it = _rprims.find(prim->id());
-        if (it == _rprims.end() || it->second.prim.get() != prim) continue;
-        if (auto s = syncing.find(prim); s != syncing.end()) {  // already syncing: for more now
-            bits[s->second] |= extra;
-            continue;
+    for (size_t i = 0; i < prims.size(); ++i) syncing.emplace(prims[i], i);
+    for (;;) {
+        std::vector<std::pair<Rprim*, DirtyBits>> also;
+        _renderDelegate->prepareRprimSync(prims, delegates, bits, &also);
+        bool added = false;
+        for (const auto& [prim, extra] : also) {
+            auto it = _rprims.find(prim->id());
+            if (it == _rprims.end() || it->second.prim.get() != prim) continue;
+            if (auto s = syncing.find(prim); s != syncing.end()) {  // already syncing: for more now
+                added = added || (bits[s->second] | extra) != bits[s->second];
+                bits[s->second] |= extra;
+                continue;
+            }
+            syncing.emplace(prim, prims.size());
+            dirty.push_back(prim->id());
+            bits.push_back(extra);
+            _lastSync.rprims.emplace_back(prim->id(), extra);
+            prims.push_back(prim);
+            delegates.push_back(it->second.sceneDelegate);
+            added = true;
         }
-        syncing.emplace(prim, prims.size());
-        dirty.push_back(prim->id());
-        bits.push_back(extra);
-        _lastSync.rprims.emplace_back(prim->id(), extra);
-        prims.push_back(prim);
-        delegates.push_back(it->second.sceneDelegate);
+        if (!added) break;
     }
     tbb::parallel_for(size_t(0), dirty.size(), [&](size_t i) { prims[i]->sync(delegates[i], param, &bits[i]); });
     for (size_t i = 0; i < dirty.size(); ++i) _tracker.setClean(K::Rprim, dirty[i], bits[i]);

@@ -220,3 +220,46 @@ TEST(SubdivMemory, AMeshDirtyForAnotherReasonStillFollowsTheFit) {
     EXPECT_EQ(triangles(index, ids, &levels), size_t(5 * 2048));
     EXPECT_EQ(levels, (std::vector<int>{2, 2, 2, 2, 2}));
 }
+
+// Changing a dicing setting or the budget re-plans every subdivision mesh at the next sync,
+// with nothing else dirty.
+TEST(SubdivMemory, ChangingTheBudgetReplansEveryMeshAtTheNextSync) {
+    embree::EmbreeRenderDelegate delegate;
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(50000));
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    std::vector<hd::Path> ids{hd::Path("/a"), hd::Path("/b"), hd::Path("/c")};
+    for (const auto& id : ids) addGrid(scene, id, 8, 4);
+    index.sync();
+    std::vector<int> levels;
+    triangles(index, ids, &levels);
+    EXPECT_EQ(levels, (std::vector<int>{3, 3, 3}));
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(0));  // no limit
+    index.sync();
+    triangles(index, ids, &levels);
+    EXPECT_EQ(levels, (std::vector<int>{4, 4, 4}));
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(10000));
+    index.sync();
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(3 * 2048));
+    EXPECT_EQ(levels, (std::vector<int>{2, 2, 2}));
+    index.sync();  // nothing changed: nothing rebuilt
+    EXPECT_TRUE(index.lastSync().rprims.empty());
+}
+
+// Removing a mesh fits the budget again: the others may rise to where a fresh scene puts them.
+TEST(SubdivMemory, RemovingAMeshRefitsTheOthers) {
+    embree::EmbreeRenderDelegate delegate;
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(35000));
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    std::vector<hd::Path> ids{hd::Path("/a"), hd::Path("/b"), hd::Path("/c"), hd::Path("/d"), hd::Path("/e")};
+    for (const auto& id : ids) addGrid(scene, id, 8, 4);
+    index.sync();
+    std::vector<int> levels;
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(5 * 2048));  // five at 3 would be 40960
+    index.removeRprim(ids.back());
+    ids.pop_back();
+    index.sync();
+    EXPECT_EQ(triangles(index, ids, &levels), size_t(4 * 8192));  // four at 3: 32768
+    EXPECT_EQ(levels, (std::vector<int>{3, 3, 3, 3}));
+}

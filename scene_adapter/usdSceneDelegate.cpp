@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "scene_adapter/usdSceneDelegate.h"
 
+#include "scene_adapter/skinning.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -44,6 +46,7 @@ std::string tokenAttr(const usd::Prim& prim, const char* name, double time,
 const std::set<std::string>& ignoredTypes() {
     static const std::set<std::string> t{"",        "Xform",    "Scope",         "Shader",
                                          "NodeGraph", "GeomSubset", "SkelRoot",  "RenderSettings",
+                                         "Skeleton", "SkelAnimation",
                                          "RenderProduct", "RenderVar", "Material"};
     return t;
 }
@@ -144,7 +147,15 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
             e.material = resolveMaterialBinding(prim);
             e.subsetMaterials = subsetBindings(prim);
         }
-        if (hdType == tokens::mesh() && type == "Mesh") checkExtent(prim);
+        if (hdType == tokens::mesh() && type == "Mesh") {
+            checkExtent(prim);
+            std::vector<std::string> skinWarnings;
+            if (auto posed = skinMesh(_stage, prim, _time, &skinWarnings)) {
+                e.world = posed->world;  // UsdSkel: the skeleton's space, not the mesh's own
+                e.skinned = std::make_shared<const SkinnedMesh>(std::move(*posed));
+            }
+            for (const std::string& w : skinWarnings) warn(prim.location().str() + ": " + prim.path(), w);
+        }
         bool ok = !isImplicitShape(type) || prepareShape(prim, &e);  // warns when not
         bool inserted = ok && (isRprim ? index->insertRprim(hdType, this, id)
                                        : index->insertSprim(hdType, this, id));
@@ -301,6 +312,10 @@ Value UsdSceneDelegate::get(const Path& id, const Token& key) const {
     if (const Entry* e = entry(id); e->shape || !e->instancer.empty() || e->type == Token("instancer"))
         if (Value v = shapeOrInstancerValue(*e, key); !isEmpty(v)) return v;
     const std::string& k = key.str();
+    if (const Entry* e = entry(id); e && e->skinned) {
+        if (key == tokens::points()) return Value(e->skinned->points);
+        if (key == tokens::normals()) return e->skinned->normals.empty() ? Value() : Value(e->skinned->normals);
+    }
     if (k == "points" || k == "radius") return attributeValue(*p, k);
     if (k == "normals") {
         Value v = attributeValue(*p, "primvars:normals");
@@ -335,6 +350,7 @@ std::vector<PrimvarDescriptor> UsdSceneDelegate::getPrimvarDescriptors(const Pat
         if (n.size() > 8 && n.compare(n.size() - 8, 8, ":indices") == 0) continue;
         if (!a->hasValue()) continue;
         std::string name = stripNamespace(n, "primvars:");
+        if (name.rfind("skel:", 0) == 0) continue;  // UsdSkel's influences, not shading data
         if (name == "normals") primvarNormals = true;
         Interpolation i = attributeInterpolation(*a, Interpolation::Constant);
         if (i != interp) continue;
@@ -343,6 +359,12 @@ std::vector<PrimvarDescriptor> UsdSceneDelegate::getPrimvarDescriptors(const Pat
         d.interpolation = i;
         d.indexed = p->attribute(n + ":indices") != nullptr;
         out.push_back(d);
+    }
+    // A skinned mesh whose normals could not be posed has none.
+    if (const Entry* e = entry(id); e && e->skinned && e->skinned->normals.empty()) {
+        out.erase(std::remove_if(out.begin(), out.end(), [](const PrimvarDescriptor& d) { return d.name == tokens::normals(); }),
+                  out.end());
+        return out;
     }
     // UsdGeomPointBased "normals": vertex interpolation unless authored otherwise.
     if (!primvarNormals)

@@ -26,6 +26,7 @@ class Prim;
 namespace principled::adapter {
 
 struct ShapeMesh;
+struct SkinnedMesh;
 
 struct AdapterOptions {
     double time = std::numeric_limits<double>::quiet_NaN();  ///< NaN: the stage's default time
@@ -113,6 +114,8 @@ private:
         std::string subsetMaterials;
         // Implicit shapes (Cube, Cylinder, Cone, Capsule): the generated mesh.
         std::shared_ptr<const ShapeMesh> shape;
+        // UsdSkel: the mesh posed by its skeleton (points, normals; world is the skeleton's).
+        std::shared_ptr<const SkinnedMesh> skinned;
         // PointInstancer prototypes: the instancer drawing them and their prototype index
         // (getTransform is then relative to the instancer).
         hd::Path instancer;

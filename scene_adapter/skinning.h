@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: Apache-2.0
+// UsdSkel linear blend skinning: a Mesh bound to a Skeleton (SkelBindingAPI) drawn in the pose
+// of its animation at the delegate's time.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace principled::usd {
+class Stage;
+class Prim;
+}  // namespace principled::usd
+
+namespace principled::adapter {
+
+/// The posed mesh: points (and normals, when authored per point or per corner) in the bound
+/// Skeleton's space, and that space's world transform, which replaces the mesh's own (UsdSkel
+/// ignores a skinned prim's transform).
+struct SkinnedMesh {
+    std::vector<glm::vec3> points;
+    std::vector<glm::vec3> normals;  ///< empty when the mesh has none (or not per point/corner)
+    glm::dmat4 world{1.0};
+    std::string skeleton;  ///< path of the bound Skeleton
+};
+
+/// Skins `mesh` at `time` when it lies under a SkelRoot and is bound (skel:skeleton on it or an
+/// ancestor) to a Skeleton, with joint influences (primvars:skel:jointIndices/jointWeights,
+/// vertex or constant). Per point, column-vector convention:
+///   p_world = S * sum_i w_i * J_i * inverse(B_i) * G * p     (UsdSkel "Skinning a Prim": LBS)
+/// S the Skeleton's world transform, J_i joint i's skeleton-space transform (animation, else
+/// restTransforms, composed down the joint paths), B_i its bindTransforms entry, G
+/// primvars:skel:geomBindTransform (inherited from ancestors; identity if none), w_i normalised.
+/// Normals take the inverse transpose of each joint's 3x3 (sum, then normalised).
+/// std::nullopt when the mesh is not skinned; malformed data (sizes that do not match, unknown
+/// joints, a missing skeleton) adds a warning (about the mesh, without its path) and leaves the
+/// mesh unskinned. Not done: blend shapes, dual-quaternion skinning (skel:skinningMethod),
+/// instanceable skinned prims; edits to a Skeleton or SkelAnimation do not re-pose.
+std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& mesh, double time,
+                                    std::vector<std::string>* warnings);
+
+/// The world transform of `prim` at `time` (its xformOps and its ancestors').
+glm::dmat4 worldTransform(const usd::Prim& prim, double time);
+
+}  // namespace principled::adapter

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: Apache-2.0
+// UsdSkel linear blend skinning against hand-computed poses.
+#include "scene_adapter/skinning.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "delegate/hd/tokens.h"
+#include "delegate/renderDelegate.h"
+#include "scene_adapter/usdSceneDelegate.h"
+#include "scene_adapter/usda/stage.h"
+
+using namespace principled;
+
+namespace {
+
+// A two-joint arm along +x: "arm" at the origin, "arm/hand" at x = 1 (bind and rest alike).
+// The SkelRoot sits at y = 10, the mesh's own transform (x = 100) must be ignored. Points:
+// p0 (0.5, 0, 0) on the arm only, p1 (1.5, 0, 0) on the hand only, p2 (1.5, 1, 0) half and half.
+// The animation turns the hand 90 degrees about z (quaternion (cos 45, 0, 0, sin 45)).
+std::string scene(const std::string& extra, const std::string& animation) {
+    return R"(#usda 1.0
+def SkelRoot "Rig" (
+    prepend apiSchemas = ["SkelBindingAPI"]
+)
+{
+    double3 xformOp:translate = (0, 10, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    rel skel:skeleton = </Rig/Skel>
+    def Skeleton "Skel" (
+        prepend apiSchemas = ["SkelBindingAPI"]
+    )
+    {
+        uniform token[] joints = ["arm", "arm/hand"]
+        uniform matrix4d[] bindTransforms = [((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1)), ((1,0,0,0),(0,1,0,0),(0,0,1,0),(1,0,0,1))]
+        uniform matrix4d[] restTransforms = [((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1)), ((1,0,0,0),(0,1,0,0),(0,0,1,0),(1,0,0,1))]
+)" + animation + R"(
+    }
+    def SkelAnimation "Anim"
+    {
+        uniform token[] joints = ["arm/hand"]
+        float3[] translations = [(1, 0, 0)]
+        quatf[] rotations = [(0.70710678, 0, 0, 0.70710678)]
+        half3[] scales = [(1, 1, 1)]
+    }
+    def Mesh "Arm" (
+        prepend apiSchemas = ["SkelBindingAPI"]
+    )
+    {
+        double3 xformOp:translate = (100, 0, 0)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+        int[] faceVertexCounts = [3]
+        int[] faceVertexIndices = [0, 1, 2]
+        point3f[] points = [(0.5, 0, 0), (1.5, 0, 0), (1.5, 1, 0)]
+        normal3f[] normals = [(0, 1, 0), (0, 1, 0), (0, 1, 0)] (interpolation = "vertex")
+)" + extra + R"(
+    }
+}
+)";
+}
+
+const char* kInfluences = R"(
+        int[] primvars:skel:jointIndices = [0, 0, 1, 0, 0, 1] (interpolation = "vertex" elementSize = 2)
+        float[] primvars:skel:jointWeights = [1, 0, 1, 0, 0.5, 0.5] (interpolation = "vertex" elementSize = 2)
+)";
+const char* kAnimated = R"(        rel skel:animationSource = </Rig/Anim>)";
+
+struct Posed {
+    std::unique_ptr<usd::Stage> stage;
+    embree::EmbreeRenderDelegate renderDelegate;
+    hd::RenderIndex index{&renderDelegate};
+    std::unique_ptr<adapter::UsdSceneDelegate> scene;
+    explicit Posed(const std::string& text) {
+        stage = usd::Stage::openString(text, "skel.usda");
+        scene = std::make_unique<adapter::UsdSceneDelegate>(*stage);
+        scene->populate(&index);
+    }
+    std::vector<glm::vec3> get(const char* key) const {
+        hd::Value v = scene->get(hd::Path("/Rig/Arm"), hd::Token(key));
+        const auto* p = hd::getIf<std::vector<glm::vec3>>(v);
+        return p ? *p : std::vector<glm::vec3>();
+    }
+    bool warned(const std::string& what) const {
+        for (const auto& w : scene->warnings())
+            if (w.find(what) != std::string::npos) return true;
+        return false;
+    }
+};
+
+void expectNear(const glm::vec3& a, const glm::vec3& b) {
+    EXPECT_NEAR(a.x, b.x, 1e-5f);
+    EXPECT_NEAR(a.y, b.y, 1e-5f);
+    EXPECT_NEAR(a.z, b.z, 1e-5f);
+}
+
+}  // namespace
+
+TEST(Skinning, TheRestPoseIsTheBindPoseInTheSkeletonsSpace) {
+    Posed s(scene(kInfluences, ""));
+    const auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    expectNear(p[0], {0.5f, 0, 0});
+    expectNear(p[1], {1.5f, 0, 0});
+    expectNear(p[2], {1.5f, 1, 0});
+    // The skeleton's world transform (the SkelRoot's y = 10), not the mesh's own x = 100.
+    const glm::dmat4 w = s.scene->getTransform(hd::Path("/Rig/Arm"));
+    EXPECT_DOUBLE_EQ(w[3][0], 0.0);
+    EXPECT_DOUBLE_EQ(w[3][1], 10.0);
+}
+
+TEST(Skinning, TheAnimationTurnsTheHandAndBlendsTheSharedPoint) {
+    Posed s(scene(kInfluences, kAnimated));
+    const auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    // Hand turned 90 degrees about z around (1, 0, 0): (1.5, 0) -> (1, 0.5), (1.5, 1) -> (0, 0.5).
+    expectNear(p[0], {0.5f, 0, 0});
+    expectNear(p[1], {1.0f, 0.5f, 0});
+    // Half arm (unmoved (1.5, 1)) and half hand ((0, 0.5)): the blended matrix's image.
+    expectNear(p[2], {0.75f, 0.75f, 0});
+    // Normals: the arm's stays +y; the hand's turns to -x; the blend's is normalised.
+    const auto n = s.get("normals");
+    ASSERT_EQ(n.size(), 3u);
+    expectNear(n[0], {0, 1, 0});
+    expectNear(n[1], {-1, 0, 0});
+    EXPECT_NEAR(glm::length(n[2]), 1.0f, 1e-5f);
+    // The influences are not shading primvars.
+    for (const auto& d : s.scene->getPrimvarDescriptors(hd::Path("/Rig/Arm"), hd::Interpolation::Vertex))
+        EXPECT_EQ(d.name.str().rfind("skel:", 0), std::string::npos) << d.name.str();
+}
+
+TEST(Skinning, TheMeshsOwnJointOrderAndTheGeomBindTransformApply) {
+    // skel:joints reverses the order, so index 1 is "arm" and 0 is "arm/hand"; the geometry
+    // was bound 1 unit lower in y (geomBindTransform lifts it back).
+    const std::string extra = R"(
+        uniform token[] skel:joints = ["arm/hand", "arm"]
+        int[] primvars:skel:jointIndices = [1, 1, 0, 1, 1, 0] (interpolation = "vertex" elementSize = 2)
+        float[] primvars:skel:jointWeights = [1, 0, 1, 0, 0.5, 0.5] (interpolation = "vertex" elementSize = 2)
+        matrix4d primvars:skel:geomBindTransform = ((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,1,0,1))
+)";
+    Posed s(scene(extra, kAnimated));
+    const auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    expectNear(p[0], {0.5f, 1, 0});    // arm only: lifted by the geomBindTransform
+    expectNear(p[1], {0.0f, 0.5f, 0});  // (1.5, 1) under the turned hand
+}
+
+TEST(Skinning, MalformedBindingsWarnAndDrawTheBindPose) {
+    const std::string badIndex = R"(
+        int[] primvars:skel:jointIndices = [0, 0, 7, 0, 0, 1] (interpolation = "vertex" elementSize = 2)
+        float[] primvars:skel:jointWeights = [1, 0, 1, 0, 0.5, 0.5] (interpolation = "vertex" elementSize = 2)
+)";
+    Posed s(scene(badIndex, kAnimated));
+    EXPECT_TRUE(s.warned("out of range"));
+    const auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    expectNear(p[1], {1.5f, 0, 0});  // as authored
+    const std::string shortWeights = R"(
+        int[] primvars:skel:jointIndices = [0, 0, 1, 0, 0, 1] (interpolation = "vertex" elementSize = 2)
+        float[] primvars:skel:jointWeights = [1, 0, 1] (interpolation = "vertex" elementSize = 2)
+)";
+    Posed t(scene(shortWeights, kAnimated));
+    EXPECT_TRUE(t.warned("expected 6"));
+}

@@ -140,6 +140,13 @@ private:
                              const std::function<void(const glm::dmat4&, const glm::dvec3&)>& grow) const;
 
     // Change processing helpers (usdSceneDelegateEdits.cpp).
+    /// UsdSkel: poses again every skinned mesh and every mesh at or below `edited`.
+    void reposeSkinned(const usd::Prim& edited, hd::RenderIndex* index);
+    bool hasSkinnedMeshes() const {
+        for (const auto& [id, e] : _entries)
+            if (e.skinned) return true;
+        return false;
+    }
     struct Ancestry {
         glm::dmat4 parentWorld{1.0};
         bool parentVisible = true;

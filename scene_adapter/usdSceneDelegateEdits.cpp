@@ -23,6 +23,8 @@
 
 #include "delegate/hd/tokens.h"
 #include "scene_adapter/usdSceneDelegate.h"
+
+#include "scene_adapter/skinning.h"
 #include "scene_adapter/usda/stage.h"
 #include "scene_adapter/xformOps.h"
 
@@ -419,12 +421,46 @@ void UsdSceneDelegate::materialNetworkChanged(const usd::Prim& prim, DirtyBits b
             index->changeTracker().markSprimDirty(id, bits);
 }
 
+void UsdSceneDelegate::reposeSkinned(const usd::Prim& edited, RenderIndex* index) {
+    // Meshes posed before, and meshes at or below the edit (a binding may have appeared).
+    ChangeTracker& tracker = index->changeTracker();
+    const std::string below = edited.path() == "/" ? "/" : edited.path() + "/";
+    for (auto& [id, e] : _entries) {
+        if (!e.prim || e.prim->typeName() != "Mesh" || !e.instancer.empty()) continue;
+        const std::string& path = e.prim->path();
+        if (!e.skinned && path != edited.path() && path.rfind(below, 0) != 0) continue;
+        std::vector<std::string> warnings;
+        std::optional<SkinnedMesh> posed = skinMesh(_stage, *e.prim, _time, &warnings);
+        for (const std::string& w : warnings) warn(e.prim->location().str() + ": " + path, w);
+        if (!posed && !e.skinned) continue;
+        if (posed) {
+            e.world = posed->world;
+            e.skinned = std::make_shared<const SkinnedMesh>(std::move(*posed));
+        } else {  // no longer skinned: its own transform again
+            e.skinned.reset();
+            e.world = worldTransform(*e.prim, _time);
+        }
+        tracker.markRprimDirty(id, RprimDirty::Points | RprimDirty::Normals | RprimDirty::Transform |
+                                       RprimDirty::Primvar);
+    }
+}
+
 void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::string& attr,
                                         RenderIndex* index) {
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;
-    if (startsWith(attr, "xformOp:") || attr == "xformOpOrder") return transformChanged(*p, index);
+    // UsdSkel: a skeleton, its animation, a binding or a skinned mesh's points changed.
+    const bool skel = p->typeName() == "Skeleton" || p->typeName() == "SkelAnimation" ||
+                      startsWith(attr, "primvars:skel:") || startsWith(attr, "skel:");
+    if (startsWith(attr, "xformOp:") || attr == "xformOpOrder") {
+        transformChanged(*p, index);
+        if (hasSkinnedMeshes()) reposeSkinned(*p, index);  // the skeleton's space may have moved
+        return;
+    }
+    if (skel) return reposeSkinned(*p, index);
+    if (attr == "points" || attr == "normals" || attr == "primvars:normals")
+        if (const Entry* e = entry(Path(primPath)); e && e->skinned) return reposeSkinned(*p, index);
     if (attr == "visibility") return visibilityChanged(*p, index);
     if (attr == "purpose") return resyncSubtree(primPath, index);
     if (startsWith(attr, "collection:")) return collectionChanged(index);
@@ -478,6 +514,7 @@ void UsdSceneDelegate::relationshipChanged(const std::string& primPath, const st
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;
     if (startsWith(name, "collection:")) return collectionChanged(index);
+    if (startsWith(name, "skel:")) return reposeSkinned(*p, index);
     if (startsWith(name, "material:binding")) {
         if (p->typeName() == "GeomSubset") return attributeChanged(primPath, name, index);
         if (subtreeHasInstances(primPath)) return repopulate(index);  // keys hold the binding

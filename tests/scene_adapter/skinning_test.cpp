@@ -8,6 +8,7 @@
 
 #include "delegate/hd/tokens.h"
 #include "delegate/renderDelegate.h"
+#include "scene_adapter/stageEditor.h"
 #include "scene_adapter/usdSceneDelegate.h"
 #include "scene_adapter/usda/stage.h"
 
@@ -161,4 +162,22 @@ TEST(Skinning, MalformedBindingsWarnAndDrawTheBindPose) {
 )";
     Posed t(scene(shortWeights, kAnimated));
     EXPECT_TRUE(t.warned("expected 6"));
+}
+
+TEST(Skinning, EditingTheAnimationPosesTheMeshAgain) {
+    Posed s(scene(kInfluences, kAnimated));
+    s.index.sync();
+    adapter::StageEditor editor(*s.stage, *s.scene, s.index);
+    editor.setAttribute("/Rig/Anim", "rotations", adapter::EditValue::of({1, 0, 0, 0}));  // unturned
+    EXPECT_NE(s.index.changeTracker().dirtyBits(hd::ChangeTracker::Kind::Rprim, hd::Path("/Rig/Arm")) &
+                  hd::RprimDirty::Points,
+              0u);
+    auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    expectNear(p[1], {1.5f, 0, 0});
+    // Moving the SkelRoot moves the skeleton's space, so the mesh follows.
+    const double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 20, 0, 1};
+    editor.setTransform("/Rig", m);
+    EXPECT_DOUBLE_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][1], 20.0);
+    EXPECT_DOUBLE_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 0.0);
 }

@@ -146,13 +146,20 @@ bool cageIsValid(const MeshTopology& topo, const std::vector<glm::vec3>& points)
 // uniform ones do not vary over a face.
 bool primvarsFollowTheCage(SceneDelegate* delegate, const Path& id, const MeshTopology& topo, const SubdivTags& tags) {
     constexpr double kTolerance = 1e-4;
+    std::vector<int> valueIndices;
+    std::vector<float> flat;
+    int components = 0;
+    // The primvar's values (flattened) and indices; false for one that is not numeric data.
+    auto read = [&](const PrimvarDescriptor& desc) {
+        valueIndices.clear();
+        flat.clear();
+        components = 0;
+        return !isGeometryPrimvar(desc.name) &&
+               flattenFloats(delegate->getIndexedPrimvar(id, desc.name, &valueIndices), &flat, &components) &&
+               components > 0;
+    };
     for (const auto& desc : delegate->getPrimvarDescriptors(id, Interpolation::Vertex)) {
-        if (isGeometryPrimvar(desc.name)) continue;
-        std::vector<int> valueIndices;
-        std::vector<float> flat;
-        int components = 0;
-        if (!flattenFloats(delegate->getIndexedPrimvar(id, desc.name, &valueIndices), &flat, &components)) continue;
-        if (components <= 0) continue;
+        if (!read(desc)) continue;
         if (!valueIndices.empty()) {  // one value per point through the indices
             std::vector<float> perPoint;
             perPoint.reserve(valueIndices.size() * size_t(components));
@@ -170,12 +177,7 @@ bool primvarsFollowTheCage(SceneDelegate* delegate, const Path& id, const MeshTo
     const Token fvarRule = tags.faceVaryingLinearInterpolation;
     if (fvarRule == Token("all")) return true;  // face-varying values stay linear
     for (const auto& desc : delegate->getPrimvarDescriptors(id, Interpolation::FaceVarying)) {
-        if (isGeometryPrimvar(desc.name)) continue;
-        std::vector<int> valueIndices;
-        std::vector<float> flat;
-        int components = 0;
-        if (!flattenFloats(delegate->getIndexedPrimvar(id, desc.name, &valueIndices), &flat, &components)) continue;
-        if (components <= 0) continue;
+        if (!read(desc)) continue;
         if (valueIndices.empty()) {  // one value per corner: every face its own island
             valueIndices.resize(flat.size() / size_t(components));
             for (size_t i = 0; i < valueIndices.size(); ++i) valueIndices[i] = int(i);

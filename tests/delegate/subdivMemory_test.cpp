@@ -263,3 +263,24 @@ TEST(SubdivMemory, RemovingAMeshRefitsTheOthers) {
     EXPECT_EQ(triangles(index, ids, &levels), size_t(4 * 8192));  // four at 3: 32768
     EXPECT_EQ(levels, (std::vector<int>{3, 3, 3, 3}));
 }
+
+// A flat cage is drawn unrefined only when its primvars are their own limit too: a linear st
+// and colour keep level 0, a painted colour (smoothed by the refinement) does not.
+TEST(SubdivMemory, AFlatCageStaysUnrefinedOnlyWithPrimvarsThatFollowIt) {
+    auto levelWith = [](bool painted) {
+        embree::EmbreeRenderDelegate delegate;
+        delegate.setDicingView(glm::vec3(0.5f, 0.5f, 2.0f), 0.8f, 500);
+        hd::RenderIndex index{&delegate};
+        TestSceneDelegate scene{&index};
+        const hd::Path id("/flat");
+        addGrid(scene, id, 8, -1);  // adaptive
+        auto& p = scene.prim(id);
+        auto& points = std::get<std::vector<glm::vec3>>(p.values[hd::tokens::points()]);
+        for (glm::vec3& q : points) q.z = 0.0f;
+        if (painted) std::get<std::vector<glm::vec3>>(p.values[hd::Token("displayColor")])[40] = glm::vec3(1, 0, 0);
+        index.sync();
+        return dynamic_cast<embree::Mesh*>(index.rprim(id))->refineLevel();
+    };
+    EXPECT_EQ(levelWith(false), 0);
+    EXPECT_GT(levelWith(true), 0);
+}

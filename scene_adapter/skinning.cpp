@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 #include <unordered_map>
 
 #include <glm/gtc/quaternion.hpp>
@@ -16,15 +17,20 @@ namespace principled::adapter {
 
 namespace {
 
-// The nearest prim at or above `p` with a value (or targets) for `name`.
+// The nearest prim at or above `p`, up to its SkelRoot, with a value (or targets) for `name`:
+// UsdSkel resolves bindings within the SkelRoot.
 const usd::Attribute* inheritedAttribute(const usd::Prim* p, const char* name) {
-    for (; p; p = p->parent())
+    for (; p; p = p->parent()) {
         if (const usd::Attribute* a = p->attribute(name); a && a->hasValue()) return a;
+        if (p->typeName() == "SkelRoot") break;
+    }
     return nullptr;
 }
 const usd::Relationship* inheritedRelationship(const usd::Prim* p, const char* name) {
-    for (; p; p = p->parent())
+    for (; p; p = p->parent()) {
         if (const usd::Relationship* r = p->relationship(name); r && !r->targets().empty()) return r;
+        if (p->typeName() == "SkelRoot") break;
+    }
     return nullptr;
 }
 
@@ -58,9 +64,12 @@ std::vector<double> numbers(const usd::Attribute* a, double time, int components
     if (!n || v.components() != components) return {};
     return *n;
 }
+// elementSize metadata (1 when absent); 0 when it is not a usable count.
 int elementSize(const usd::Attribute* a) {
-    if (const usd::Value* m = a->metadata("elementSize"))
-        if (auto i = m->getInt()) return int(*i);
+    if (const usd::Value* m = a->metadata("elementSize")) {
+        const auto i = m->getInt();
+        return i && *i >= 1 && *i <= 4096 ? int(*i) : 0;
+    }
     return 1;
 }
 std::string interpolation(const usd::Attribute* a, const char* fallback) {
@@ -69,20 +78,47 @@ std::string interpolation(const usd::Attribute* a, const char* fallback) {
     return fallback;
 }
 
-// Joint i's parent: the longest proper prefix of its path that is a joint ("A/B/C" -> "A/B").
+// Joint i's parent: the joint whose path is the longest proper prefix of its own ("A/B/C" ->
+// "A/B", or "A" when "A/B" is not a joint), found in one walk down a trie of path segments
+// (linear in the total length: hashing every prefix was quadratic in a path's length).
 std::vector<int> jointParents(const std::vector<std::string>& joints) {
-    std::unordered_map<std::string, int> index;
-    for (size_t i = 0; i < joints.size(); ++i) index.emplace(joints[i], int(i));
+    struct Node {
+        std::unordered_map<std::string_view, size_t> children;
+        int joint = -1;
+    };
+    std::vector<Node> trie(1);
+    auto forEachSegment = [](const std::string& path, auto&& fn) {
+        size_t start = 0;
+        while (start <= path.size()) {
+            size_t end = path.find('/', start);
+            if (end == std::string::npos) end = path.size();
+            fn(std::string_view(path).substr(start, end - start));
+            start = end + 1;
+        }
+    };
+    std::vector<size_t> nodeOf(joints.size());
+    for (size_t i = 0; i < joints.size(); ++i) {
+        size_t node = 0;
+        forEachSegment(joints[i], [&](std::string_view seg) {
+            auto it = trie[node].children.find(seg);
+            if (it == trie[node].children.end()) {
+                trie.emplace_back();
+                it = trie[node].children.emplace(seg, trie.size() - 1).first;
+            }
+            node = it->second;
+        });
+        if (trie[node].joint < 0) trie[node].joint = int(i);  // the first of duplicate names
+        nodeOf[i] = node;
+    }
     std::vector<int> parent(joints.size(), -1);
     for (size_t i = 0; i < joints.size(); ++i) {
-        std::string p = joints[i];
-        for (size_t slash = p.rfind('/'); slash != std::string::npos; slash = p.rfind('/')) {
-            p.resize(slash);
-            if (auto it = index.find(p); it != index.end()) {
-                parent[i] = it->second;
-                break;
-            }
-        }
+        size_t node = 0;
+        int last = -1;
+        forEachSegment(joints[i], [&](std::string_view seg) {
+            if (trie[node].joint >= 0 && node != 0) last = trie[node].joint;
+            node = trie[node].children.at(seg);
+        });
+        parent[i] = last == int(i) ? -1 : last;
     }
     return parent;
 }
@@ -121,30 +157,28 @@ glm::dmat4 worldTransform(const usd::Prim& prim, double time) {
     return world;
 }
 
-std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& mesh, double time,
-                                    std::vector<std::string>* warnings) {
-    // Skinning applies under a SkelRoot, to a prim with joint influences and a bound skeleton.
-    bool underRoot = false;
-    for (const usd::Prim* p = &mesh; p && !underRoot; p = p->parent()) underRoot = p->typeName() == "SkelRoot";
-    const usd::Attribute* indicesAttr = inheritedAttribute(&mesh, "primvars:skel:jointIndices");
-    const usd::Attribute* weightsAttr = inheritedAttribute(&mesh, "primvars:skel:jointWeights");
-    const usd::Relationship* skelRel = inheritedRelationship(&mesh, "skel:skeleton");
-    if (!indicesAttr || !weightsAttr || !skelRel) return std::nullopt;
-    auto fail = [&](const std::string& why) -> std::optional<SkinnedMesh> {
-        warnings->push_back("not skinned (drawn in its bind pose): " + why);
-        return std::nullopt;
-    };
-    if (!underRoot) return fail("it is not under a SkelRoot");
-    const usd::Prim* skel = stage.prim(skelRel->targets().front());
-    if (!skel || skel->typeName() != "Skeleton") return fail("skel:skeleton <" + skelRel->targets().front() + "> is not a Skeleton");
+namespace {
 
-    // The skeleton: joints, bind pose (world space), rest pose (local space).
-    const std::vector<std::string> joints = tokens(skel->attribute("joints"), time);
+// The pose of Skeleton `skel` at `time` (see SkeletonPose); warnings about its animation.
+std::shared_ptr<const SkeletonPose> computePose(const usd::Stage& stage, const usd::Prim& skel, double time,
+                                                std::vector<std::string>* warnings) {
+    auto pose = std::make_shared<SkeletonPose>();
+    auto fail = [&](const std::string& why) {
+        pose->error = why;
+        return pose;
+    };
+    // The skeleton: joints, bind pose (skeleton space), rest pose (joint-local).
+    pose->joints = tokens(skel.attribute("joints"), time);
+    const std::vector<std::string>& joints = pose->joints;
     const size_t nj = joints.size();
     if (nj == 0) return fail("its Skeleton has no joints");
-    const std::vector<glm::dmat4> bind = matrices(skel->attribute("bindTransforms"), time);
-    if (bind.size() != nj) return fail("bindTransforms has " + std::to_string(bind.size()) + " matrices for " + std::to_string(nj) + " joints");
-    std::vector<glm::dmat4> rest = matrices(skel->attribute("restTransforms"), time);
+    const std::vector<glm::dmat4> bind = matrices(skel.attribute("bindTransforms"), time);
+    if (bind.size() != nj)
+        return fail("bindTransforms has " + std::to_string(bind.size()) + " matrices for " + std::to_string(nj) + " joints");
+    const std::vector<glm::dmat4> rest = matrices(skel.attribute("restTransforms"), time);
+    if (!rest.empty() && rest.size() != nj)
+        warnings->push_back(skel.path() + ": restTransforms has " + std::to_string(rest.size()) + " matrices for " +
+                            std::to_string(nj) + " joints; the bind pose is used");
     const std::vector<int> parent = jointParents(joints);
     std::vector<glm::dmat4> local(nj);
     for (size_t j = 0; j < nj; ++j) {
@@ -152,21 +186,21 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
         local[j] = rest.size() == nj ? rest[j] : (parent[j] < 0 ? bind[j] : glm::inverse(bind[size_t(parent[j])]) * bind[j]);
     }
     // The animation's joints override theirs (skel:animationSource on the Skeleton or above).
-    if (const usd::Relationship* animRel = inheritedRelationship(skel, "skel:animationSource")) {
+    if (const usd::Relationship* animRel = inheritedRelationship(&skel, "skel:animationSource")) {
         const usd::Prim* anim = stage.prim(animRel->targets().front());
-        if (!anim || anim->typeName() != "SkelAnimation") {
-            warnings->push_back(skel->path() + ": skel:animationSource <" + animRel->targets().front() +
-                                "> is not a SkelAnimation; the rest pose is used");
+        if (!anim || anim->typeName() != "SkelAnimation" || !anim->isActive()) {
+            warnings->push_back(skel.path() + ": skel:animationSource <" + animRel->targets().front() +
+                                "> is not an active SkelAnimation; the rest pose is used");
         } else {
             const std::vector<std::string> animJoints = tokens(anim->attribute("joints"), time);
             const std::vector<double> t = numbers(anim->attribute("translations"), time, 3);
             const std::vector<double> r = numbers(anim->attribute("rotations"), time, 4);
-            const std::vector<double> s = numbers(anim->attribute("scales"), time, 3);
+            const std::vector<double> sc = numbers(anim->attribute("scales"), time, 3);
             const size_t na = animJoints.size();
-            const bool haveT = t.size() == 3 * na, haveR = r.size() == 4 * na, haveS = s.size() == 3 * na;
-            if (na > 0 && !(haveT || haveR || haveS))
-                warnings->push_back(anim->path() + ": translations, rotations and scales do not match its " +
-                                    std::to_string(na) + " joints; the rest pose is used");
+            const bool haveT = t.size() == 3 * na, haveR = r.size() == 4 * na, haveS = sc.size() == 3 * na;
+            if (na > 0 && !(haveT && haveR && haveS))
+                warnings->push_back(anim->path() + ": translations, rotations or scales do not match its " +
+                                    std::to_string(na) + " joints; the rest pose stands in for them");
             std::unordered_map<std::string, size_t> skelIndex;
             for (size_t j = 0; j < nj; ++j) skelIndex.emplace(joints[j], j);
             for (size_t a = 0; a < na && (haveT || haveR || haveS); ++a) {
@@ -175,37 +209,73 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
                 // Components the animation does not give come from the rest pose's columns.
                 const glm::dmat4& base = local[it->second];
                 glm::dvec3 tr(base[3]);
-                glm::dvec3 sc(glm::length(glm::dvec3(base[0])), glm::length(glm::dvec3(base[1])), glm::length(glm::dvec3(base[2])));
-                glm::dmat3 rot(glm::dvec3(base[0]) / sc.x, glm::dvec3(base[1]) / sc.y, glm::dvec3(base[2]) / sc.z);
-                glm::dquat q = glm::quat_cast(rot);
+                glm::dvec3 scale(glm::length(glm::dvec3(base[0])), glm::length(glm::dvec3(base[1])),
+                                 glm::length(glm::dvec3(base[2])));
+                glm::dquat q(1.0, 0.0, 0.0, 0.0);
+                if (scale.x > 0.0 && scale.y > 0.0 && scale.z > 0.0)
+                    q = glm::quat_cast(glm::dmat3(glm::dvec3(base[0]) / scale.x, glm::dvec3(base[1]) / scale.y,
+                                                  glm::dvec3(base[2]) / scale.z));
                 if (haveT) tr = glm::dvec3(t[3 * a], t[3 * a + 1], t[3 * a + 2]);
                 if (haveR) q = glm::dquat(r[4 * a], r[4 * a + 1], r[4 * a + 2], r[4 * a + 3]);  // (real, i, j, k)
-                if (haveS) sc = glm::dvec3(s[3 * a], s[3 * a + 1], s[3 * a + 2]);
-                local[it->second] = compose(tr, q, sc);
+                if (haveS) scale = glm::dvec3(sc[3 * a], sc[3 * a + 1], sc[3 * a + 2]);
+                local[it->second] = compose(tr, q, scale);
             }
         }
     }
-    // Skeleton space: each joint's local transform under its parent's (any order of joints).
+    // Skeleton space: each joint's local transform under its parent's (any order of joints;
+    // parents are proper path prefixes, so there is no cycle).
     std::vector<glm::dmat4> skelSpace(nj);
-    std::vector<char> state(nj, 0);  // 0 todo, 1 in progress, 2 done
-    bool cycle = false;
-    auto resolve = [&](auto&& self, size_t j) -> const glm::dmat4& {
-        if (state[j] == 2) return skelSpace[j];
-        if (state[j] == 1) {  // cannot happen with path prefixes; guard anyway
-            cycle = true;
-            return skelSpace[j];
-        }
-        state[j] = 1;
-        skelSpace[j] = parent[j] < 0 ? local[j] : self(self, size_t(parent[j])) * local[j];
-        state[j] = 2;
-        return skelSpace[j];
-    };
-    std::vector<glm::dmat4> skinning(nj);
+    std::vector<char> done(nj, 0);
+    std::vector<size_t> chain;
     for (size_t j = 0; j < nj; ++j) {
-        skinning[j] = resolve(resolve, j) * glm::inverse(bind[j]);
-        if (!finiteMatrix(skinning[j])) return fail("joint '" + joints[j] + "' has a singular or non-finite transform");
+        for (size_t k = j; !done[k]; k = size_t(parent[k])) {
+            chain.push_back(k);
+            if (parent[k] < 0) break;
+        }
+        for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+            const size_t k = *it;
+            if (done[k]) continue;
+            skelSpace[k] = parent[k] < 0 ? local[k] : skelSpace[size_t(parent[k])] * local[k];
+            done[k] = 1;
+        }
+        chain.clear();
     }
-    if (cycle) return fail("the joint hierarchy has a cycle");
+    pose->skinning.resize(nj);
+    for (size_t j = 0; j < nj; ++j) pose->skinning[j] = skelSpace[j] * glm::inverse(bind[j]);
+    pose->world = worldTransform(skel, time);
+    return pose;
+}
+
+}  // namespace
+
+std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& mesh, double time,
+                                    std::vector<std::string>* warnings, SkeletonPoseCache* cache) {
+    // Skinning applies under a SkelRoot, to a prim with joint influences and a bound skeleton.
+    bool underRoot = false;
+    for (const usd::Prim* p = &mesh; p && !underRoot; p = p->parent()) underRoot = p->typeName() == "SkelRoot";
+    if (!underRoot) return std::nullopt;
+    const usd::Attribute* indicesAttr = inheritedAttribute(&mesh, "primvars:skel:jointIndices");
+    const usd::Attribute* weightsAttr = inheritedAttribute(&mesh, "primvars:skel:jointWeights");
+    const usd::Relationship* skelRel = inheritedRelationship(&mesh, "skel:skeleton");
+    if (!indicesAttr || !weightsAttr || !skelRel) return std::nullopt;
+    auto fail = [&](const std::string& why) -> std::optional<SkinnedMesh> {
+        warnings->push_back("not skinned (drawn as authored): " + why);
+        return std::nullopt;
+    };
+    const std::string& skelPath = skelRel->targets().front();
+    const usd::Prim* skel = stage.prim(skelPath);
+    if (!skel || skel->typeName() != "Skeleton") return fail("skel:skeleton <" + skelPath + "> is not a Skeleton");
+    if (!skel->isActive()) return fail("its Skeleton <" + skelPath + "> is inactive");
+    std::shared_ptr<const SkeletonPose> pose;
+    if (cache)
+        if (auto it = cache->find(skelPath); it != cache->end()) pose = it->second;
+    if (!pose) {
+        pose = computePose(stage, *skel, time, warnings);
+        if (cache) cache->emplace(skelPath, pose);
+    }
+    if (!pose->error.empty()) return fail(pose->error);
+    const std::vector<std::string>& joints = pose->joints;
+    const size_t nj = joints.size();
 
     // The mesh's influences, through its own joint order when it has one (skel:joints).
     std::vector<int> remap;
@@ -223,22 +293,20 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
     if (!pts || pointsValue.components() != 3 || pts->empty()) return std::nullopt;  // nothing to pose
     const size_t np = pts->size() / 3;
     const int ni = elementSize(indicesAttr), nw = elementSize(weightsAttr);
+    if (ni != nw || ni <= 0)
+        return fail("jointIndices and jointWeights have elementSize " + std::to_string(ni) + " and " + std::to_string(nw));
     const std::vector<double> jointIndices = numbers(indicesAttr, time, 1);
     const std::vector<double> jointWeights = numbers(weightsAttr, time, 1);
-    if (ni != nw || ni <= 0) return fail("jointIndices and jointWeights have elementSize " + std::to_string(ni) + " and " + std::to_string(nw));
     const bool rigid = interpolation(indicesAttr, "constant") == "constant";
     const size_t influences = rigid ? 1 : np;
     if (jointIndices.size() != influences * size_t(ni) || jointWeights.size() != influences * size_t(ni))
         return fail("jointIndices/jointWeights hold " + std::to_string(jointIndices.size()) + "/" +
                     std::to_string(jointWeights.size()) + " values, expected " + std::to_string(influences * size_t(ni)));
     const glm::dmat4 geomBind = [&] {
-        std::vector<glm::dmat4> g = matrices(inheritedAttribute(&mesh, "primvars:skel:geomBindTransform"), time);
-        if (g.empty()) {  // a single matrix4d, not an array
-            if (const usd::Attribute* a = inheritedAttribute(&mesh, "primvars:skel:geomBindTransform"))
-                if (auto flat = a->get(time).getTuple(); flat && flat->size() == 16) return matrixAt(*flat, 0);
-            return glm::dmat4(1.0);
-        }
-        return g.front();
+        const usd::Attribute* a = inheritedAttribute(&mesh, "primvars:skel:geomBindTransform");
+        if (a)
+            if (auto flat = a->get(time).getTuple(); flat && flat->size() == 16) return matrixAt(*flat, 0);
+        return glm::dmat4(1.0);
     }();
 
     // Blended matrix per influence set.
@@ -249,32 +317,36 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
         for (int e = 0; e < ni; ++e) {
             const double w = jointWeights[k * size_t(ni) + size_t(e)];
             const double jiD = jointIndices[k * size_t(ni) + size_t(e)];
-            if (!(w > 0.0)) continue;  // unused slots hold weight 0
-            int ji = int(jiD);
-            if (!remap.empty()) ji = (ji >= 0 && size_t(ji) < remap.size()) ? remap[size_t(ji)] : -1;
-            if (ji < 0 || size_t(ji) >= nj || double(int(jiD)) != jiD)
+            if (!(w > 0.0) || !std::isfinite(w)) continue;  // unused slots hold weight 0
+            const double range = double(remap.empty() ? nj : remap.size());
+            if (!(jiD >= 0.0 && jiD < range) || jiD != std::floor(jiD))
                 return fail("joint index " + std::to_string(jiD) + " is out of range");
-            m += w * skinning[size_t(ji)];
+            int ji = int(jiD);
+            if (!remap.empty()) ji = remap[size_t(ji)];
+            if (!finiteMatrix(pose->skinning[size_t(ji)]))
+                return fail("joint '" + joints[size_t(ji)] + "' has a singular or non-finite transform");
+            m += w * pose->skinning[size_t(ji)];
             sum += w;
         }
-        blended[k] = sum > 0.0 ? m / sum : glm::dmat4(1.0);  // weights normalised; none: bind pose
-        blended[k] = blended[k] * geomBind;
+        blended[k] = (sum > 0.0 ? m / sum : glm::dmat4(1.0)) * geomBind;  // normalised; none: as bound
     }
 
     SkinnedMesh out;
     out.skeleton = skel->path();
-    out.world = worldTransform(*skel, time);
+    out.world = pose->world;
     out.points.resize(np);
     for (size_t i = 0; i < np; ++i) {
         const glm::dvec4 p((*pts)[3 * i], (*pts)[3 * i + 1], (*pts)[3 * i + 2], 1.0);
         out.points[i] = glm::vec3(blended[rigid ? 0 : i] * p);
     }
-    // Normals per point (vertex/varying) or per corner (faceVarying), unindexed.
+    // Normals per point (vertex/varying) or per corner (faceVarying), unindexed. Interpolation
+    // fallbacks as the delegate reads them: vertex for `normals`, constant for the primvar.
     const usd::Attribute* normalsAttr = mesh.attribute("primvars:normals");
-    if (!normalsAttr || !normalsAttr->hasValue()) normalsAttr = mesh.attribute("normals");
+    const bool primvar = normalsAttr && normalsAttr->hasValue();
+    if (!primvar) normalsAttr = mesh.attribute("normals");
     if (normalsAttr && normalsAttr->hasValue()) {
         const std::vector<double> n = numbers(normalsAttr, time, 3);
-        const std::string interp = interpolation(normalsAttr, "vertex");
+        const std::string interp = interpolation(normalsAttr, primvar ? "constant" : "vertex");
         const std::vector<double> corners = numbers(mesh.attribute("faceVertexIndices"), time, 1);
         const bool indexed = mesh.attribute("primvars:normals:indices") != nullptr;
         const bool perPoint = !indexed && (interp == "vertex" || interp == "varying") && n.size() == 3 * np;
@@ -284,14 +356,17 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
             for (size_t k = 0; k < influences; ++k) normalMatrix[k] = glm::transpose(glm::inverse(glm::dmat3(blended[k])));
             out.normals.resize(n.size() / 3);
             for (size_t c = 0; c < out.normals.size(); ++c) {
-                size_t point = perPoint ? c : size_t(corners[c]);
-                if (point >= np) point = 0;
-                const glm::dvec3 nn = normalMatrix[rigid ? 0 : point] * glm::dvec3(n[3 * c], n[3 * c + 1], n[3 * c + 2]);
-                const double l = glm::length(nn);
+                const glm::dvec3 authored(n[3 * c], n[3 * c + 1], n[3 * c + 2]);
+                const double corner = perPoint ? double(c) : corners[c];
+                const size_t point = corner >= 0.0 && corner < double(np) ? size_t(corner) : 0;
+                glm::dvec3 nn = normalMatrix[rigid ? 0 : point] * authored;
+                double l = glm::length(nn);
+                if (!(l > 0.0) || !std::isfinite(l)) nn = authored, l = glm::length(authored);  // a singular blend
                 out.normals[c] = l > 0.0 && std::isfinite(l) ? glm::vec3(nn / l) : glm::vec3(0.0f, 0.0f, 1.0f);
             }
         } else {
-            warnings->push_back("normals (" + interp + ", or indexed) are not posed with the skeleton; they are dropped");
+            warnings->push_back("normals (" + interp + (indexed ? ", indexed" : "") +
+                                ") are not posed with the skeleton; they are dropped");
         }
     }
     for (const glm::vec3& p : out.points)

@@ -3,8 +3,10 @@
 // of its animation at the delegate's time.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -26,20 +28,33 @@ struct SkinnedMesh {
     std::string skeleton;  ///< path of the bound Skeleton
 };
 
+/// A Skeleton's pose at one time: the skinning transform J_j * inverse(B_j) of each joint, and
+/// the Skeleton's world transform; or why it cannot pose (error).
+struct SkeletonPose {
+    std::vector<std::string> joints;
+    std::vector<glm::dmat4> skinning;
+    glm::dmat4 world{1.0};
+    std::string error;
+};
+/// Poses computed once per Skeleton path (for one time; clear it when the stage or time changes).
+using SkeletonPoseCache = std::unordered_map<std::string, std::shared_ptr<const SkeletonPose>>;
+
 /// Skins `mesh` at `time` when it lies under a SkelRoot and is bound (skel:skeleton on it or an
-/// ancestor) to a Skeleton, with joint influences (primvars:skel:jointIndices/jointWeights,
-/// vertex or constant). Per point, column-vector convention:
+/// ancestor up to the SkelRoot) to an active Skeleton, with joint influences
+/// (primvars:skel:jointIndices/jointWeights, vertex or constant, inherited the same way). Per
+/// point, column-vector convention:
 ///   p_world = S * sum_i w_i * J_i * inverse(B_i) * G * p     (UsdSkel "Skinning a Prim": LBS)
-/// S the Skeleton's world transform, J_i joint i's skeleton-space transform (animation, else
-/// restTransforms, composed down the joint paths), B_i its bindTransforms entry, G
-/// primvars:skel:geomBindTransform (inherited from ancestors; identity if none), w_i normalised.
-/// Normals take the inverse transpose of each joint's 3x3 (sum, then normalised).
+/// S the Skeleton's world transform, J_i joint i's skeleton-space transform (an active
+/// SkelAnimation bound by skel:animationSource, else restTransforms, else the bind pose,
+/// composed down the joint paths), B_i its bindTransforms entry, G
+/// primvars:skel:geomBindTransform (inherited; identity if none), w_i normalised.
+/// Normals: the inverse transpose of each point's blended matrix, normalised.
 /// std::nullopt when the mesh is not skinned; malformed data (sizes that do not match, unknown
-/// joints, a missing skeleton) adds a warning (about the mesh, without its path) and leaves the
-/// mesh unskinned. Not done: blend shapes, dual-quaternion skinning (skel:skinningMethod),
-/// instanceable skinned prims; edits to a Skeleton or SkelAnimation do not re-pose.
+/// joints, a missing or inactive skeleton) adds a warning (about the mesh, without its path)
+/// and leaves the mesh as authored. Not done: blend shapes, dual-quaternion skinning
+/// (skel:skinningMethod), skinned prims inside instances or PointInstancer prototypes.
 std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& mesh, double time,
-                                    std::vector<std::string>* warnings);
+                                    std::vector<std::string>* warnings, SkeletonPoseCache* cache = nullptr);
 
 /// The world transform of `prim` at `time` (its xformOps and its ancestors').
 glm::dmat4 worldTransform(const usd::Prim& prim, double time);

@@ -96,6 +96,7 @@ void UsdSceneDelegate::warn(const std::string& where, const std::string& message
 
 void UsdSceneDelegate::populate(RenderIndex* index) {
     invalidateInstancerCache();
+    _skeletonPoses.clear();
     const usd::Prim* root = _stage.pseudoRoot();
     if (!root) return;
     readLightLinks();  // instance groups are keyed by link membership (visitInstance)
@@ -150,7 +151,7 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
         if (hdType == tokens::mesh() && type == "Mesh") {
             checkExtent(prim);
             std::vector<std::string> skinWarnings;
-            if (auto posed = skinMesh(_stage, prim, _time, &skinWarnings)) {
+            if (auto posed = skinMesh(_stage, prim, _time, &skinWarnings, &_skeletonPoses)) {
                 e.world = posed->world;  // UsdSkel: the skeleton's space, not the mesh's own
                 e.skinned = std::make_shared<const SkinnedMesh>(std::move(*posed));
             }

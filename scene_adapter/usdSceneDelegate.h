@@ -17,6 +17,7 @@
 #include "delegate/hd/renderIndex.h"
 #include "delegate/hd/sceneDelegate.h"
 #include "scene_adapter/materialBinding.h"
+#include "scene_adapter/skinning.h"
 
 namespace principled::usd {
 class Stage;
@@ -26,7 +27,6 @@ class Prim;
 namespace principled::adapter {
 
 struct ShapeMesh;
-struct SkinnedMesh;
 
 struct AdapterOptions {
     double time = std::numeric_limits<double>::quiet_NaN();  ///< NaN: the stage's default time
@@ -140,8 +140,13 @@ private:
                              const std::function<void(const glm::dmat4&, const glm::dvec3&)>& grow) const;
 
     // Change processing helpers (usdSceneDelegateEdits.cpp).
-    /// UsdSkel: poses again every skinned mesh and every mesh at or below `edited`.
-    void reposeSkinned(const usd::Prim& edited, hd::RenderIndex* index);
+    /// UsdSkel: poses again the meshes `which` selects (skinned or not; drawn as authored when
+    /// they no longer skin), marking those that are or were skinned.
+    void reposeSkinned(const std::function<bool(const Entry&)>& which, hd::RenderIndex* index);
+    /// UsdSkel: the prim at `moved` was moved; skinned meshes whose skeleton or own prim is at
+    /// or below it take their skeleton's new world transform.
+    void skeletonSpaceMoved(const std::string& moved, hd::RenderIndex* index);
+    SkeletonPoseCache _skeletonPoses;  ///< per populate / edit pass (poses at _time)
     bool hasSkinnedMeshes() const {
         for (const auto& [id, e] : _entries)
             if (e.skinned) return true;

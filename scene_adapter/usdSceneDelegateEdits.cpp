@@ -234,6 +234,8 @@ void UsdSceneDelegate::primRemoving(const std::string& path, RenderIndex* index)
 
 void UsdSceneDelegate::primRemoved(const std::string& path, RenderIndex* index) {
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
+    // A skeleton or animation may have gone: skinned meshes are posed again (or unposed).
+    if (hasSkinnedMeshes()) reposeSkinned([](const Entry& e) { return e.skinned != nullptr; }, index);
     const usd::Prim* removed = _removing;
     _removing = nullptr;
     if (_removingHadInstances) {
@@ -421,22 +423,19 @@ void UsdSceneDelegate::materialNetworkChanged(const usd::Prim& prim, DirtyBits b
             index->changeTracker().markSprimDirty(id, bits);
 }
 
-void UsdSceneDelegate::reposeSkinned(const usd::Prim& edited, RenderIndex* index) {
-    // Meshes posed before, and meshes at or below the edit (a binding may have appeared).
+void UsdSceneDelegate::reposeSkinned(const std::function<bool(const Entry&)>& which, RenderIndex* index) {
+    _skeletonPoses.clear();  // the edit may have changed any skeleton's pose
     ChangeTracker& tracker = index->changeTracker();
-    const std::string below = edited.path() == "/" ? "/" : edited.path() + "/";
     for (auto& [id, e] : _entries) {
-        if (!e.prim || e.prim->typeName() != "Mesh" || !e.instancer.empty()) continue;
-        const std::string& path = e.prim->path();
-        if (!e.skinned && path != edited.path() && path.rfind(below, 0) != 0) continue;
+        if (!e.prim || e.prim->typeName() != "Mesh" || !e.instancer.empty() || !which(e)) continue;
         std::vector<std::string> warnings;
-        std::optional<SkinnedMesh> posed = skinMesh(_stage, *e.prim, _time, &warnings);
-        for (const std::string& w : warnings) warn(e.prim->location().str() + ": " + path, w);
+        std::optional<SkinnedMesh> posed = skinMesh(_stage, *e.prim, _time, &warnings, &_skeletonPoses);
+        for (const std::string& w : warnings) warn(e.prim->location().str() + ": " + e.prim->path(), w);
         if (!posed && !e.skinned) continue;
         if (posed) {
             e.world = posed->world;
             e.skinned = std::make_shared<const SkinnedMesh>(std::move(*posed));
-        } else {  // no longer skinned: its own transform again
+        } else {  // no longer skinned: its own points and transform again
             e.skinned.reset();
             e.world = worldTransform(*e.prim, _time);
         }
@@ -445,22 +444,38 @@ void UsdSceneDelegate::reposeSkinned(const usd::Prim& edited, RenderIndex* index
     }
 }
 
+void UsdSceneDelegate::skeletonSpaceMoved(const std::string& moved, RenderIndex* index) {
+    // Posed points live in the skeleton's space: only the transform follows it.
+    ChangeTracker& tracker = index->changeTracker();
+    auto atOrBelow = [&](const std::string& path) {
+        return path == moved || moved == "/" || path.rfind(moved + "/", 0) == 0;
+    };
+    for (auto& [id, e] : _entries) {
+        if (!e.skinned || !(atOrBelow(e.skinned->skeleton) || atOrBelow(e.prim->path()))) continue;
+        if (const usd::Prim* skel = _stage.prim(e.skinned->skeleton)) e.world = worldTransform(*skel, _time);
+        tracker.markRprimDirty(id, RprimDirty::Transform);
+    }
+}
+
 void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::string& attr,
                                         RenderIndex* index) {
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;
-    // UsdSkel: a skeleton, its animation, a binding or a skinned mesh's points changed.
-    const bool skel = p->typeName() == "Skeleton" || p->typeName() == "SkelAnimation" ||
-                      startsWith(attr, "primvars:skel:") || startsWith(attr, "skel:");
     if (startsWith(attr, "xformOp:") || attr == "xformOpOrder") {
         transformChanged(*p, index);
-        if (hasSkinnedMeshes()) reposeSkinned(*p, index);  // the skeleton's space may have moved
+        if (hasSkinnedMeshes()) skeletonSpaceMoved(primPath, index);  // and a skinned mesh's own is ignored
         return;
     }
-    if (skel) return reposeSkinned(*p, index);
-    if (attr == "points" || attr == "normals" || attr == "primvars:normals")
-        if (const Entry* e = entry(Path(primPath)); e && e->skinned) return reposeSkinned(*p, index);
+    // UsdSkel: a skeleton, its animation or a binding changed: every mesh is checked again
+    // (one that did not skin may now); a mesh's own points or normals: that mesh.
+    if (p->typeName() == "Skeleton" || p->typeName() == "SkelAnimation" || startsWith(attr, "primvars:skel:") ||
+        startsWith(attr, "skel:"))
+        return reposeSkinned([](const Entry&) { return true; }, index);
+    if ((attr == "points" || attr == "normals" || attr == "primvars:normals") && p->typeName() == "Mesh") {
+        reposeSkinned([&](const Entry& e) { return e.prim == p; }, index);
+        if (const Entry* e = entry(Path(primPath)); e && e->skinned) return;  // posed: nothing else to mark
+    }
     if (attr == "visibility") return visibilityChanged(*p, index);
     if (attr == "purpose") return resyncSubtree(primPath, index);
     if (startsWith(attr, "collection:")) return collectionChanged(index);
@@ -514,7 +529,7 @@ void UsdSceneDelegate::relationshipChanged(const std::string& primPath, const st
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;
     if (startsWith(name, "collection:")) return collectionChanged(index);
-    if (startsWith(name, "skel:")) return reposeSkinned(*p, index);
+    if (startsWith(name, "skel:")) return reposeSkinned([](const Entry&) { return true; }, index);
     if (startsWith(name, "material:binding")) {
         if (p->typeName() == "GeomSubset") return attributeChanged(primPath, name, index);
         if (subtreeHasInstances(primPath)) return repopulate(index);  // keys hold the binding

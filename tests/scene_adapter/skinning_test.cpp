@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <string>
 
 #include "delegate/hd/tokens.h"
@@ -180,4 +181,85 @@ TEST(Skinning, EditingTheAnimationPosesTheMeshAgain) {
     editor.setTransform("/Rig", m);
     EXPECT_DOUBLE_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][1], 20.0);
     EXPECT_DOUBLE_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 0.0);
+}
+
+TEST(Skinning, AnInactiveAnimationOrSkeletonIsNotUsed) {
+    std::string text = scene(kInfluences, kAnimated);
+    const std::string anim = "def SkelAnimation \"Anim\"\n";
+    text.replace(text.find(anim), anim.size(), "def SkelAnimation \"Anim\" (\n        active = false\n    )\n");
+    Posed s(text);
+    auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    expectNear(p[1], {1.5f, 0, 0});  // the rest pose
+    EXPECT_TRUE(s.warned("not an active SkelAnimation"));
+    // An inactive skeleton: the mesh is drawn as authored, in its own transform (x = 100).
+    std::string off = scene(kInfluences, kAnimated);
+    const std::string skel = "def Skeleton \"Skel\" (\n";
+    off.replace(off.find(skel), skel.size(), skel + "        active = false\n");
+    Posed t(off);
+    EXPECT_TRUE(t.warned("inactive"));
+    EXPECT_EQ(t.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 100.0);
+}
+
+TEST(Skinning, EditsRePoseOnlyWhatTheyTouch) {
+    std::string text = scene(kInfluences, kAnimated) + "def Xform \"Other\" {}\n";
+    Posed s(text);
+    s.index.sync();
+    adapter::StageEditor editor(*s.stage, *s.scene, s.index);
+    auto armBits = [&] {
+        return s.index.changeTracker().dirtyBits(hd::ChangeTracker::Kind::Rprim, hd::Path("/Rig/Arm"));
+    };
+    // An unrelated prim moves: the skinned mesh is not touched.
+    const double m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1};
+    editor.setTransform("/Other", m);
+    EXPECT_EQ(armBits(), 0u);
+    // The mesh's own transform is ignored: only its transform bit, and the skeleton's space stays.
+    editor.setTransform("/Rig/Arm", m);
+    EXPECT_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 0.0);
+    s.index.sync();
+    // Removing the skeleton draws the mesh as authored, in its own (edited) transform.
+    editor.removePrim("/Rig/Skel");
+    EXPECT_NE(armBits() & hd::RprimDirty::Points, 0u);
+    const auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    expectNear(p[1], {1.5f, 0, 0});
+    EXPECT_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 5.0);
+}
+
+TEST(Skinning, FixingABrokenSkeletonPosesTheMesh) {
+    std::string text = scene(kInfluences, kAnimated);
+    const std::string bind = "uniform matrix4d[] bindTransforms = [((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1)), ";
+    text.replace(text.find(bind), bind.size(), "uniform matrix4d[] bindTransforms = [");  // one matrix for two joints
+    Posed s(text);
+    EXPECT_TRUE(s.warned("bindTransforms has 1 matrices for 2 joints"));
+    expectNear(s.get("points")[1], {1.5f, 0, 0});
+    s.index.sync();
+    adapter::StageEditor editor(*s.stage, *s.scene, s.index);
+    editor.setAttribute("/Rig/Skel", "bindTransforms",
+                        adapter::EditValue::of({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,  //
+                                                1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 1}));
+    expectNear(s.get("points")[1], {1.0f, 0.5f, 0});  // the turned hand
+}
+
+TEST(Skinning, LongJointPathsStayLinear) {
+    // 25 joints whose paths are 8000 segments deep: finding parents by hashing every prefix
+    // took seconds; the segment trie takes milliseconds.
+    std::string deep;
+    for (int i = 0; i < 8000; ++i) deep += i ? "/a" : "a";
+    std::string joints, binds;
+    for (int j = 0; j < 25; ++j) {
+        joints += std::string(j ? ", " : "") + "\"" + deep + "/j" + std::to_string(j) + "\"";
+        binds += std::string(j ? ", " : "") + "((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1))";
+    }
+    std::string text = scene(kInfluences, "");
+    text.replace(text.find("[\"arm\", \"arm/hand\"]"), std::string("[\"arm\", \"arm/hand\"]").size(), "[" + joints + "]");
+    const size_t b = text.find("uniform matrix4d[] bindTransforms");
+    text.replace(b, text.find('\n', b) - b, "uniform matrix4d[] bindTransforms = [" + binds + "]");
+    const size_t r = text.find("uniform matrix4d[] restTransforms");
+    text.erase(r, text.find('\n', r) - r);
+    const auto start = std::chrono::steady_clock::now();
+    Posed s(text);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    expectNear(s.get("points")[1], {1.5f, 0, 0});  // identity pose
+    EXPECT_LT(seconds, 2.0);  // generous: the quadratic walk took minutes at this depth
 }

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <limits>
+#include <utility>
 
 #include "delegate/hd/renderIndex.h"
+#include "scene_adapter/renderSettings.h"
 #include "delegate/aovs.h"
 #include "delegate/hd/camera.h"
 
@@ -99,6 +101,14 @@ void RenderSession::applySettings() {
 }
 
 void RenderSession::setup() {
+    // UsdRender: what the caller leaves open (no size, no camera) comes from the stage's
+    // RenderSettings, else 640x360 and the first camera.
+    const adapter::StageRenderSettings stageSettings = adapter::readRenderSettings(*_stage);
+    for (const std::string& w : stageSettings.warnings) _notes.push_back(w);
+    if (_options.width == 0 && _options.height == 0) {
+        _options.width = stageSettings.width > 0 ? stageSettings.width : 640;
+        _options.height = stageSettings.height > 0 ? stageSettings.height : 360;
+    }
     if (_options.width <= 0 || _options.height <= 0 || _options.width > 32768 ||
         _options.height > 32768)
         throw UserError("resolution must be between 1x1 and 32768x32768");
@@ -115,7 +125,16 @@ void RenderSession::setup() {
     _sceneDelegate = std::make_unique<adapter::UsdSceneDelegate>(*_stage, ao);
     _sceneDelegate->populate(_index.get());
     _editor = std::make_unique<adapter::StageEditor>(*_stage, *_sceneDelegate, *_index);
-    chooseCamera(_options.camera);
+    std::string camera = _options.camera;
+    if (camera.empty() && !stageSettings.camera.empty()) {
+        const auto& cams = _sceneDelegate->cameras();
+        if (std::find(cams.begin(), cams.end(), Path(stageSettings.camera)) != cams.end())
+            camera = stageSettings.camera;
+        else
+            _notes.push_back(stageSettings.prim + ": camera <" + stageSettings.camera +
+                             "> is not a camera of the stage; using the default camera");
+    }
+    chooseCamera(camera);
 
     std::vector<std::string> names{"color"};
     for (const auto& a : _options.aovs) {
@@ -253,7 +272,7 @@ std::vector<RenderSession::AovImage> RenderSession::aovs() const {
 }
 
 std::vector<std::string> RenderSession::takeWarnings() {
-    std::vector<std::string> out;
+    std::vector<std::string> out = std::exchange(_notes, {});
     const auto& adapterWarnings = _sceneDelegate->warnings();
     for (; _adapterWarningsTaken < adapterWarnings.size(); ++_adapterWarningsTaken)
         out.push_back(adapterWarnings[_adapterWarningsTaken]);

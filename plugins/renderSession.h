@@ -40,12 +40,13 @@ public:
 };
 
 struct SessionOptions {
+    /// 0 x 0: the stage's UsdRenderSettings resolution, else 640 x 360.
     int width = 640;
     int height = 360;
     int samplesPerPixel = 64;
     int seed = 0;
     int maxDepth = 8;
-    std::string camera;           ///< prim path; empty = first camera, else a framing camera
+    std::string camera;           ///< prim path; empty = the stage's RenderSettings camera, else the first, else a framing one
     std::string shadingModel = "disney";
     std::string sampler = "sobol";  ///< sobol | independent
     int refineLevel = -1;           ///< subdivision level for every mesh; -1 = adaptive
@@ -140,6 +141,7 @@ private:
     embree::EmbreeRenderBuffer* _color = nullptr;
     std::vector<std::pair<std::string, embree::EmbreeRenderBuffer*>> _buffers;
     std::string _cameraPath;
+    std::vector<std::string> _notes;  ///< the session's own warnings (render settings)
     size_t _adapterWarningsTaken = 0;
     size_t _stageWarningsTaken = 0;
 };

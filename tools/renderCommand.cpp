@@ -31,7 +31,7 @@ struct RenderArgs {
     std::string scene;
     std::vector<std::string> outputs;
     int spp = 64;
-    std::string res = "640x360";
+    std::string res;  ///< "" : the stage's RenderSettings resolution, else 640x360
     int seed = 0;
     int threads = 0;
     int maxDepth = 8;
@@ -59,10 +59,15 @@ int runRender(const RenderArgs& a) {
     host::SessionOptions o;
     std::smatch m;
     static const std::regex resPattern(R"(^(\d{1,5})x(\d{1,5})$)");
-    if (!std::regex_match(a.res, m, resPattern))
-        return fail("--res must look like WIDTHxHEIGHT (e.g. 640x360), not '" + a.res + "'");
-    o.width = std::stoi(m[1]);
-    o.height = std::stoi(m[2]);
+    if (a.res.empty()) {
+        o.width = o.height = 0;  // the stage's RenderSettings, else 640x360
+    } else {
+        if (!std::regex_match(a.res, m, resPattern))
+            return fail("--res must look like WIDTHxHEIGHT (e.g. 640x360), not '" + a.res + "'");
+        o.width = std::stoi(m[1]);
+        o.height = std::stoi(m[2]);
+        if (o.width == 0 || o.height == 0) return fail("--res must be at least 1x1, not '" + a.res + "'");
+    }
     o.samplesPerPixel = a.spp;
     o.seed = a.seed;
     o.maxDepth = a.maxDepth;
@@ -205,11 +210,11 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("-o,--output", args->outputs, "Output image(s): .exr (linear float) or .png (sRGB)")
         ->required();
     cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
-    cmd->add_option("--res", args->res, "Resolution WIDTHxHEIGHT");
+    cmd->add_option("--res", args->res, "Resolution WIDTHxHEIGHT (default: the stage's RenderSettings, else 640x360)");
     cmd->add_option("--seed", args->seed, "Random seed (same seed, same image)");
     cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
     cmd->add_option("--max-depth", args->maxDepth, "Bounces after the camera hit")->check(CLI::Range(0, 1024));
-    cmd->add_option("--camera", args->camera, "Camera prim path (default: the first camera)");
+    cmd->add_option("--camera", args->camera, "Camera prim path (default: the stage's RenderSettings camera, else the first camera)");
     cmd->add_option("--model", args->model, "Shading model: disney or ue4");
     cmd->add_option("--stats", args->statsPath, "Write render statistics as JSON");
     cmd->add_option("--aov", args->aovs, "AOVs to write besides color, comma-separated, or 'all'")

@@ -411,3 +411,56 @@ TEST(RenderSession, MaterialXStandardSurfaceRendersItsBaseColor) {
     auto [greyRed, greyGreen] = redAndGreenOfBall("");
     EXPECT_NEAR(greyRed / greyGreen, 1.0, 0.05);
 }
+
+// UsdRender: with no size and no camera asked for, the stage's RenderSettings decide (its first
+// product's camera and resolution win over the settings' own); asked for, the caller's win.
+TEST(RenderSession, TheStagesRenderSettingsGiveCameraAndResolution) {
+    const std::string usda = R"(#usda 1.0
+(
+    renderSettingsPrimPath = "/Render/Final"
+)
+def Camera "A" {}
+def Camera "B" {}
+def Camera "C" {}
+def Sphere "Ball" {}
+def Scope "Render"
+{
+    def RenderSettings "Preview"
+    {
+        rel camera = </A>
+        uniform int2 resolution = (40, 30)
+    }
+    def RenderSettings "Final"
+    {
+        rel camera = </B>
+        uniform int2 resolution = (64, 48)
+        rel products = </Render/Product>
+    }
+    def RenderProduct "Product"
+    {
+        rel camera = </C>
+        uniform int2 resolution = (32, 24)
+    }
+}
+)";
+    host::SessionOptions o;
+    o.width = o.height = 0;
+    o.samplesPerPixel = 1;
+    auto s = host::RenderSession::openString(usda, "settings.usda", o);
+    EXPECT_EQ(s->cameraPath(), "/C");
+    EXPECT_EQ(s->width(), 32);
+    EXPECT_EQ(s->height(), 24);
+    o.width = 16, o.height = 8, o.camera = "/A";
+    auto t = host::RenderSession::openString(usda, "settings.usda", o);
+    EXPECT_EQ(t->cameraPath(), "/A");
+    EXPECT_EQ(t->width(), 16);
+    // A settings camera that is not a camera: a warning and the first camera.
+    std::string broken = usda;
+    broken.replace(broken.find("rel camera = </C>"), 17, "rel camera = </Ball>");
+    o.width = o.height = 0, o.camera.clear();
+    auto u = host::RenderSession::openString(broken, "settings.usda", o);
+    EXPECT_EQ(u->cameraPath(), "/A");
+    bool warned = false;
+    for (const auto& w : u->takeWarnings()) warned = warned || w.find("is not a camera of the stage") != std::string::npos;
+    EXPECT_TRUE(warned);
+}

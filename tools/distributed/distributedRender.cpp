@@ -194,6 +194,7 @@ private:
 
     Comm& _comm;
     host::SessionOptions _base;
+    int _width = 0, _height = 0;  ///< the image size the sessions resolved
     std::string _scene, _sceneText, _hash;
     std::vector<std::string> _outputs;
     bool _split, _quiet;
@@ -212,8 +213,10 @@ std::unique_ptr<host::RenderSession> Job::open(double time, int first, int end) 
     o.sampleRangeFirst = first;
     o.sampleRangeEnd = end;
     try {
-        return _scene.empty() ? host::RenderSession::openString(_sceneText, "<default scene>", o)
-                              : host::RenderSession::openFile(_scene, o);
+        auto session = _scene.empty() ? host::RenderSession::openString(_sceneText, "<default scene>", o)
+                                      : host::RenderSession::openFile(_scene, o);
+        _width = session->width(), _height = session->height();  // resolved (RenderSettings)
+        return session;
     } catch (const usd::Error& e) {
         throw RankError(e.what());
     } catch (const host::UserError& e) {
@@ -411,7 +414,7 @@ void Job::run() {
         if (fs::is_directory(dir, ec) && fs::is_empty(dir, ec)) fs::remove(dir, ec);
         double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::string how = ranks > 1 ? (wholeFrames ? " (whole frames per rank)" : " (sample ranges per rank)") : "";
-        note("rendered " + std::to_string(_base.width) + "x" + std::to_string(_base.height) + " at " +
+        note("rendered " + std::to_string(_width) + "x" + std::to_string(_height) + " at " +
              std::to_string(spp) + " spp, " + std::to_string(frames.size()) + " frame(s) on " + std::to_string(ranks) +
              " rank(s)" + how + " in " + std::to_string(seconds).substr(0, 6) + "s");
         if (std::getenv("PRINCIPLED_MPI_TIMING"))

@@ -201,6 +201,15 @@ std::shared_ptr<const SkeletonPose> computePose(const usd::Stage& stage, const u
             if (na > 0 && !(haveT && haveR && haveS))
                 warnings->push_back(anim->path() + ": translations, rotations or scales do not match its " +
                                     std::to_string(na) + " joints; the rest pose stands in for them");
+            const std::vector<std::string> shapes = tokens(anim->attribute("blendShapes"), time);
+            const std::vector<double> shapeWeights = numbers(anim->attribute("blendShapeWeights"), time, 1);
+            if (shapes.size() == shapeWeights.size()) {
+                for (size_t k = 0; k < shapes.size(); ++k)
+                    if (std::isfinite(shapeWeights[k])) pose->blendShapeWeights.emplace(shapes[k], shapeWeights[k]);
+            } else {
+                warnings->push_back(anim->path() + ": blendShapeWeights has " + std::to_string(shapeWeights.size()) +
+                                    " values for " + std::to_string(shapes.size()) + " blendShapes; ignored");
+            }
             std::unordered_map<std::string, size_t> skelIndex;
             for (size_t j = 0; j < nj; ++j) skelIndex.emplace(joints[j], j);
             for (size_t a = 0; a < na && (haveT || haveR || haveS); ++a) {
@@ -257,7 +266,10 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
     const usd::Attribute* indicesAttr = inheritedAttribute(&mesh, "primvars:skel:jointIndices");
     const usd::Attribute* weightsAttr = inheritedAttribute(&mesh, "primvars:skel:jointWeights");
     const usd::Relationship* skelRel = inheritedRelationship(&mesh, "skel:skeleton");
-    if (!indicesAttr || !weightsAttr || !skelRel) return std::nullopt;
+    const bool haveInfluences = indicesAttr && weightsAttr;
+    const usd::Relationship* shapeTargets = mesh.relationship("skel:blendShapeTargets");
+    const bool haveShapes = shapeTargets && !shapeTargets->targets().empty() && mesh.attribute("skel:blendShapes");
+    if (!skelRel || (!haveInfluences && !haveShapes)) return std::nullopt;
     auto fail = [&](const std::string& why) -> std::optional<SkinnedMesh> {
         warnings->push_back("not skinned (drawn as authored): " + why);
         return std::nullopt;
@@ -292,18 +304,60 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
     const std::vector<double>* pts = pointsValue.numbers();
     if (!pts || pointsValue.components() != 3 || pts->empty()) return std::nullopt;  // nothing to pose
     const size_t np = pts->size() / 3;
-    const int ni = elementSize(indicesAttr), nw = elementSize(weightsAttr);
+    std::vector<glm::dvec3> base(np);
+    for (size_t i = 0; i < np; ++i) base[i] = glm::dvec3((*pts)[3 * i], (*pts)[3 * i + 1], (*pts)[3 * i + 2]);
+    std::vector<glm::dvec3> normalOffsets;  // per point, from the blend shapes (empty: none)
+    if (haveShapes) {
+        // Blend shapes, in the mesh's bind space before skinning: weight * offsets per shape.
+        const std::vector<std::string> names = tokens(mesh.attribute("skel:blendShapes"), time);
+        const std::vector<std::string>& targets = shapeTargets->targets();
+        if (names.size() != targets.size())
+            return fail("skel:blendShapes names " + std::to_string(names.size()) + " shapes for " +
+                        std::to_string(targets.size()) + " skel:blendShapeTargets");
+        for (size_t k = 0; k < names.size(); ++k) {
+            const auto w = pose->blendShapeWeights.find(names[k]);
+            if (w == pose->blendShapeWeights.end() || w->second == 0.0) continue;
+            const usd::Prim* shape = stage.prim(targets[k]);
+            if (!shape || shape->typeName() != "BlendShape" || !shape->isActive())
+                return fail("skel:blendShapeTargets <" + targets[k] + "> is not an active BlendShape");
+            const std::vector<double> offsets = numbers(shape->attribute("offsets"), time, 3);
+            const std::vector<double> nOffsets = numbers(shape->attribute("normalOffsets"), time, 3);
+            const usd::Attribute* sparse = shape->attribute("pointIndices");
+            const std::vector<double> indices = numbers(sparse, time, 1);
+            const size_t count = sparse && sparse->hasValue() ? indices.size() : np;
+            if (offsets.size() != 3 * count || (!nOffsets.empty() && nOffsets.size() != 3 * count))
+                return fail(shape->path() + ": offsets (" + std::to_string(offsets.size() / 3) + ") do not match its " +
+                            std::to_string(count) + " points");
+            for (const usd::Attribute* a : shape->attributes())
+                if (a->name().rfind("inbetweens:", 0) == 0) {
+                    warnings->push_back(shape->path() + ": inbetween shapes are not applied");
+                    break;
+                }
+            if (!nOffsets.empty() && normalOffsets.empty()) normalOffsets.assign(np, glm::dvec3(0.0));
+            for (size_t j = 0; j < count; ++j) {
+                const double target = sparse && sparse->hasValue() ? indices[j] : double(j);
+                if (!(target >= 0.0 && target < double(np))) return fail(shape->path() + ": a point index is out of range");
+                const size_t point = size_t(target);
+                base[point] += w->second * glm::dvec3(offsets[3 * j], offsets[3 * j + 1], offsets[3 * j + 2]);
+                if (!nOffsets.empty())
+                    normalOffsets[point] += w->second * glm::dvec3(nOffsets[3 * j], nOffsets[3 * j + 1], nOffsets[3 * j + 2]);
+            }
+        }
+    }
+    const int ni = haveInfluences ? elementSize(indicesAttr) : 1, nw = haveInfluences ? elementSize(weightsAttr) : 1;
     if (ni != nw || ni <= 0)
         return fail("jointIndices and jointWeights have elementSize " + std::to_string(ni) + " and " + std::to_string(nw));
-    const std::vector<double> jointIndices = numbers(indicesAttr, time, 1);
-    const std::vector<double> jointWeights = numbers(weightsAttr, time, 1);
-    const bool rigid = interpolation(indicesAttr, "constant") == "constant";
+    // Without joint influences (blend shapes alone) the mesh is not skinned: one empty influence
+    // set (weight 0), i.e. the identity, and the mesh keeps its own transform.
+    const std::vector<double> jointIndices = haveInfluences ? numbers(indicesAttr, time, 1) : std::vector<double>{0.0};
+    const std::vector<double> jointWeights = haveInfluences ? numbers(weightsAttr, time, 1) : std::vector<double>{0.0};
+    const bool rigid = !haveInfluences || interpolation(indicesAttr, "constant") == "constant";
     const size_t influences = rigid ? 1 : np;
     if (jointIndices.size() != influences * size_t(ni) || jointWeights.size() != influences * size_t(ni))
         return fail("jointIndices/jointWeights hold " + std::to_string(jointIndices.size()) + "/" +
                     std::to_string(jointWeights.size()) + " values, expected " + std::to_string(influences * size_t(ni)));
     const glm::dmat4 geomBind = [&] {
-        const usd::Attribute* a = inheritedAttribute(&mesh, "primvars:skel:geomBindTransform");
+        const usd::Attribute* a = haveInfluences ? inheritedAttribute(&mesh, "primvars:skel:geomBindTransform") : nullptr;
         if (a)
             if (auto flat = a->get(time).getTuple(); flat && flat->size() == 16) return matrixAt(*flat, 0);
         return glm::dmat4(1.0);
@@ -333,12 +387,9 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
 
     SkinnedMesh out;
     out.skeleton = skel->path();
-    out.world = pose->world;
+    out.world = haveInfluences ? pose->world : worldTransform(mesh, time);
     out.points.resize(np);
-    for (size_t i = 0; i < np; ++i) {
-        const glm::dvec4 p((*pts)[3 * i], (*pts)[3 * i + 1], (*pts)[3 * i + 2], 1.0);
-        out.points[i] = glm::vec3(blended[rigid ? 0 : i] * p);
-    }
+    for (size_t i = 0; i < np; ++i) out.points[i] = glm::vec3(blended[rigid ? 0 : i] * glm::dvec4(base[i], 1.0));
     // Normals per point (vertex/varying) or per corner (faceVarying), unindexed. Interpolation
     // fallbacks as the delegate reads them: vertex for `normals`, constant for the primvar.
     const usd::Attribute* normalsAttr = mesh.attribute("primvars:normals");
@@ -356,9 +407,10 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
             for (size_t k = 0; k < influences; ++k) normalMatrix[k] = glm::transpose(glm::inverse(glm::dmat3(blended[k])));
             out.normals.resize(n.size() / 3);
             for (size_t c = 0; c < out.normals.size(); ++c) {
-                const glm::dvec3 authored(n[3 * c], n[3 * c + 1], n[3 * c + 2]);
                 const double corner = perPoint ? double(c) : corners[c];
                 const size_t point = corner >= 0.0 && corner < double(np) ? size_t(corner) : 0;
+                glm::dvec3 authored(n[3 * c], n[3 * c + 1], n[3 * c + 2]);
+                if (!normalOffsets.empty()) authored += normalOffsets[point];
                 glm::dvec3 nn = normalMatrix[rigid ? 0 : point] * authored;
                 double l = glm::length(nn);
                 if (!(l > 0.0) || !std::isfinite(l)) nn = authored, l = glm::length(authored);  // a singular blend

@@ -33,6 +33,7 @@ struct SkinnedMesh {
 struct SkeletonPose {
     std::vector<std::string> joints;
     std::vector<glm::dmat4> skinning;
+    std::unordered_map<std::string, double> blendShapeWeights;  ///< the animation's, by name
     glm::dmat4 world{1.0};
     std::string error;
 };
@@ -49,9 +50,13 @@ using SkeletonPoseCache = std::unordered_map<std::string, std::shared_ptr<const 
 /// composed down the joint paths), B_i its bindTransforms entry, G
 /// primvars:skel:geomBindTransform (inherited; identity if none), w_i normalised.
 /// Normals: the inverse transpose of each point's blended matrix, normalised.
+/// Blend shapes (skel:blendShapes names, skel:blendShapeTargets BlendShape prims) add
+/// weight * offsets (pointIndices when sparse; normalOffsets to normals) before skinning, the
+/// weights from the animation's blendShapes / blendShapeWeights by name (0 when absent). A mesh
+/// with blend shapes and no joint influences keeps its own transform and is not skinned.
 /// std::nullopt when the mesh is not skinned; malformed data (sizes that do not match, unknown
 /// joints, a missing or inactive skeleton) adds a warning (about the mesh, without its path)
-/// and leaves the mesh as authored. Not done: blend shapes, dual-quaternion skinning
+/// and leaves the mesh as authored. Not done: inbetween shapes, dual-quaternion skinning
 /// (skel:skinningMethod), skinned prims inside instances or PointInstancer prototypes.
 std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& mesh, double time,
                                     std::vector<std::string>* warnings, SkeletonPoseCache* cache = nullptr);

@@ -46,7 +46,7 @@ std::string tokenAttr(const usd::Prim& prim, const char* name, double time,
 const std::set<std::string>& ignoredTypes() {
     static const std::set<std::string> t{"",        "Xform",    "Scope",         "Shader",
                                          "NodeGraph", "GeomSubset", "SkelRoot",  "RenderSettings",
-                                         "Skeleton", "SkelAnimation",
+                                         "Skeleton", "SkelAnimation", "BlendShape",
                                          "RenderProduct", "RenderVar", "Material"};
     return t;
 }

@@ -469,8 +469,8 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
     }
     // UsdSkel: a skeleton, its animation or a binding changed: every mesh is checked again
     // (one that did not skin may now); a mesh's own points or normals: that mesh.
-    if (p->typeName() == "Skeleton" || p->typeName() == "SkelAnimation" || startsWith(attr, "primvars:skel:") ||
-        startsWith(attr, "skel:"))
+    if (p->typeName() == "Skeleton" || p->typeName() == "SkelAnimation" || p->typeName() == "BlendShape" ||
+        startsWith(attr, "primvars:skel:") || startsWith(attr, "skel:"))
         return reposeSkinned([](const Entry&) { return true; }, index);
     if ((attr == "points" || attr == "normals" || attr == "primvars:normals") && p->typeName() == "Mesh") {
         reposeSkinned([&](const Entry& e) { return e.prim == p; }, index);

@@ -263,3 +263,40 @@ TEST(Skinning, LongJointPathsStayLinear) {
     expectNear(s.get("points")[1], {1.5f, 0, 0});  // identity pose
     EXPECT_LT(seconds, 2.0);  // generous: the quadratic walk took minutes at this depth
 }
+
+TEST(Skinning, BlendShapesOffsetThePointsBeforeSkinning) {
+    // "up" lifts point 0 by (0, 0, 2) (sparse), "side" moves every point by (0, 1, 0); the
+    // animation weighs them 0.5 and 0 ("side" then does nothing).
+    std::string text = scene(std::string(kInfluences) + R"(
+        uniform token[] skel:blendShapes = ["up", "side"]
+        rel skel:blendShapeTargets = [</Rig/Arm/Up>, </Rig/Arm/Side>]
+        def BlendShape "Up"
+        {
+            uniform vector3f[] offsets = [(0, 0, 2)]
+            uniform int[] pointIndices = [0]
+        }
+        def BlendShape "Side"
+        {
+            uniform vector3f[] offsets = [(0, 1, 0), (0, 1, 0), (0, 1, 0)]
+        }
+)", kAnimated);
+    const std::string weights = "        half3[] scales = [(1, 1, 1)]\n";
+    text.replace(text.find(weights), weights.size(),
+                 weights + "        uniform token[] blendShapes = [\"up\", \"side\"]\n        float[] blendShapeWeights = [0.5, 0]\n");
+    Posed s(text);
+    const auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    expectNear(p[0], {0.5f, 0, 1});     // lifted, on the unmoved arm
+    expectNear(p[1], {1.0f, 0.5f, 0});  // untouched by the shapes, turned with the hand
+    // The same shapes on a mesh without joint influences: offsets only, its own transform.
+    const size_t i = text.find("int[] primvars:skel:jointIndices");
+    text.erase(i, text.find("float[] primvars:skel:jointWeights") - i);
+    const size_t w = text.find("float[] primvars:skel:jointWeights");
+    text.erase(w, text.find('\n', w) - w);
+    Posed t(text);
+    const auto q = t.get("points");
+    ASSERT_EQ(q.size(), 3u);
+    expectNear(q[0], {0.5f, 0, 1});
+    expectNear(q[1], {1.5f, 0, 0});
+    EXPECT_EQ(t.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 100.0);
+}

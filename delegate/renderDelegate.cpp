@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <set>
 
 #include <tbb/parallel_for.h>
@@ -92,6 +93,7 @@ std::unique_ptr<RenderPass> EmbreeRenderDelegate::createRenderPass(RenderIndex* 
 }
 
 void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
+    if (!_budgetWarning.empty()) _param->warn(hd::Path::absoluteRoot(), std::exchange(_budgetWarning, {}));
     // Incremental (issue 7, edit latency): each table is rebuilt only when what it depends on
     // changed. The result is what a full rebuild of the same scene gives, bit for bit (tables
     // keep the same order and indices; the light distribution uses the same arithmetic).
@@ -659,10 +661,13 @@ void EmbreeRenderDelegate::setRenderSetting(const Token& key, const Value& value
     if (key == Token("defaultLighting")) _param->markTablesDirty();
     // Subdivision settings apply to meshes (re)built afterwards.
     if (key == Token("refineLevel") || key == Token("dicingRate") || key == Token("maxRefineLevel") ||
-        key == Token("dicingTolerance") || key == Token("subdivisionBudget")) {
+        key == Token("dicingTolerance")) {
         updateDicing();
         _subdivisionSettingsChanged = true;  // the next sync re-plans every subdivision mesh
     }
+    // The plans do not depend on the budget: the next sync fits them again and rebuilds only
+    // the meshes whose level moves.
+    if (key == Token("subdivisionBudget")) _param->requestSubdivisionRefit();
 }
 
 void EmbreeRenderDelegate::prepareRprimSync(const std::vector<hd::Rprim*>& prims,
@@ -736,7 +741,7 @@ void EmbreeRenderDelegate::prepareRprimSync(const std::vector<hd::Rprim*>& prims
                       "to %d, to %.3g triangles%s",
                       plans.size(), fit.requested, budget, fit.steps, before, after, fit.triangles,
                       fit.fits ? "" : "; still over the budget with every mesh at its lowest level");
-        _param->warn(hd::Path::absoluteRoot(), text);
+        _budgetWarning = text;  // said once, at commit: this may run more than once per sync
     }
 }
 

@@ -107,6 +107,7 @@ private:
     void assignLightLinks();
     bool _lightLinksAssigned = false;  ///< some prim may hold link bits (assignLightLinks)
     std::atomic<bool> _subdivisionSettingsChanged{false};  ///< re-plan every mesh at the next sync
+    std::string _budgetWarning;  ///< the last fit's warning, given at commit (once per sync)
     bool mayEmit(const GeometryRecord* r) const;
     /// Whether material `materialIndex` of the table may emit (MaterialRecord::mayEmit).
     bool materialMayEmit(int materialIndex) const;

@@ -21,9 +21,10 @@ std::string target(const usd::Prim& p, const char* name) {
 bool resolution(const usd::Prim& p, int* w, int* h, std::vector<std::string>* warnings) {
     const usd::Attribute* a = p.attribute("resolution");
     if (!a || !a->hasValue()) return false;
-    const auto v = a->get().getTuple();
-    if (!v || v->size() != 2 || !((*v)[0] >= 1 && (*v)[0] <= 32768) || !((*v)[1] >= 1 && (*v)[1] <= 32768)) {
-        warnings->push_back(p.path() + ": resolution is not two sizes within 1..32768; ignored");
+    const usd::Value value = a->get();
+    const auto v = value.getTuple();
+    if (value.typeName() != "int2" || !v || v->size() != 2 || !((*v)[0] >= 1 && (*v)[0] <= 32768) || !((*v)[1] >= 1 && (*v)[1] <= 32768)) {
+        warnings->push_back(p.path() + ": resolution is not an int2 of sizes within 1..32768; ignored");
         return false;
     }
     *w = int(std::lround((*v)[0]));
@@ -44,8 +45,12 @@ StageRenderSettings readRenderSettings(const usd::Stage& stage) {
                 settings = nullptr;
             }
         }
+    if (settings && (!settings->isActive() || !settings->isDefined() || settings->isAbstract())) {
+        out.warnings.push_back(settings->path() + ": renderSettingsPrimPath names an inactive or undefined prim; ignored");
+        settings = nullptr;
+    }
     if (!settings)
-        for (const usd::Prim* p : stage.traverse())
+        for (const usd::Prim* p : stage.traverse())  // active, defined, not abstract
             if (p->typeName() == "RenderSettings") {
                 settings = p;
                 break;
@@ -53,12 +58,27 @@ StageRenderSettings readRenderSettings(const usd::Stage& stage) {
     if (!settings) return out;
     out.prim = settings->path();
     out.camera = target(*settings, "camera");
+    // UsdRenderSettingsBase's fallback resolution when the prim authors none.
+    out.width = 2048, out.height = 1080;
     resolution(*settings, &out.width, &out.height, &out.warnings);
+    auto ignored = [&](const usd::Prim& p) {
+        for (const char* name : {"pixelAspectRatio", "aspectRatioConformPolicy", "dataWindowNDC"})
+            if (const usd::Attribute* a = p.attribute(name); a && a->hasValue())
+                out.warnings.push_back(p.path() + ": " + name +
+                                       " is not supported (square pixels, the camera's aperture expanded to the image)");
+    };
+    ignored(*settings);
     const std::string productPath = target(*settings, "products");
-    if (const usd::Prim* product = productPath.empty() ? nullptr : stage.prim(productPath);
-        product && product->typeName() == "RenderProduct") {
-        if (std::string c = target(*product, "camera"); !c.empty()) out.camera = c;
-        resolution(*product, &out.width, &out.height, &out.warnings);
+    if (!productPath.empty()) {
+        const usd::Prim* product = stage.prim(productPath);
+        if (product && product->typeName() == "RenderProduct" && product->isActive() && product->isDefined()) {
+            if (std::string c = target(*product, "camera"); !c.empty()) out.camera = c;
+            resolution(*product, &out.width, &out.height, &out.warnings);
+            ignored(*product);
+        } else {
+            out.warnings.push_back(settings->path() + ": products <" + productPath +
+                                   "> is not an active RenderProduct; ignored");
+        }
     }
     return out;
 }

@@ -14,7 +14,10 @@ namespace principled::adapter {
 /// What the stage's UsdRenderSettings prim says about the image: the prim named by the root
 /// layer's `renderSettingsPrimPath` metadata, else the first RenderSettings prim in namespace
 /// order. Its first RenderProduct's `camera` and `resolution` win over the settings' own, as
-/// UsdRender products override their settings. Empty camera / zero size: not authored.
+/// UsdRender products override their settings; a settings prim without a resolution gives the
+/// schema's fallback, 2048 x 1080. Empty camera: not authored; zero size: no settings prim.
+/// Inactive, undefined or abstract prims are not used. pixelAspectRatio,
+/// aspectRatioConformPolicy and dataWindowNDC are warned about and not applied.
 struct StageRenderSettings {
     std::string prim;    ///< the RenderSettings prim used ("" when none)
     std::string camera;  ///< camera prim path

@@ -388,6 +388,7 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
     SkinnedMesh out;
     out.skeleton = skel->path();
     out.world = haveInfluences ? pose->world : worldTransform(mesh, time);
+    out.inSkeletonSpace = haveInfluences;
     out.points.resize(np);
     for (size_t i = 0; i < np; ++i) out.points[i] = glm::vec3(blended[rigid ? 0 : i] * glm::dvec4(base[i], 1.0));
     // Normals per point (vertex/varying) or per corner (faceVarying), unindexed. Interpolation

@@ -26,6 +26,9 @@ struct SkinnedMesh {
     std::vector<glm::vec3> normals;  ///< empty when the mesh has none (or not per point/corner)
     glm::dmat4 world{1.0};
     std::string skeleton;  ///< path of the bound Skeleton
+    /// Skinned by joints (world is the skeleton's); false: blend shapes alone (world is the
+    /// mesh's own).
+    bool inSkeletonSpace = true;
 };
 
 /// A Skeleton's pose at one time: the skinning transform J_j * inverse(B_j) of each joint, and

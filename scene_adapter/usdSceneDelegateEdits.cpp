@@ -198,6 +198,7 @@ void UsdSceneDelegate::repopulate(RenderIndex* index) {
 }
 
 void UsdSceneDelegate::primAdded(const std::string& path, RenderIndex* index) {
+    _skeletonPoses.clear();  // any edit may change a skeleton's pose
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(path);
     if (!p) return;
@@ -221,6 +222,7 @@ void UsdSceneDelegate::primAdded(const std::string& path, RenderIndex* index) {
 }
 
 void UsdSceneDelegate::primRemoving(const std::string& path, RenderIndex* index) {
+    _skeletonPoses.clear();  // any edit may change a skeleton's pose
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     _removing = _stage.prim(path);
     _removingHadInstances = subtreeHasInstances(path);
@@ -233,6 +235,7 @@ void UsdSceneDelegate::primRemoving(const std::string& path, RenderIndex* index)
 }
 
 void UsdSceneDelegate::primRemoved(const std::string& path, RenderIndex* index) {
+    _skeletonPoses.clear();  // any edit may change a skeleton's pose
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     // A skeleton or animation may have gone: skinned meshes are posed again (or unposed).
     if (hasSkinnedMeshes()) reposeSkinned([](const Entry& e) { return e.skinned != nullptr; }, index);
@@ -450,15 +453,20 @@ void UsdSceneDelegate::skeletonSpaceMoved(const std::string& moved, RenderIndex*
     auto atOrBelow = [&](const std::string& path) {
         return path == moved || moved == "/" || path.rfind(moved + "/", 0) == 0;
     };
+    _skeletonPoses.clear();  // their poses hold the skeletons' old world transforms
     for (auto& [id, e] : _entries) {
         if (!e.skinned || !(atOrBelow(e.skinned->skeleton) || atOrBelow(e.prim->path()))) continue;
-        if (const usd::Prim* skel = _stage.prim(e.skinned->skeleton)) e.world = worldTransform(*skel, _time);
+        if (!e.skinned->inSkeletonSpace)
+            e.world = worldTransform(*e.prim, _time);  // blend shapes alone: the mesh's own
+        else if (const usd::Prim* skel = _stage.prim(e.skinned->skeleton))
+            e.world = worldTransform(*skel, _time);
         tracker.markRprimDirty(id, RprimDirty::Transform);
     }
 }
 
 void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::string& attr,
                                         RenderIndex* index) {
+    _skeletonPoses.clear();  // any edit may change a skeleton's pose
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;
@@ -525,6 +533,7 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
 
 void UsdSceneDelegate::relationshipChanged(const std::string& primPath, const std::string& name,
                                            RenderIndex* index) {
+    _skeletonPoses.clear();  // any edit may change a skeleton's pose
     invalidateInstancerCache();  // any edit may change an instancer's arrays or entries
     const usd::Prim* p = _stage.prim(primPath);
     if (!p) return;

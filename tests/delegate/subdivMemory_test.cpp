@@ -284,3 +284,19 @@ TEST(SubdivMemory, AFlatCageStaysUnrefinedOnlyWithPrimvarsThatFollowIt) {
     EXPECT_EQ(levelWith(false), 0);
     EXPECT_GT(levelWith(true), 0);
 }
+
+// One sync, one budget warning, however many times the fit runs in it.
+TEST(SubdivMemory, OneSyncGivesOneBudgetWarning) {
+    embree::EmbreeRenderDelegate delegate;
+    delegate.setRenderSetting(hd::Token("subdivisionBudget"), hd::Value(35000));
+    hd::RenderIndex index{&delegate};
+    TestSceneDelegate scene{&index};
+    for (const char* id : {"/a", "/b", "/c", "/d"}) addGrid(scene, hd::Path(id), 8, 4);
+    index.sync();
+    delegate.takeWarnings();
+    addGrid(scene, hd::Path("/e"), 8, 4);  // moves the four clean meshes: the fit runs twice
+    index.sync();
+    int count = 0;
+    for (const std::string& w : delegate.takeWarnings()) count += w.find("subdivisionBudget") != std::string::npos;
+    EXPECT_EQ(count, 1);
+}

@@ -299,4 +299,24 @@ TEST(Skinning, BlendShapesOffsetThePointsBeforeSkinning) {
     expectNear(q[0], {0.5f, 0, 1});
     expectNear(q[1], {1.5f, 0, 0});
     EXPECT_EQ(t.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 100.0);
+    // Moving the rig or the mesh keeps such a mesh in its own space.
+    t.index.sync();
+    adapter::StageEditor editor(*t.stage, *t.scene, t.index);
+    const double x50[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 50, 0, 0, 1};
+    editor.setTransform("/Rig/Arm", x50);
+    EXPECT_EQ(t.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 50.0);
+    EXPECT_EQ(t.scene->getTransform(hd::Path("/Rig/Arm"))[3][1], 10.0);  // under the SkelRoot's y = 10
+}
+
+TEST(Skinning, MovesKeepEachMeshInItsOwnSpace) {
+    // A skinned mesh follows its skeleton; after the move a resync (purpose edit) must not bring
+    // back the skeleton's old place from a cached pose.
+    Posed s(scene(kInfluences, kAnimated));
+    s.index.sync();
+    adapter::StageEditor editor(*s.stage, *s.scene, s.index);
+    const double x7[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 7, 0, 0, 1};
+    editor.setTransform("/Rig/Skel", x7);
+    EXPECT_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 7.0);
+    editor.setAttribute("/Rig/Arm", "purpose", adapter::EditValue::text("render"));
+    EXPECT_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 7.0);
 }

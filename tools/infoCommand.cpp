@@ -17,8 +17,7 @@ namespace {
 
 int runInfo(const std::string& scene, const std::string& camera, int refineLevel) {
     host::SessionOptions o;
-    o.width = 640;
-    o.height = 360;
+    o.width = o.height = 0;  // as `principled render` without --res: the stage's RenderSettings, else 640x360
     o.samplesPerPixel = 1;
     o.camera = camera;
     o.refineLevel = refineLevel;

@@ -154,6 +154,7 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
             if (auto posed = skinMesh(_stage, prim, _time, &skinWarnings, &_skeletonPoses)) {
                 e.world = posed->world;  // UsdSkel: the skeleton's space, not the mesh's own
                 e.skinned = std::make_shared<const SkinnedMesh>(std::move(*posed));
+                _anySkinned = true;
             }
             for (const std::string& w : skinWarnings) warn(prim.location().str() + ": " + prim.path(), w);
         }

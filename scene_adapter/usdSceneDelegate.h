@@ -147,11 +147,10 @@ private:
     /// or below it take their skeleton's new world transform.
     void skeletonSpaceMoved(const std::string& moved, hd::RenderIndex* index);
     SkeletonPoseCache _skeletonPoses;  ///< per populate / edit pass (poses at _time)
-    bool hasSkinnedMeshes() const {
-        for (const auto& [id, e] : _entries)
-            if (e.skinned) return true;
-        return false;
-    }
+    /// Some mesh has been posed (stays true once set: a cheap, conservative test for the edit
+    /// paths, instead of a scan of every entry per edit).
+    bool hasSkinnedMeshes() const { return _anySkinned; }
+    bool _anySkinned = false;
     struct Ancestry {
         glm::dmat4 parentWorld{1.0};
         bool parentVisible = true;

@@ -438,6 +438,7 @@ void UsdSceneDelegate::reposeSkinned(const std::function<bool(const Entry&)>& wh
         if (posed) {
             e.world = posed->world;
             e.skinned = std::make_shared<const SkinnedMesh>(std::move(*posed));
+            _anySkinned = true;
         } else {  // no longer skinned: its own points and transform again
             e.skinned.reset();
             e.world = worldTransform(*e.prim, _time);

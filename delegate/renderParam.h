@@ -181,7 +181,7 @@ public:
 
     /// A problem with user data found during sync (bad topology, unsupported value): the prim
     /// is skipped or simplified and the message kept for the host to show.
-    void warn(const hd::Path& id, const std::string& message) {
+    void warn(const hd::Path& id, const std::string& message) override {
         std::lock_guard<std::mutex> l(_mutex);
         _warnings.push_back(id.str() + ": " + message);
     }

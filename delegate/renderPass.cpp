@@ -150,6 +150,14 @@ void writeSample(const BoundAov& a, int x, int y, const PathSample& ps, const Ca
     }
 }
 
+// The light a sample carries times the camera's exposure scale (Camera::exposureScale): the
+// colour, emission and per-lobe values; first-hit data is not light and is left alone.
+void exposeSample(PathSample* ps, float exposure) {
+    ps->radiance *= exposure;
+    ps->emission *= exposure;
+    for (glm::vec3& l : ps->lobes) l *= exposure;
+}
+
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 }  // namespace
@@ -173,7 +181,8 @@ bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
         key << ',' << cam->focalLength() << ',' << cam->horizontalAperture() << ','
             << cam->verticalAperture() << ',' << cam->horizontalApertureOffset() << ','
             << cam->verticalApertureOffset() << ',' << cam->clippingRange().x << ','
-            << cam->clippingRange().y << ',' << int(cam->projection());
+            << cam->clippingRange().y << ',' << int(cam->projection()) << ',' << cam->fStop() << ','
+            << cam->focusDistance() << ',' << cam->apertureBlades() << ',' << cam->exposureScale();
     }
     bool restart = sv != _sceneVersion || setv != _settingsVersion || key.str() != _stateKey;
     _sceneVersion = sv;
@@ -275,6 +284,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     long causticPathsThisPass = 0;
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
     glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));
+    const float exposure = cam->exposureScale();  // the camera's exposure model, on all light AOVs
     const float lensRadius = cam->lensRadius();  // once per pass, not per ray
     const bool thinLens = lensRadius > 0.0f;
     CameraFrame cf = cameraFrame(*cam);
@@ -403,6 +413,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                         glm::vec2 lens = thinLens ? cam->apertureSample(sampler.next2D()) : glm::vec2(0.0f);
                         Ray r = cameraRay(*cam, window, state.width, state.height, x + j.x, y + j.y, lensRadius, lens);
                         PathSample ps = integrator.trace(r, sampler);
+                        if (exposure != 1.0f) exposeSample(&ps, exposure);
                         tileRays += ps.rays;
                         ++tileSamples;
                         tileInvalid += ps.invalid;
@@ -442,7 +453,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _ltPaths += double(paths);
         _ltSpread += double(batch) * batch / double(paths);
         ++_ltPasses;
-        const float scale = float(batch) / float(paths);
+        const float scale = float(batch) / float(paths) * exposure;
         for (int y = 0; y < state.height; ++y)
             for (int x = 0; x < state.width; ++x) {
                 const size_t p = size_t(y) * size_t(state.width) + size_t(x);

@@ -158,6 +158,11 @@ std::string StageEditor::schemaType(const std::string& primType, const std::stri
                                                            {"clippingRange", "float2"},
                                                            {"fStop", "float"},
                                                            {"focusDistance", "float"},
+                                                           {"exposure", "float"},
+                                                           {"exposure:time", "float"},
+                                                           {"exposure:iso", "float"},
+                                                           {"exposure:fStop", "float"},
+                                                           {"exposure:responsivity", "float"},
                                                            {"projection", "token"}};
     static const std::map<std::string, std::string> light{{"inputs:intensity", "float"},
                                                           {"inputs:exposure", "float"},

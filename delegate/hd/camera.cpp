@@ -9,7 +9,7 @@
 
 namespace principled::hd {
 
-void Camera::sync(SceneDelegate* delegate, RenderParam*, DirtyBits* dirtyBits) {
+void Camera::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* dirtyBits) {
     if (*dirtyBits & SprimDirty::Transform) _transform = delegate->getTransform(id());
     if (*dirtyBits & SprimDirty::Params) {
         auto param = [&](const char* name, float fallback) {
@@ -32,8 +32,23 @@ void Camera::sync(SceneDelegate* delegate, RenderParam*, DirtyBits* dirtyBits) {
         auto proj = getString(delegate->getCameraParamValue(id(), Token("projection")));
         _projection = (proj && *proj == "orthographic") ? Projection::Orthographic
                                                         : Projection::Perspective;
+        const double scale = exposureScale(param("exposure", 0.0f), param("exposure:time", 1.0f),
+                                           param("exposure:iso", 100.0f), param("exposure:fStop", 1.0f),
+                                           param("exposure:responsivity", 1.0f));
+        _exposureScale = scale >= 0.0 ? float(scale) : 1.0f;
+        if (!(scale >= 0.0) && renderParam)
+            renderParam->warn(id(), "exposure, exposure:time, exposure:iso, exposure:fStop and exposure:responsivity give "
+                                    "no finite scale >= 0 (a negative or non-finite value, or fStop 0); exposure 1 used");
     }
     *dirtyBits = SprimDirty::Clean;
+}
+
+double Camera::exposureScale(double exposure, double time, double iso, double fStop, double responsivity) {
+    // UsdGeomCamera's exposure model (USD 24.x, "Camera Exposure Model"; HdCamera::GetExposure):
+    // responsivity * time * (iso / 100) * 2^exposure / fStop^2.
+    const double s = responsivity * time * (iso / 100.0) * std::exp2(exposure) / (fStop * fStop);
+    const bool inputsValid = time >= 0.0 && iso >= 0.0 && fStop > 0.0 && responsivity >= 0.0;
+    return inputsValid && std::isfinite(s) ? s : -1.0;
 }
 
 void Camera::set(const glm::dmat4& xform, float focalLength, float hAperture, float vAperture,

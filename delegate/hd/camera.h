@@ -3,6 +3,8 @@
 // projection parameters in scene units; render delegates turn it into rays.
 #pragma once
 
+#include <cmath>
+
 #include <glm/glm.hpp>
 
 #include "delegate/hd/prim.h"
@@ -41,6 +43,15 @@ public:
     /// bokeh as Cycles' blades), uniform in area, from two uniform numbers. Scaled by lensRadius().
     glm::vec2 apertureSample(glm::vec2 u) const;
     int apertureBlades() const { return _blades; }
+    /// The factor the rendered image's light is multiplied by (UsdGeomCamera exposure model,
+    /// USD 24: responsivity * time * iso / 100 * 2^exposure / fStop^2, from the attributes
+    /// exposure, exposure:time, exposure:iso, exposure:fStop and exposure:responsivity; 1 with
+    /// their fallbacks). Radiance AOVs (color and the per-lobe light AOVs) are scaled, data AOVs
+    /// are not. A product that is negative or not finite is replaced by 1 with a warning.
+    float exposureScale() const { return _exposureScale; }
+    /// The exposure model's product for the given attribute values; -1 when it is not a finite
+    /// number >= 0 (a negative or non-finite input, or fStop 0).
+    static double exposureScale(double exposure, double time, double iso, double fStop, double responsivity);
 
     /// The image-plane window at distance 1 (perspective) or in scene units (orthographic)
     /// for an image of the given aspect ratio: {xmin, xmax, ymin, ymax}. The aperture is fitted
@@ -58,6 +69,9 @@ public:
     }
     /// Sets the aperture shape directly: blades < 3 is round; rotation in degrees.
     void setAperture(int blades, float rotationDegrees);
+    /// Sets the image's exposure scale directly (hosts without a scene delegate); values that are
+    /// negative or not finite give 1.
+    void setExposureScale(float scale) { _exposureScale = std::isfinite(scale) && scale >= 0.0f ? scale : 1.0f; }
 
 private:
     glm::dmat4 _transform{1.0};
@@ -74,6 +88,7 @@ private:
     float _fStop = 0.0f;
     float _focusDistance = 0.0f;
     float _metersPerUnit = 0.01f;  ///< the stage's unit (UsdGeom fallback: centimetres)
+    float _exposureScale = 1.0f;
 };
 
 }  // namespace principled::hd

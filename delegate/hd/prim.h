@@ -14,6 +14,9 @@ class SceneDelegate;
 class RenderParam {
 public:
     virtual ~RenderParam() = default;
+    /// A problem with user data found during sync: the prim keeps a fallback and the message
+    /// reaches the host (the render delegate's param collects them; the base drops them).
+    virtual void warn(const Path& /*id*/, const std::string& /*message*/) {}
 };
 
 /// Geometry. sync() runs in parallel with other rprims: touch only this prim's own state and

@@ -10,7 +10,8 @@ delegate's aperture radius lens * 1e-3 / (2 fStop) is Cycles' round aperture. Re
 emissive half-plane (x >= 0) 4 m in front of a 50 mm f/0.5 camera focused at 1 m, seen by
 PRINCIPLED and by CYCLES: the edge profiles (column means) agree, and they differ from the same
 render without depth of field (so the check can fail). The focus object variant focuses on an
-empty 4 m away: the edge is sharp again. Exit code 0 = pass.
+empty 4 m away: the edge is sharp again. Cycles' Film > Exposure becomes the camera's
+UsdGeomCamera exposure (stops): a quarter of the light in both renderers. Exit code 0 = pass.
 """
 import os
 import sys
@@ -104,6 +105,15 @@ def all_tests():
     refocused = render(scene, "PRINCIPLED")
     check(rms(refocused, sharp) < 0.01,
           f"focus object on the plane: sharp again (RMS vs no depth of field {rms(refocused, sharp):.4f})")
+    # Film > Exposure 0.25 becomes the camera's exposure -2 stops: the image a quarter as bright,
+    # as in Cycles.
+    scene.cycles.film_exposure = 0.25
+    dim, dim_cycles = render(scene, "PRINCIPLED"), render(scene, "CYCLES")
+    right = slice(W // 2 + 8, W)
+    check(abs(dim[right].mean() - 0.25 * refocused[right].mean()) < 0.01 and
+          abs(dim[right].mean() - dim_cycles[right].mean()) < 0.01,
+          f"film exposure 0.25: principled {dim[right].mean():.4f}, Cycles {dim_cycles[right].mean():.4f}, "
+          f"a quarter of {refocused[right].mean():.4f}")
 
 
 tr.run_main(all_tests)

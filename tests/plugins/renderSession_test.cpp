@@ -3,10 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 
+#include "scene_adapter/stageEditor.h"
 #include "scene_adapter/usda/error.h"
 
 using namespace principled;
@@ -463,4 +465,95 @@ def Scope "Render"
     bool warned = false;
     for (const auto& w : u->takeWarnings()) warned = warned || w.find("is not a camera of the stage") != std::string::npos;
     EXPECT_TRUE(warned);
+}
+
+TEST(RenderSession, CameraExposureScalesTheLightAovsOnly) {
+    // The same render with the camera one stop up (exposure 1) and with a physical exposure that
+    // cancels out (1/2 s at ISO 200, f/1): the first is exactly twice as bright in every light AOV,
+    // the second equal; depth and normals do not change. A broken exposure warns and keeps 1.
+    auto render = [](const std::string& exposure, std::vector<std::string>* warnings = nullptr) {
+        const std::string usda = R"(#usda 1.0
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, 6)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+)" + exposure + R"(
+}
+def Sphere "Ball" {}
+def DistantLight "Sun" { float intensity = 50000 }
+)";
+        host::SessionOptions o;
+        o.width = o.height = 16;
+        o.samplesPerPixel = 4;
+        o.aovs = {"color", "diffuse", "depth", "normal"};
+        auto s = host::RenderSession::openString(usda, "exposure.usda", o);
+        while (!s->step()) {
+        }
+        if (warnings) *warnings = s->takeWarnings();
+        std::map<std::string, std::vector<float>> out;
+        for (const auto& a : s->aovs()) {
+            const float* p = static_cast<const float*>(a.pixels);
+            out[a.name].assign(p, p + 16 * 16 * a.components);
+        }
+        return out;
+    };
+    const auto base = render("");
+    const auto up = render("    float exposure = 1");
+    const auto same = render("    float exposure:time = 0.5\n    float exposure:iso = 200\n    float exposure:fStop = 1");
+    std::vector<std::string> warnings;
+    const auto broken = render("    float exposure:fStop = 0", &warnings);
+    ASSERT_EQ(base.count("color"), 1u);
+    double lit = 0.0;
+    for (const auto& [name, pixels] : base) {
+        const bool light = name == "color" || name == "diffuse";
+        for (size_t i = 0; i < pixels.size(); ++i) {
+            const bool alpha = name == "color" && i % 4 == 3;
+            const float scaled = light && !alpha ? 2.0f * pixels[i] : pixels[i];
+            ASSERT_NEAR(up.at(name)[i], scaled, 1e-5f * std::max(1.0f, std::abs(scaled))) << name << " " << i;
+            ASSERT_NEAR(same.at(name)[i], pixels[i], 1e-5f * std::max(1.0f, std::abs(pixels[i]))) << name << " " << i;
+            ASSERT_EQ(broken.at(name)[i], pixels[i]) << name << " " << i;
+            if (name == "color" && !alpha) lit += pixels[i];
+        }
+    }
+    EXPECT_GT(lit, 1.0);  // the comparison had light to scale
+    bool warned = false;
+    for (const auto& w : warnings) warned = warned || (w.find("/Cam") != std::string::npos && w.find("exposure") != std::string::npos);
+    EXPECT_TRUE(warned);
+}
+
+TEST(RenderSession, CameraLensAndExposureEditsRestartTheImage) {
+    // An edit of the camera's fStop or exposure changes the image: the progressive accumulation
+    // starts again (no blend of the old and new images), and the new exposure shows exactly.
+    const std::string usda = R"(#usda 1.0
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, 6)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    float focusDistance = 6
+}
+def Sphere "Ball" {}
+def DistantLight "Sun" { float intensity = 50000 }
+)";
+    host::SessionOptions o;
+    o.width = o.height = 16;
+    o.samplesPerPixel = 8;
+    auto s = host::RenderSession::openString(usda, "edit.usda", o);
+    s->step();
+    ASSERT_EQ(s->completedSamples(), 1);
+    s->step();
+    ASSERT_GT(s->completedSamples(), 1);
+    using principled::adapter::EditValue;
+    s->editor().setAttribute("/Cam", "fStop", EditValue::of({2.0}));
+    s->step();
+    EXPECT_EQ(s->completedSamples(), 1) << "a depth-of-field edit kept the old samples";
+    while (!s->step()) {
+    }
+    std::vector<float> before(s->color(), s->color() + 16 * 16 * 4);
+    s->editor().setAttribute("/Cam", "exposure", EditValue::of({1.0}));
+    s->step();
+    EXPECT_EQ(s->completedSamples(), 1) << "an exposure edit kept the old samples";
+    while (!s->step()) {
+    }
+    for (int i = 0; i < 16 * 16 * 4; ++i)
+        ASSERT_NEAR(s->color()[i], i % 4 == 3 ? before[i] : 2.0f * before[i], 1e-5f * std::max(1.0f, before[i])) << i;
 }

@@ -1486,6 +1486,17 @@ def camera_params(cam_data, width, height, matrix_world=None):
     return p
 
 
+def film_exposure_stops(scene):
+    """Cycles' Film > Exposure (a linear multiplier of the render, 1 by default) as the camera's
+    UsdGeomCamera exposure in stops (log2), which the delegate multiplies the image by. A
+    multiplier <= 0 (a black render) is held to 2^-100."""
+    cycles = getattr(scene, "cycles", None)
+    scale = float(getattr(cycles, "film_exposure", 1.0)) if cycles is not None else 1.0
+    if not math.isfinite(scale) or scale == 1.0:
+        return 0.0
+    return math.log2(max(scale, 2.0 ** -100))
+
+
 def depth_of_field(cam_data, matrix_world=None):
     """Blender's depth of field -> UsdGeomCamera fStop and focusDistance (scene units). The lens
     is mm on a metre stage, so the delegate's aperture radius lens * 1e-3 / (2 fStop) is Cycles'.
@@ -1893,6 +1904,9 @@ class SceneExport:
                 b.set_attribute(path, "float2", "clippingRange", list(v))
             else:
                 b.set_attribute(path, "float", k, v)
+        stops = film_exposure_stops(self.depsgraph.scene)
+        if stops != 0.0:
+            b.set_attribute(path, "float", "exposure", stops)
         self.camera_path = path
 
     def _light(self, b, name, mw, light, obj=None):

@@ -84,3 +84,30 @@ TEST(Camera, PolygonalApertureIsUniformOverTheInscribedPolygon) {
     }
     EXPECT_NEAR(double(inner) / n, 0.36, 0.005);
 }
+
+TEST(Camera, ExposureScaleFollowsTheUsdGeomCameraExposureModel) {
+    // responsivity * time * (iso / 100) * 2^exposure / fStop^2 (USD 24 UsdGeomCamera).
+    EXPECT_DOUBLE_EQ(Camera::exposureScale(0.0, 1.0, 100.0, 1.0, 1.0), 1.0);  // the fallbacks
+    EXPECT_DOUBLE_EQ(Camera::exposureScale(1.0, 1.0, 100.0, 1.0, 1.0), 2.0);  // one stop up
+    EXPECT_DOUBLE_EQ(Camera::exposureScale(-2.0, 1.0, 100.0, 1.0, 1.0), 0.25);
+    EXPECT_DOUBLE_EQ(Camera::exposureScale(0.0, 0.5, 200.0, 1.0, 1.0), 1.0);  // half the time, twice the ISO
+    EXPECT_DOUBLE_EQ(Camera::exposureScale(0.0, 1.0, 100.0, 2.0, 1.0), 0.25);  // f/2 lets in a quarter
+    EXPECT_DOUBLE_EQ(Camera::exposureScale(0.0, 1.0 / 125.0, 100.0, 16.0, 1.0), 1.0 / (125.0 * 256.0));
+    EXPECT_DOUBLE_EQ(Camera::exposureScale(0.0, 1.0, 100.0, 1.0, 3.0), 3.0);
+    EXPECT_DOUBLE_EQ(Camera::exposureScale(0.0, 0.0, 100.0, 1.0, 1.0), 0.0);  // no time: no light
+    // Inputs the model has no meaning for give -1 (the camera then keeps 1).
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(Camera::exposureScale(0.0, 1.0, 100.0, 0.0, 1.0), -1.0);
+    EXPECT_EQ(Camera::exposureScale(0.0, 1.0, 100.0, -2.0, 1.0), -1.0);
+    EXPECT_EQ(Camera::exposureScale(0.0, -1.0, -100.0, 1.0, 1.0), -1.0);  // a product of two negatives
+    EXPECT_EQ(Camera::exposureScale(0.0, 1.0, 100.0, 1.0, -1.0), -1.0);
+    EXPECT_EQ(Camera::exposureScale(nan, 1.0, 100.0, 1.0, 1.0), -1.0);
+    EXPECT_EQ(Camera::exposureScale(2000.0, 1.0, 100.0, 1.0, 1.0), -1.0);  // 2^2000 overflows
+    EXPECT_EQ(Camera::exposureScale(0.0, inf, 100.0, 1.0, 1.0), -1.0);
+    Camera c{Path("/cam")};
+    EXPECT_EQ(c.exposureScale(), 1.0f);
+    c.setExposureScale(4.0f);
+    EXPECT_EQ(c.exposureScale(), 4.0f);
+    c.setExposureScale(-1.0f);
+    EXPECT_EQ(c.exposureScale(), 1.0f);
+}

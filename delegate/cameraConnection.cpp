@@ -7,12 +7,12 @@
 
 namespace principled::embree {
 
-CameraConnector::CameraConnector(const hd::Camera& camera, int width, int height)
+CameraConnector::CameraConnector(const hd::Camera& camera, int width, int height, const glm::vec4& window)
     : _camera(&camera), _width(width), _height(height) {
     if (camera.projection() != hd::Camera::Projection::Perspective || width <= 0 || height <= 0) return;
     _toWorld = camera.transform();
     _toCamera = glm::inverse(_toWorld);
-    _window = camera.screenWindow(double(width) / double(height));
+    _window = window;
     _lensRadius = camera.lensRadius();
     _focus = camera.focusDistance();
     _near = camera.clippingRange().x;

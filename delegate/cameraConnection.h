@@ -30,7 +30,8 @@ struct CameraConnection {
 class CameraConnector {
 public:
     CameraConnector() = default;
-    CameraConnector(const hd::Camera& camera, int width, int height);
+    /// window: the camera's screen window for this image (Camera::screenWindow with the pass's framing).
+    CameraConnector(const hd::Camera& camera, int width, int height, const glm::vec4& window);
 
     bool valid() const { return _valid; }
     /// Camera-space lens point from two uniform numbers (ignored for a pinhole).

@@ -175,6 +175,9 @@ bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
     std::ostringstream key;
     key << state.cameraId.str() << '|' << state.width << 'x' << state.height;
     for (const auto& b : state.aovBindings) key << '|' << b.aovName.str() << '@' << b.renderBuffer;
+    const hd::Framing& fr = state.framing;
+    key << '|' << int(fr.conform) << ',' << fr.pixelAspectRatio << ',' << fr.dataWindowNDC.x << ','
+        << fr.dataWindowNDC.y << ',' << fr.dataWindowNDC.z << ',' << fr.dataWindowNDC.w;
     if (auto* cam = static_cast<Camera*>(renderIndex()->sprim(tokens::camera(), state.cameraId))) {
         const double* m = &cam->transform()[0][0];
         for (int i = 0; i < 16; ++i) key << ',' << m[i];
@@ -199,8 +202,13 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _converged = false;
         _causticPaths = 0;
         _causticBudget.reset();
-        _pixelDone.assign(pixels, 0);
-        _active = pixels;
+        // Pixels outside the data window (UsdRender dataWindowNDC) are never sampled: they start
+        // done and resolve to their AOV's clear value.
+        const glm::ivec4 rect = state.framing.pixelRect(state.width, state.height);
+        _pixelDone.assign(pixels, 1);
+        for (int y = rect.y; y < rect.w; ++y)
+            std::fill_n(_pixelDone.begin() + ptrdiff_t(size_t(y) * size_t(state.width) + size_t(rect.x)), rect.z - rect.x, 0);
+        _active = size_t(rect.z - rect.x) * size_t(rect.w - rect.y);
         _lumSum.assign(pixels, 0.0);
         _lumSqSum.assign(pixels, 0.0);
         _pixelSamples.assign(pixels, 0);
@@ -283,7 +291,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     Integrator integrator(scene, settings);
     long causticPathsThisPass = 0;
     uint32_t seed = static_cast<uint32_t>(_delegate->seed());
-    glm::vec4 window = cam->screenWindow(double(state.width) / double(state.height));
+    glm::vec4 window = cam->screenWindow(state.width, state.height, state.framing);
     const float exposure = cam->exposureScale();  // the camera's exposure model, on all light AOVs
     const float lensRadius = cam->lensRadius();  // once per pass, not per ray
     const bool thinLens = lensRadius > 0.0f;
@@ -304,7 +312,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         // Caustic light paths: each is an estimate of every pixel's caustic share at once
         // (CameraConnection::importance), so a pixel's estimate is its splat sum over the paths
         // traced. It joins the pixel's mean as this pass's `batch` samples' share.
-        const CameraConnector connector(*cam, state.width, state.height);
+        const CameraConnector connector(*cam, state.width, state.height, window);
         // At most 2^20 paths a pass (photon memory); big frames get fewer per camera sample.
         // The first pass after a restart (the viewport's first image) traces an eighth: its
         // latency stays that of path tracing, and caustics path tracing cannot find at all (a

@@ -105,6 +105,7 @@ void RenderSession::setup() {
     // RenderSettings, else 640x360 and the first camera.
     const adapter::StageRenderSettings stageSettings = adapter::readRenderSettings(*_stage);
     for (const std::string& w : stageSettings.warnings) _notes.push_back(w);
+    _framing = _options.framing.value_or(stageSettings.framing);
     if (_options.width == 0 && _options.height == 0) {
         _options.width = stageSettings.width > 0 ? stageSettings.width : 640;
         _options.height = stageSettings.height > 0 ? stageSettings.height : 360;
@@ -185,7 +186,7 @@ void RenderSession::chooseCamera(const std::string& request) {
     hd::Camera probe(cam);
     probe.set(xf, param("focalLength", 5.0f), param("horizontalAperture", 2.0955f),
               param("verticalAperture", 1.52908f));
-    glm::vec4 w = probe.screenWindow(double(_options.width) / double(_options.height));
+    glm::vec4 w = probe.screenWindow(_options.width, _options.height, _framing);
     float vfov = 2.0f * std::atan(0.5f * (w.w - w.z));
     _delegate->setDicingView(glm::vec3(xf[3]), vfov, _options.height);
 }
@@ -239,6 +240,7 @@ bool RenderSession::step() {
     state.cameraId = Path(_cameraPath);
     state.width = _options.width;
     state.height = _options.height;
+    state.framing = _framing;
     for (const auto& [name, buf] : _buffers) state.aovBindings.push_back({Token(name), buf});
     _pass->execute(state);
     return _pass->isConverged();

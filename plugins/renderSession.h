@@ -7,10 +7,12 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "delegate/hd/framing.h"
 #include "delegate/hd/path.h"
 
 namespace principled::usd {
@@ -47,6 +49,9 @@ struct SessionOptions {
     int seed = 0;
     int maxDepth = 8;
     std::string camera;           ///< prim path; empty = the stage's RenderSettings camera, else the first, else a framing one
+    /// Conform policy, pixel aspect ratio and data window; unset: the stage's RenderSettings
+    /// (its product's over its own), else the UsdRender fallbacks.
+    std::optional<hd::Framing> framing;
     std::string shadingModel = "disney";
     std::string sampler = "sobol";  ///< sobol | independent
     int refineLevel = -1;           ///< subdivision level for every mesh; -1 = adaptive
@@ -106,6 +111,8 @@ public:
     /// The render buffer of an AOV (nullptr if not bound).
     embree::EmbreeRenderBuffer* buffer(const std::string& aov) const;
     const std::string& cameraPath() const { return _cameraPath; }
+    /// How the image frames the camera (SessionOptions::framing, or the stage's).
+    const hd::Framing& framing() const { return _framing; }
     /// The stage's camera prims (a framing camera is added only when it has none).
     const std::vector<hd::Path>& cameras() const;
     /// Renders through camera `primPath` from the next step ("": the first camera, else the
@@ -141,6 +148,7 @@ private:
     embree::EmbreeRenderBuffer* _color = nullptr;
     std::vector<std::pair<std::string, embree::EmbreeRenderBuffer*>> _buffers;
     std::string _cameraPath;
+    hd::Framing _framing;
     std::vector<std::string> _notes;  ///< the session's own warnings (render settings)
     size_t _adapterWarningsTaken = 0;
     size_t _stageWarningsTaken = 0;

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "scene_adapter/renderSettings.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "scene_adapter/usda/prim.h"
 #include "scene_adapter/usda/stage.h"
@@ -30,6 +32,65 @@ bool resolution(const usd::Prim& p, int* w, int* h, std::vector<std::string>* wa
     *w = int(std::lround((*v)[0]));
     *h = int(std::lround((*v)[1]));
     return true;
+}
+
+// The authored value of attribute `name`, null when there is none.
+const usd::Attribute* authored(const usd::Prim& p, const char* name) {
+    const usd::Attribute* a = p.attribute(name);
+    return a && a->hasValue() ? a : nullptr;
+}
+
+// UsdRenderSettingsBase's framing attributes authored on p, over what `out` holds (a product's
+// over its settings'): pixelAspectRatio, aspectRatioConformPolicy and dataWindowNDC. Values
+// with no meaning are warned about and leave `out` as it was.
+void framing(const usd::Prim& p, hd::Framing* out, std::vector<std::string>* warnings) {
+    using Conform = hd::Framing::Conform;
+    if (const usd::Attribute* a = authored(p, "pixelAspectRatio")) {
+        const auto v = a->get().getDouble();
+        if (v && *v > 0.0 && std::isfinite(*v) && float(*v) > 0.0f && std::isfinite(float(*v)))
+            out->pixelAspectRatio = float(*v);
+        else
+            warnings->push_back(p.path() + ": pixelAspectRatio must be a finite number > 0; ignored");
+    }
+    if (const usd::Attribute* a = authored(p, "aspectRatioConformPolicy")) {
+        static const std::pair<const char*, Conform> kPolicies[] = {
+            {"expandAperture", Conform::ExpandAperture},
+            {"cropAperture", Conform::CropAperture},
+            {"adjustApertureWidth", Conform::AdjustApertureWidth},
+            {"adjustApertureHeight", Conform::AdjustApertureHeight},
+            {"adjustPixelAspectRatio", Conform::AdjustPixelAspectRatio}};
+        const auto token = a->get().getString();
+        bool known = false;
+        for (const auto& [name, policy] : kPolicies)
+            if (token && *token == name) {
+                out->conform = policy;
+                known = true;
+            }
+        if (!known)
+            warnings->push_back(p.path() + ": aspectRatioConformPolicy '" + token.value_or("") +
+                                "' is not expandAperture, cropAperture, adjustApertureWidth, adjustApertureHeight "
+                                "or adjustPixelAspectRatio; ignored");
+    }
+    if (const usd::Attribute* a = authored(p, "dataWindowNDC")) {
+        const auto v = a->get().getTuple();
+        const bool ok = v && v->size() == 4 && std::all_of(v->begin(), v->end(), [](double x) { return std::isfinite(x); }) &&
+                        (*v)[0] < (*v)[2] && (*v)[1] < (*v)[3];
+        if (!ok) {
+            warnings->push_back(p.path() + ": dataWindowNDC must be a float4 (xmin, ymin, xmax, ymax) with min < max; ignored");
+        } else {
+            const glm::vec4 w{float((*v)[0]), float((*v)[1]), float((*v)[2]), float((*v)[3])};
+            const glm::vec4 clipped = glm::clamp(w, glm::vec4(0.0f), glm::vec4(1.0f));
+            if (!(clipped.x < clipped.z && clipped.y < clipped.w)) {
+                warnings->push_back(p.path() + ": dataWindowNDC covers no part of the image (overscan is not "
+                                               "supported); ignored");
+            } else {
+                if (clipped != w)
+                    warnings->push_back(p.path() + ": dataWindowNDC reaches outside (0, 0, 1, 1); overscan is not "
+                                                   "supported, the window is clipped to the image");
+                out->dataWindowNDC = clipped;
+            }
+        }
+    }
 }
 
 }  // namespace
@@ -61,20 +122,14 @@ StageRenderSettings readRenderSettings(const usd::Stage& stage) {
     // UsdRenderSettingsBase's fallback resolution when the prim authors none.
     out.width = 2048, out.height = 1080;
     resolution(*settings, &out.width, &out.height, &out.warnings);
-    auto ignored = [&](const usd::Prim& p) {
-        for (const char* name : {"pixelAspectRatio", "aspectRatioConformPolicy", "dataWindowNDC"})
-            if (const usd::Attribute* a = p.attribute(name); a && a->hasValue())
-                out.warnings.push_back(p.path() + ": " + name +
-                                       " is not supported (square pixels, the camera's aperture expanded to the image)");
-    };
-    ignored(*settings);
+    framing(*settings, &out.framing, &out.warnings);
     const std::string productPath = target(*settings, "products");
     if (!productPath.empty()) {
         const usd::Prim* product = stage.prim(productPath);
         if (product && product->typeName() == "RenderProduct" && product->isActive() && product->isDefined()) {
             if (std::string c = target(*product, "camera"); !c.empty()) out.camera = c;
             resolution(*product, &out.width, &out.height, &out.warnings);
-            ignored(*product);
+            framing(*product, &out.framing, &out.warnings);
         } else {
             out.warnings.push_back(settings->path() + ": products <" + productPath +
                                    "> is not an active RenderProduct; ignored");

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "delegate/hd/framing.h"
+
 namespace principled::usd {
 class Stage;
 }
@@ -16,12 +18,14 @@ namespace principled::adapter {
 /// order. Its first RenderProduct's `camera` and `resolution` win over the settings' own, as
 /// UsdRender products override their settings; a settings prim without a resolution gives the
 /// schema's fallback, 2048 x 1080. Empty camera: not authored; zero size: no settings prim.
-/// Inactive, undefined or abstract prims are not used. pixelAspectRatio,
-/// aspectRatioConformPolicy and dataWindowNDC are warned about and not applied.
+/// Inactive, undefined or abstract prims are not used. The framing (pixelAspectRatio,
+/// aspectRatioConformPolicy, dataWindowNDC) is read the same way, the product's attributes
+/// over the settings'; a data window beyond the unit square (overscan) is clipped to it.
 struct StageRenderSettings {
     std::string prim;    ///< the RenderSettings prim used ("" when none)
     std::string camera;  ///< camera prim path
     int width = 0, height = 0;
+    hd::Framing framing;  ///< the schema's fallbacks when no prim authors them
     std::vector<std::string> warnings;  ///< "path: message"
 };
 StageRenderSettings readRenderSettings(const usd::Stage& stage);

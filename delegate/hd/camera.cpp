@@ -93,7 +93,7 @@ glm::vec2 Camera::apertureSample(glm::vec2 u) const {
     return a * ((1.0f - u.y) * c0 + u.y * c1);
 }
 
-glm::vec4 Camera::screenWindow(double imageAspect) const {
+glm::vec4 Camera::screenWindow(double imageAspect, Framing::Conform conform) const {
     // Perspective: the window at unit distance is aperture / focal length.
     double scale = _projection == Projection::Perspective
                        ? 1.0 / std::max(1e-6, static_cast<double>(_focalLength))
@@ -101,11 +101,20 @@ glm::vec4 Camera::screenWindow(double imageAspect) const {
     double w = std::max(1e-6, static_cast<double>(_hAperture)) * scale;
     double h = std::max(1e-6, static_cast<double>(_vAperture)) * scale;
     double cx = _hOffset * scale, cy = _vOffset * scale;
-    // Fit: grow whichever side the image aspect needs so the aperture stays fully visible.
-    if (w / h > imageAspect)
-        h = w / imageAspect;
-    else
-        w = h * imageAspect;
+    if (!(imageAspect > 0.0) || !std::isfinite(imageAspect)) imageAspect = w / h;
+    // UsdRenderSettingsBase aspectRatioConformPolicy: which side of the aperture follows the image.
+    const bool wider = w / h > imageAspect;  // the aperture is wider than the image
+    switch (conform) {
+        case Framing::Conform::ExpandAperture:  // grow a side: the whole aperture stays visible
+            if (wider) h = w / imageAspect; else w = h * imageAspect;
+            break;
+        case Framing::Conform::CropAperture:  // shrink a side: the image is filled
+            if (wider) w = h * imageAspect; else h = w / imageAspect;
+            break;
+        case Framing::Conform::AdjustApertureWidth: w = h * imageAspect; break;
+        case Framing::Conform::AdjustApertureHeight: h = w / imageAspect; break;
+        case Framing::Conform::AdjustPixelAspectRatio: break;  // the aperture as authored
+    }
     return glm::vec4(cx - 0.5 * w, cx + 0.5 * w, cy - 0.5 * h, cy + 0.5 * h);
 }
 

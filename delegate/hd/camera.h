@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "delegate/hd/framing.h"
 #include "delegate/hd/prim.h"
 #include "delegate/hd/token.h"
 
@@ -54,9 +55,16 @@ public:
     static double exposureScale(double exposure, double time, double iso, double fStop, double responsivity);
 
     /// The image-plane window at distance 1 (perspective) or in scene units (orthographic)
-    /// for an image of the given aspect ratio: {xmin, xmax, ymin, ymax}. The aperture is fitted
-    /// to the image the way USD's conformWindow "fit" policy does: the whole aperture stays visible.
-    glm::vec4 screenWindow(double imageAspect) const;
+    /// for an image of the given aspect ratio: {xmin, xmax, ymin, ymax}. By default the aperture
+    /// is fitted to the image (UsdRender expandAperture, conformWindow "fit"): all of it stays visible.
+    glm::vec4 screenWindow(double imageAspect) const { return screenWindow(imageAspect, Framing::Conform::ExpandAperture); }
+    /// The same under a UsdRender conform policy; imageAspect is the image's width / height in
+    /// pixels times the pixel aspect ratio.
+    glm::vec4 screenWindow(double imageAspect, Framing::Conform conform) const;
+    /// The window of an image of width x height pixels framed by `framing`.
+    glm::vec4 screenWindow(int width, int height, const Framing& framing) const {
+        return screenWindow(double(width) * double(framing.pixelAspectRatio) / double(height), framing.conform);
+    }
 
     /// Sets parameters directly (hosts and tests that build cameras without a scene delegate).
     void set(const glm::dmat4& xform, float focalLength, float hAperture, float vAperture,

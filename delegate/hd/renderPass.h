@@ -5,6 +5,7 @@
 #include <glm/glm.hpp>
 
 #include "delegate/hd/aov.h"
+#include "delegate/hd/framing.h"
 #include "delegate/hd/path.h"
 
 namespace principled::hd {
@@ -17,6 +18,7 @@ struct RenderPassState {
     int width = 0;
     int height = 0;
     AovBindingVector aovBindings;
+    Framing framing;  ///< conform policy, pixel aspect ratio and data window (UsdRender)
 };
 
 /// One call to execute() runs one progressive iteration (blocking; parallel inside) and leaves

@@ -557,3 +557,98 @@ def DistantLight "Sun" { float intensity = 50000 }
     for (int i = 0; i < 16 * 16 * 4; ++i)
         ASSERT_NEAR(s->color()[i], i % 4 == 3 ? before[i] : 2.0f * before[i], 1e-5f * std::max(1.0f, before[i])) << i;
 }
+
+TEST(RenderSession, RenderSettingsFramingCropsAndConforms) {
+    // A 2:1 aperture seen from 10 units by a 16 x 16 image; the ball's radius is 1.
+    auto stage = [](const std::string& product) {
+        return R"(#usda 1.0
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    float focalLength = 50
+    float horizontalAperture = 20
+    float verticalAperture = 10
+}
+def Sphere "Ball" {}
+def DistantLight "Sun" { float intensity = 50000 }
+def RenderSettings "Settings"
+{
+    rel camera = </Cam>
+    uniform int2 resolution = (16, 16)
+    rel products = </Product>
+}
+def RenderProduct "Product"
+{
+)" + product + R"(
+}
+)";
+    };
+    host::SessionOptions o;
+    o.width = o.height = 0;
+    o.samplesPerPixel = 2;
+    auto render = [&](const std::string& product, std::vector<std::string>* warnings = nullptr) {
+        auto s = host::RenderSession::openString(stage(product), "framing.usda", o);
+        while (!s->step()) {
+        }
+        if (warnings) *warnings = s->takeWarnings();
+        return std::vector<float>(s->color(), s->color() + 16 * 16 * 4);
+    };
+    auto extent = [](const std::vector<float>& c, bool rows) {  // rows or columns the ball covers
+        int n = 0;
+        for (int i = 0; i < 16; ++i) {
+            bool any = false;
+            for (int j = 0; j < 16; ++j) any = any || c[size_t((rows ? i * 16 + j : j * 16 + i) * 4 + 3)] > 0.5f;
+            n += any;
+        }
+        return n;
+    };
+    // expandAperture (the fallback): the window is 0.4 x 0.4 at unit distance, the ball 0.2
+    // across (angular radius asin(0.1)): about 8 of 16 pixels both ways.
+    const auto expanded = render("");
+    EXPECT_NEAR(extent(expanded, true), 8, 1);
+    EXPECT_NEAR(extent(expanded, false), 8, 1);
+    // adjustPixelAspectRatio: the 0.4 x 0.2 aperture on the square image, pixels twice as wide
+    // as tall: the ball spans all 16 rows, still 8 columns.
+    const auto stretched = render("    uniform token aspectRatioConformPolicy = \"adjustPixelAspectRatio\"");
+    EXPECT_GE(extent(stretched, true), 15);
+    EXPECT_NEAR(extent(stretched, false), 8, 1);
+    // cropAperture: the window is 0.2 x 0.2, the ball fills it.
+    const auto cropped = render("    uniform token aspectRatioConformPolicy = \"cropAperture\"");
+    EXPECT_GE(extent(cropped, true), 15);
+    EXPECT_GE(extent(cropped, false), 15);
+    // pixelAspectRatio 0.5 (pixels half as wide as tall): the picture is 1:2, so expand grows the
+    // height to 0.8: the ball 4 rows tall, 8 columns wide.
+    const auto tall = render("    float pixelAspectRatio = 0.5");
+    EXPECT_NEAR(extent(tall, true), 4, 1);
+    EXPECT_NEAR(extent(tall, false), 8, 1);
+    // dataWindowNDC: the left half is rendered exactly as in the full image (samples are
+    // addressed by pixel), the right half is never sampled (alpha 0, colour 0).
+    const auto half = render("    float4 dataWindowNDC = (0, 0, 0.5, 1)");
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int k = 0; k < 4; ++k) {
+                const size_t i = size_t((y * 16 + x) * 4 + k);
+                if (x < 8)
+                    ASSERT_EQ(half[i], expanded[i]) << x << "," << y;
+                else
+                    ASSERT_EQ(half[i], 0.0f) << x << "," << y;
+            }
+    // Bad values warn, naming the prim, and keep the fallbacks.
+    std::vector<std::string> warnings;
+    const auto bad = render("    float pixelAspectRatio = -1\n    uniform token aspectRatioConformPolicy = \"squash\"\n"
+                            "    float4 dataWindowNDC = (0.6, 0, 0.2, 1)",
+                            &warnings);
+    EXPECT_EQ(bad, expanded);
+    int named = 0;
+    for (const auto& w : warnings)
+        for (const char* what : {"pixelAspectRatio", "aspectRatioConformPolicy", "dataWindowNDC"})
+            named += w.find("/Product") != std::string::npos && w.find(what) != std::string::npos;
+    EXPECT_EQ(named, 3);
+    // Overscan is clipped to the image with a warning.
+    const auto over = render("    float4 dataWindowNDC = (-0.5, 0, 0.5, 1)", &warnings);
+    EXPECT_EQ(over, half);
+    bool clipped = false;
+    for (const auto& w : warnings) clipped = clipped || w.find("overscan is not supported") != std::string::npos;
+    EXPECT_TRUE(clipped);
+}

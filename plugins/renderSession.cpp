@@ -105,7 +105,8 @@ void RenderSession::setup() {
     // RenderSettings, else 640x360 and the first camera.
     const adapter::StageRenderSettings stageSettings = adapter::readRenderSettings(*_stage);
     for (const std::string& w : stageSettings.warnings) _notes.push_back(w);
-    _framing = _options.framing.value_or(stageSettings.framing);
+    _stageFraming = stageSettings.framing;
+    _framing = _options.framing.value_or(_stageFraming);
     if (_options.width == 0 && _options.height == 0) {
         _options.width = stageSettings.width > 0 ? stageSettings.width : 640;
         _options.height = stageSettings.height > 0 ? stageSettings.height : 360;
@@ -232,6 +233,11 @@ void RenderSession::setResolution(int width, int height) {
     _options.height = height;
     for (auto& [name, buf] : _buffers) buf = allocate(name);
     _color = _buffers.front().second;
+}
+
+void RenderSession::setFraming(const std::optional<hd::Framing>& framing) {
+    _options.framing = framing;
+    _framing = framing.value_or(_stageFraming);
 }
 
 bool RenderSession::step() {

@@ -120,6 +120,8 @@ public:
     void setCamera(const std::string& primPath);
     /// New image size (1..32768 each); every bound buffer is reallocated.
     void setResolution(int width, int height);
+    /// The host's framing from the next step (nullopt: the stage's RenderSettings framing).
+    void setFraming(const std::optional<hd::Framing>& framing);
     /// Binds one more AOV (no-op when bound; UserError for an unknown name) or unbinds one
     /// (color stays bound).
     void bindAov(const std::string& name);
@@ -149,6 +151,7 @@ private:
     std::vector<std::pair<std::string, embree::EmbreeRenderBuffer*>> _buffers;
     std::string _cameraPath;
     hd::Framing _framing;
+    hd::Framing _stageFraming;  ///< what the stage's RenderSettings ask for
     std::vector<std::string> _notes;  ///< the session's own warnings (render settings)
     size_t _adapterWarningsTaken = 0;
     size_t _stageWarningsTaken = 0;

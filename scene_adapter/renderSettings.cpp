@@ -44,7 +44,6 @@ const usd::Attribute* authored(const usd::Prim& p, const char* name) {
 // over its settings'): pixelAspectRatio, aspectRatioConformPolicy and dataWindowNDC. Values
 // with no meaning are warned about and leave `out` as it was.
 void framing(const usd::Prim& p, hd::Framing* out, std::vector<std::string>* warnings) {
-    using Conform = hd::Framing::Conform;
     if (const usd::Attribute* a = authored(p, "pixelAspectRatio")) {
         const auto v = a->get().getDouble();
         if (v && *v > 0.0 && std::isfinite(*v) && float(*v) > 0.0f && std::isfinite(float(*v)))
@@ -53,23 +52,12 @@ void framing(const usd::Prim& p, hd::Framing* out, std::vector<std::string>* war
             warnings->push_back(p.path() + ": pixelAspectRatio must be a finite number > 0; ignored");
     }
     if (const usd::Attribute* a = authored(p, "aspectRatioConformPolicy")) {
-        static const std::pair<const char*, Conform> kPolicies[] = {
-            {"expandAperture", Conform::ExpandAperture},
-            {"cropAperture", Conform::CropAperture},
-            {"adjustApertureWidth", Conform::AdjustApertureWidth},
-            {"adjustApertureHeight", Conform::AdjustApertureHeight},
-            {"adjustPixelAspectRatio", Conform::AdjustPixelAspectRatio}};
         const auto token = a->get().getString();
-        bool known = false;
-        for (const auto& [name, policy] : kPolicies)
-            if (token && *token == name) {
-                out->conform = policy;
-                known = true;
-            }
-        if (!known)
-            warnings->push_back(p.path() + ": aspectRatioConformPolicy '" + token.value_or("") +
-                                "' is not expandAperture, cropAperture, adjustApertureWidth, adjustApertureHeight "
-                                "or adjustPixelAspectRatio; ignored");
+        if (const auto policy = hd::Framing::conformFromToken(token.value_or("")))
+            out->conform = *policy;
+        else
+            warnings->push_back(p.path() + ": aspectRatioConformPolicy '" + token.value_or("") + "' is not " +
+                                hd::Framing::kConformTokens + "; ignored");
     }
     if (const usd::Attribute* a = authored(p, "dataWindowNDC")) {
         const auto v = a->get().getTuple();

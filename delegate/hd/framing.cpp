@@ -6,6 +6,15 @@
 
 namespace principled::hd {
 
+std::optional<Framing::Conform> Framing::conformFromToken(std::string_view token) {
+    if (token == "expandAperture") return Conform::ExpandAperture;
+    if (token == "cropAperture") return Conform::CropAperture;
+    if (token == "adjustApertureWidth") return Conform::AdjustApertureWidth;
+    if (token == "adjustApertureHeight") return Conform::AdjustApertureHeight;
+    if (token == "adjustPixelAspectRatio") return Conform::AdjustPixelAspectRatio;
+    return std::nullopt;
+}
+
 glm::ivec4 Framing::pixelRect(int width, int height) const {
     // Pixel (x, y), y counted from the top, has its centre at NDC ((x + 0.5) / W, 1 - (y + 0.5) / H);
     // it is in when xmin <= cx < xmax and ymin <= cy < ymax.

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
 #include <glm/glm.hpp>
 
@@ -28,6 +30,12 @@ struct Framing {
     /// xmax), so windows that tile the unit square render every pixel once.
     glm::ivec4 pixelRect(int width, int height) const;
     bool operator==(const Framing&) const = default;
+
+    /// The policy a UsdRender aspectRatioConformPolicy token names; nullopt for any other text.
+    static std::optional<Conform> conformFromToken(std::string_view token);
+    /// The names conformFromToken accepts, for messages.
+    static constexpr const char* kConformTokens =
+        "expandAperture, cropAperture, adjustApertureWidth, adjustApertureHeight or adjustPixelAspectRatio";
 };
 
 }  // namespace principled::hd

@@ -333,6 +333,13 @@ PrdStatus prdSetResolution(PrdDelegate* d, int width, int height) {
         return a->setResolution(s, width, height);
     });
 }
+PrdStatus prdSetFraming(PrdDelegate* d, const char* conformPolicy, double pixelAspectRatio,
+                        const double dataWindowNDC[4]) {
+    return forwardNew(d, "prdSetFraming", d && PRD_HAS(d->api, setFraming),
+                      [&](const PrdRendererApi* a, PrdSession* s) {
+                          return a->setFraming(s, conformPolicy, pixelAspectRatio, dataWindowNDC);
+                      });
+}
 PrdStatus prdAovCount(PrdDelegate* d, int* count) {
     return forward(d, "prdAovCount",
                    [&](const PrdRendererApi* a, PrdSession* s) { return a->aovCount(s, count); });

@@ -195,6 +195,16 @@ PRD_API PrdStatus prdSetCamera(PrdDelegate* delegate, const char* primPath);
 PRD_API PrdStatus prdGetCamera(PrdDelegate* delegate, const char** primPath);
 /** Image size in pixels, 1..32768 each (default 640x360). Bound buffers are reallocated. */
 PRD_API PrdStatus prdSetResolution(PrdDelegate* delegate, int width, int height);
+/** How the image frames the camera (PRD_ABI_MINOR 2; PRD_ERROR_UNSUPPORTED from an older
+ *  plugin), as UsdRenderSettingsBase's attributes: conformPolicy "expandAperture" (the
+ *  fallback), "cropAperture", "adjustApertureWidth", "adjustApertureHeight" or
+ *  "adjustPixelAspectRatio"; pixelAspectRatio > 0 (pixel width / height); dataWindowNDC
+ *  (xmin, ymin, xmax, ymax) within the unit square, (0, 0) the bottom left, NULL = all of it:
+ *  only pixels whose centres lie in it are rendered (a crop; the rest stay at their clear
+ *  value). conformPolicy NULL returns to the stage's own RenderSettings framing. Kept across
+ *  stages, like the resolution. */
+PRD_API PrdStatus prdSetFraming(PrdDelegate* delegate, const char* conformPolicy, double pixelAspectRatio,
+                                const double dataWindowNDC[4]);
 
 /** AOVs this renderer can bind ("color", "depth", "primId", ...). */
 PRD_API PrdStatus prdAovCount(PrdDelegate* delegate, int* count);

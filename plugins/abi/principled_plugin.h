@@ -77,6 +77,10 @@ typedef struct PrdRendererApi {
                                   const char* source);
     PrdStatus (*setAttributeTyped)(PrdSession* s, const char* primPath, const char* attribute,
                                    const char* typeName, const double* values, size_t count);
+
+    /* PRD_ABI_MINOR 2: the image's framing (UsdRender conform policy, pixel aspect, data window). */
+    PrdStatus (*setFraming)(PrdSession* s, const char* conformPolicy, double pixelAspectRatio,
+                            const double dataWindowNDC[4]);
 } PrdRendererApi;
 
 /** Size of a PRD_ABI_MINOR 0 table (up to takeWarnings): the smallest a host accepts. */

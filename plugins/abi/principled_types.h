@@ -15,7 +15,7 @@ extern "C" {
 #define PRD_ABI_VERSION 1u
 /** Minor version: calls appended to PrdRendererApi; a host accepts plugins whose table is at
  *  least as large as the one it was compiled against (structSize). */
-#define PRD_ABI_MINOR 1u
+#define PRD_ABI_MINOR 2u
 
 typedef enum PrdStatus {
     PRD_OK = 0,

@@ -190,6 +190,9 @@ PrdStatus getCamera(PrdSession* s, const char** prim) {
 PrdStatus setResolution(PrdSession* s, int width, int height) {
     return guard(s, [&](EmbreeSession& e) { e.setResolution(width, height); });
 }
+PrdStatus setFraming(PrdSession* s, const char* conformPolicy, double pixelAspectRatio, const double dataWindowNDC[4]) {
+    return guard(s, [&](EmbreeSession& e) { e.setFraming(conformPolicy, pixelAspectRatio, dataWindowNDC); });
+}
 PrdStatus aovCount(PrdSession* s, int* count) {
     return guard(s, [&](EmbreeSession& e) { *need(count, "count") = e.aovCount(); });
 }
@@ -281,6 +284,7 @@ const PrdRendererApi kApi = {
     setRelationship,
     connectAttribute,
     setAttributeTyped,
+    setFraming,
 };
 
 }  // namespace

@@ -120,6 +120,7 @@ void EmbreeSession::open(F&& makeSession) {
     o.width = _width;
     o.height = _height;
     o.camera = _cameraRequest;
+    o.framing = _framing;
     o.renderDelegate = _delegate.get();
     try {
         std::unique_ptr<host::RenderSession> s = makeSession(o);
@@ -317,6 +318,36 @@ void EmbreeSession::setResolution(int width, int height) {
     _width = width;
     _height = height;
     if (_session) _session->setResolution(width, height);
+}
+
+void EmbreeSession::setFraming(const char* conformPolicy, double pixelAspectRatio, const double* dataWindowNDC) {
+    if (!conformPolicy) {
+        _framing.reset();
+    } else {
+        hd::Framing f;
+        const auto policy = hd::Framing::conformFromToken(conformPolicy);
+        if (!policy)
+            throw SessionError(PRD_ERROR_INVALID_ARGUMENT, std::string("conform policy '") + conformPolicy +
+                                                               "' is not " + hd::Framing::kConformTokens);
+        f.conform = *policy;
+        if (!(pixelAspectRatio > 0.0) || !std::isfinite(pixelAspectRatio) || !std::isfinite(float(pixelAspectRatio)) ||
+            !(float(pixelAspectRatio) > 0.0f))
+            throw SessionError(PRD_ERROR_INVALID_ARGUMENT, "pixel aspect ratio " + std::to_string(pixelAspectRatio) +
+                                                               " must be a finite number > 0");
+        f.pixelAspectRatio = float(pixelAspectRatio);
+        if (dataWindowNDC) {
+            const double* w = dataWindowNDC;
+            const bool inside = std::all_of(w, w + 4, [](double x) { return x >= 0.0 && x <= 1.0; });
+            if (!inside || !(float(w[0]) < float(w[2])) || !(float(w[1]) < float(w[3])))
+                throw SessionError(PRD_ERROR_INVALID_ARGUMENT,
+                                   "data window (" + std::to_string(w[0]) + ", " + std::to_string(w[1]) + ", " +
+                                       std::to_string(w[2]) + ", " + std::to_string(w[3]) +
+                                       ") must lie in the unit square with xmin < xmax and ymin < ymax");
+            f.dataWindowNDC = glm::vec4(float(w[0]), float(w[1]), float(w[2]), float(w[3]));
+        }
+        _framing = f;
+    }
+    if (_session) _session->setFraming(_framing);
 }
 
 PrdAovInfo EmbreeSession::describeAov(const std::string& name) {

@@ -9,11 +9,13 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "delegate/hd/framing.h"
 #include "plugins/abi/principled_types.h"
 
 namespace principled::adapter {
@@ -71,6 +73,8 @@ class EmbreeSession {
     void setCamera(const std::string& primPath);
     const std::string& camera() const;
     void setResolution(int width, int height);
+    /// conformPolicy null: the stage's framing; otherwise validated (INVALID_ARGUMENT naming the value).
+    void setFraming(const char* conformPolicy, double pixelAspectRatio, const double* dataWindowNDC);
 
     int aovCount() const { return static_cast<int>(_aovs.size()); }
     PrdAovInfo aovInfo(int index) const;
@@ -108,6 +112,7 @@ class EmbreeSession {
     std::unique_ptr<host::RenderSession> _session;  ///< the open stage, if any
     std::string _cameraRequest;                     ///< empty: the default camera
     int _width = 640, _height = 360;
+    std::optional<hd::Framing> _framing;  ///< the host's; nullopt = the stage's
     std::vector<std::string> _bound;  ///< in bind order
     // Storage behind strings returned through the C ABI (declared before _aovs, which points in).
     std::vector<std::unique_ptr<std::string>> _strings;

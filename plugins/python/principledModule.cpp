@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -473,6 +474,21 @@ light input updates light tables; points rebuild that mesh; a string sets a toke
                 d.height = wh.second;
             },
             "(width, height) in pixels (default 640x360); setting it reallocates bound buffers.")
+        .def(
+            "set_framing",
+            [](Delegate& d, std::optional<std::string> policy, double pixelAspectRatio,
+               std::optional<std::array<double, 4>> dataWindow) {
+                check(prdSetFraming(d.h(), policy ? policy->c_str() : nullptr, pixelAspectRatio,
+                                    dataWindow ? dataWindow->data() : nullptr),
+                      d.d);
+            },
+            py::arg("conform_policy") = py::none(), py::arg("pixel_aspect_ratio") = 1.0,
+            py::arg("data_window") = py::none(),
+            "How the image frames the camera, as UsdRenderSettingsBase: conform_policy "
+            "'expandAperture' | 'cropAperture' | 'adjustApertureWidth' | 'adjustApertureHeight' | "
+            "'adjustPixelAspectRatio', pixel_aspect_ratio (pixel width / height), data_window "
+            "(xmin, ymin, xmax, ymax) in [0, 1], (0, 0) the bottom left: only pixels whose centres "
+            "lie in it are rendered. conform_policy None: the stage's own RenderSettings framing.")
         // AOVs
         .def(
             "aovs",

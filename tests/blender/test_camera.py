@@ -69,6 +69,20 @@ def render(scene, engine):
     return img[..., 0].mean(axis=0)
 
 
+def render_image(scene, size=None):
+    """The add-on's Combined pass (top row first); size: the (width, height) of a render region."""
+    scene.render.engine = "PRINCIPLED"
+    scene.principled.samples = SPP
+    captured = {}
+    tr.session.CAPTURE = captured
+    try:
+        bpy.ops.render.render()
+    finally:
+        tr.session.CAPTURE = None
+    w, h = size or (W, H)
+    return captured["Combined"].reshape(h, w, 4)[::-1]
+
+
 def rms(a, b):
     return float(np.sqrt(np.mean((a - b) ** 2)))
 
@@ -105,6 +119,33 @@ def all_tests():
     refocused = render(scene, "PRINCIPLED")
     check(rms(refocused, sharp) < 0.01,
           f"focus object on the plane: sharp again (RMS vs no depth of field {rms(refocused, sharp):.4f})")
+    # A render region (border): only its pixels are traced, and Blender receives a result of the
+    # region's size equal, pixel for pixel, to that region of the full image (sampling is per pixel).
+    full = render_image(scene)
+    scene.render.use_border, scene.render.use_crop_to_border = True, True
+    scene.render.border_min_x, scene.render.border_max_x = 0.3, 0.8
+    scene.render.border_min_y, scene.render.border_max_y = 0.2, 0.9
+    part = render_image(scene, (64, 11))  # round(0.8 * 128) - round(0.3 * 128) = 102 - 38; 14 - 3
+    check(part.shape == (11, 64, 4) and np.array_equal(part, full[16 - 14:16 - 3, 38:102]),
+          f"render region 0.3-0.8 x 0.2-0.9: result {part.shape}, equal to the full image's region: "
+          f"{part.shape == (11, 64, 4) and np.array_equal(part, full[16 - 14:16 - 3, 38:102])}")
+    # Without cropping Blender places the region in the full frame; the rest stays empty.
+    scene.render.use_crop_to_border = False
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.filepath = os.path.join(tr.A["out"] or "/tmp", "principled-region.exr")
+    bpy.ops.render.render(write_still=True)
+    img = bpy.data.images.load(scene.render.filepath)
+    saved = np.empty(img.size[0] * img.size[1] * 4, np.float32)
+    img.pixels.foreach_get(saved)
+    saved = saved.reshape(img.size[1], img.size[0], 4)[::-1]
+    bpy.data.images.remove(img)
+    inside = np.zeros((H, W), bool)
+    inside[2:13, 38:102] = True
+    check(saved.shape == (H, W, 4) and np.allclose(saved[inside], full[inside], atol=1e-6) and
+          not saved[~inside].any(),
+          f"render region without cropping: a {saved.shape} image with the region in place and "
+          f"nothing outside it")
+    scene.render.use_border = False
     # Film > Exposure 0.25 becomes the camera's exposure -2 stops: the image a quarter as bright,
     # as in Cycles.
     scene.cycles.film_exposure = 0.25

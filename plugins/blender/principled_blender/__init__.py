@@ -19,6 +19,7 @@ bl_info = {
     "category": "Render",
 }
 
+import math
 import time
 
 import bpy
@@ -82,6 +83,23 @@ def _apply_settings(delegate, settings, report=None):
             delegate.set_setting(k, v)
         elif report:
             report(f"principled: render setting '{k}' not offered by the delegate; ignored")
+
+
+def border_rect(render, w, h):
+    """Blender's render border (Output > Format > Render Region) as pixel bounds (x0, y0, x1, y1),
+    rows counted from the bottom, rounded as Blender rounds it (half up); None when it is off or
+    covers the whole image."""
+    if not render.use_border:
+        return None
+
+    def px(v, n):
+        return min(max(int(math.floor(v * n + 0.5)), 0), n)
+
+    x0, x1 = px(render.border_min_x, w), px(render.border_max_x, w)
+    y0, y1 = px(render.border_min_y, h), px(render.border_max_y, h)
+    if x1 <= x0 or y1 <= y0 or (x0, y0, x1, y1) == (0, 0, w, h):
+        return None
+    return x0, y0, x1, y1
 
 
 def _set_rect(render_pass, pixels):
@@ -155,6 +173,13 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
             if bake_res:
                 self.update_stats("principled", "Baking procedural textures")
             warnings = s.full_sync(depsgraph, w, h, bake_resolution=bake_res)
+            # A render region: only its pixels are path traced (the delegate's data window, whose
+            # edges fall on pixel edges here, so it takes exactly Blender's rectangle); Blender
+            # takes a result of the region's size and places it (or crops to it).
+            rect = border_rect(scene.render, w, h)
+            if rect:
+                x0, y0, x1, y1 = rect
+                s.delegate.set_framing("expandAperture", 1.0, (x0 / w, y0 / h, x1 / w, y1 / h))
             for wmsg in warnings + s.delegate.take_warnings():
                 self.report({"WARNING"}, f"principled: {wmsg}")
             for msg in s.export.info:
@@ -173,7 +198,7 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
                     break
                 if limit > 0 and time.perf_counter() - start >= limit:
                     break
-            self._write_result(s, w, h)
+            self._write_result(s, w, h, rect)
             stats = s.delegate.stats()
             self.last_timing = {"sync": t_sync, "render": time.perf_counter() - start,
                                 "stats": stats}
@@ -182,23 +207,34 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
         finally:
             s.close()
 
-    def _write_result(self, s, w, h):
-        result = self.begin_result(0, 0, w, h)
+    def _write_result(self, s, w, h, rect=None):
+        x0, y0, x1, y1 = rect or (0, 0, w, h)
+        rw, rh = x1 - x0, y1 - y0
+
+        def region(pixels):  # (w*h, ch) rows bottom to top -> the region's (rw*rh, ch)
+            import numpy as np
+
+            if rect is None:
+                return pixels
+            ch = pixels.shape[-1]
+            return np.ascontiguousarray(pixels.reshape(h, w, ch)[y0:y1, x0:x1]).reshape(rw * rh, ch)
+
+        result = self.begin_result(0, 0, rw, rh)
         try:
             layer = result.layers[0]
             for rp in layer.passes:
                 name = rp.name
                 if name == "Combined":
-                    _set_rect(rp, s.blender_pass("Combined", "color", 4))
+                    _set_rect(rp, region(s.blender_pass("Combined", "color", 4)))
                     continue
                 entry = next((p for p in _session.PASSES if p[0] == name), None)
                 if entry is None:
                     continue
                 _n, aov, ch, _cid, _k = entry
-                _set_rect(rp, s.blender_pass(name, aov, rp.channels))
+                _set_rect(rp, region(s.blender_pass(name, aov, rp.channels)))
             if _session.CAPTURE is not None:
                 for rp in layer.passes:
-                    _session.CAPTURE[rp.name] = _get_rect(rp, w * h)
+                    _session.CAPTURE[rp.name] = _get_rect(rp, rw * rh)
         finally:
             self.end_result(result)
 

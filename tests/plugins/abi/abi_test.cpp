@@ -303,6 +303,35 @@ TEST_F(AbiTest, XformOpEditMovesTheCamera) {
     EXPECT_NEAR(halves().first, left, 1e-6);
 }
 
+TEST_F(AbiTest, FramingCropsAndRestoresTheImage) {
+    // The plane fills the left half. A data window over the right half renders only that half
+    // (the plane is gone); NULL returns to the stage's framing (the whole image).
+    renderToConvergence();
+    const double left = halves().first;
+    ASSERT_GT(left, 0.1);
+    const double rightHalf[4] = {0.5, 0.0, 1.0, 1.0};
+    ASSERT_EQ(prdSetFraming(d, "expandAperture", 1.0, rightHalf), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    EXPECT_EQ(halves().first, 0.0);
+    ASSERT_EQ(prdSetFraming(d, nullptr, 0.0, nullptr), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    EXPECT_NEAR(halves().first, left, 1e-6);
+    // Kept across stages, like the resolution.
+    ASSERT_EQ(prdSetFraming(d, "cropAperture", 1.0, rightHalf), PRD_OK);
+    ASSERT_EQ(prdOpenStageString(d, kScene, "again.usda"), PRD_OK) << prdLastError(d);
+    renderToConvergence();
+    EXPECT_EQ(halves().first, 0.0);
+    // Bad values: statuses naming them, and the framing in force stays.
+    EXPECT_EQ(prdSetFraming(d, "squash", 1.0, nullptr), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(prdLastError(d)).find("'squash'"), std::string::npos) << prdLastError(d);
+    EXPECT_EQ(prdSetFraming(d, "expandAperture", 0.0, nullptr), PRD_ERROR_INVALID_ARGUMENT);
+    const double outside[4] = {-0.5, 0.0, 0.5, 1.0}, empty[4] = {0.5, 0.0, 0.5, 1.0};
+    EXPECT_EQ(prdSetFraming(d, "expandAperture", 1.0, outside), PRD_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(prdSetFraming(d, "expandAperture", 1.0, empty), PRD_ERROR_INVALID_ARGUMENT);
+    renderToConvergence();
+    EXPECT_EQ(halves().first, 0.0);
+}
+
 TEST_F(AbiTest, PointsEditRebuildsThatMesh) {
     renderToConvergence();
     double rebuilt = stats()["meshesRebuilt"];

@@ -156,6 +156,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 if (format && *format != "automatic" && *format != "latlong")
                     param->warn(id(), "dome texture format '" + *format + "' is not supported; read as latlong");
                 std::string error;
+                if (auto* textures = param->textureCache()) textures->watch(*file);  // reloadTextures() sees edits
                 if (auto env = loadImage(*file, "dome texture", true, &error)) {
                     glm::mat3 r(xf);
                     for (int c = 0; c < 3; ++c) {
@@ -208,6 +209,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                                            : getString(delegate->getLightParamValue(id(), Token("texture:file")));
                 if (file && !file->empty()) {
                     std::string error;
+                    if (auto* textures = param->textureCache()) textures->watch(*file);
                     if (auto img = loadImage(*file, "rect light texture", false, &error))
                         _record.rectTexture = std::move(img);
                     else

@@ -92,6 +92,16 @@ std::unique_ptr<RenderPass> EmbreeRenderDelegate::createRenderPass(RenderIndex* 
     return std::make_unique<EmbreeRenderPass>(index, this);
 }
 
+bool EmbreeRenderDelegate::reloadTextures(bool onlyChanged) {
+    if (onlyChanged) {
+        if (!_textures.reloadChanged()) return false;
+    } else {
+        _textures.invalidate();
+    }
+    ++_contentVersion;  // the next pass starts over
+    return true;
+}
+
 void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
     if (!_budgetWarning.empty()) _param->warn(hd::Path::absoluteRoot(), std::exchange(_budgetWarning, {}));
     // Incremental (issue 7, edit latency): each table is rebuilt only when what it depends on

@@ -48,6 +48,13 @@ public:
     /// Bumped by every commit that changed what is rendered (the render pass restarts on it,
     /// not on every edit the change tracker saw).
     unsigned contentVersion() const { return _contentVersion.load(); }
+    /// Texture files edited on disk: onlyChanged re-reads the files (material textures, and the
+    /// lights' through TextureCache::watch) whose modification time or size changed, else every
+    /// one. Returns whether anything is re-read; the render restarts then. The caller re-syncs
+    /// the lights and materials (RenderSession::reloadTextures): lights read their images at
+    /// sync, materials take their textures' descriptions (channels, colour tags) at sync.
+    /// Call between render passes.
+    bool reloadTextures(bool onlyChanged);
 
     std::map<std::string, double> renderStats() const override;
     /// What the committed scene uses and what the renderer skips for it, in one line

@@ -235,6 +235,17 @@ void RenderSession::setResolution(int width, int height) {
     _color = _buffers.front().second;
 }
 
+bool RenderSession::reloadTextures(bool onlyChanged) {
+    if (!_delegate->reloadTextures(onlyChanged)) return false;
+    hd::ChangeTracker& tracker = _index->changeTracker();
+    const hd::DirtyBits bits = hd::SprimDirty::Params | hd::SprimDirty::MaterialParams | hd::SprimDirty::Resource;
+    for (const Token& type : _delegate->supportedSprimTypes()) {
+        if (type == tokens::camera()) continue;
+        for (const Path& id : _index->sprimIds(type)) tracker.markSprimDirty(id, bits);
+    }
+    return true;
+}
+
 void RenderSession::setFraming(const std::optional<hd::Framing>& framing) {
     _options.framing = framing;
     _framing = framing.value_or(_stageFraming);

@@ -122,6 +122,11 @@ public:
     void setResolution(int width, int height);
     /// The host's framing from the next step (nullopt: the stage's RenderSettings framing).
     void setFraming(const std::optional<hd::Framing>& framing);
+    /// Texture files edited on disk since they were read (onlyChanged: by modification time or
+    /// size; else all of them) are read again from the next step: the render delegate's
+    /// texture cache drops them and every material and light is re-synced. Returns whether
+    /// anything is re-read (the image then restarts).
+    bool reloadTextures(bool onlyChanged = true);
     /// Binds one more AOV (no-op when bound; UserError for an unknown name) or unbinds one
     /// (color stays bound).
     void bindAov(const std::string& name);

@@ -254,6 +254,7 @@ TextureCache::Reading TextureCache::read(const std::string& path) {
 TextureOpenResult TextureCache::openFile(const std::string& path) {
     TextureOpenResult result;
     std::unique_lock lock(_mutex);
+    remember(path);
     for (;;) {
         auto it = _textures.find(path);
         if (it == _textures.end()) break;
@@ -513,6 +514,46 @@ void TextureCache::invalidate() {
     }
     // Process-wide, like the texture system; nothing to drop before the backend is loaded.
     if (imageio::Backend* io = imageio::loadedBackend()) io->textureSystem().invalidateAll();
+}
+
+TextureCache::FileStamp TextureCache::stampOf(const std::string& path) {
+    FileStamp s;
+    std::error_code ec;
+    const auto time = std::filesystem::last_write_time(path, ec);
+    if (ec) return s;
+    const uintmax_t size = std::filesystem::file_size(path, ec);
+    s.exists = true;
+    s.modified = int64_t(time.time_since_epoch().count());
+    s.size = ec ? 0 : size;
+    return s;
+}
+
+void TextureCache::remember(const std::string& path) {
+    if (_stamps.find(path) == _stamps.end()) _stamps.emplace(path, stampOf(path));
+}
+
+void TextureCache::watch(const std::string& path) {
+    std::lock_guard lock(_mutex);
+    remember(path);
+}
+
+bool TextureCache::reloadChanged() {
+    std::vector<std::pair<std::string, FileStamp>> known;
+    {
+        std::lock_guard lock(_mutex);
+        known.assign(_stamps.begin(), _stamps.end());
+    }
+    // The file system is asked without the lock (lookups go on meanwhile).
+    std::vector<std::pair<std::string, FileStamp>> changed;
+    for (const auto& [path, stamp] : known)
+        if (FileStamp now = stampOf(path); !(now == stamp)) changed.emplace_back(path, now);
+    if (changed.empty()) return false;
+    {
+        std::lock_guard lock(_mutex);
+        for (auto& [path, stamp] : changed) _stamps[path] = stamp;
+    }
+    invalidate();
+    return true;
 }
 
 size_t TextureCache::collectRetired() {

@@ -165,6 +165,14 @@ class TextureCache {
     /// previous version finishes on it (retired, not freed), later ones read the file again.
     void invalidate();
 
+    /// Notes a file another reader loads (a light's texture) so reloadChanged() watches it too.
+    void watch(const std::string& path);
+    /// invalidate() if any file this cache has opened or watches changed on disk since it was
+    /// first seen or last reloaded (modification time or size; a file that appeared or
+    /// vanished counts). Returns whether it did. UDIM tiles added to a set after it was opened
+    /// are not seen (the set keeps the tiles it found).
+    bool reloadChanged();
+
     /// Frees the versions (pixels and descriptions) retired by invalidate() and re-reads.
     /// Call it at a quiescent point, e.g. between render passes: no lookup may be in flight
     /// and no TextureInfo reference or ResidentImage pointer taken before the call may be used
@@ -222,6 +230,16 @@ class TextureCache {
     std::vector<std::unique_ptr<TextureVersion>> _retired;  ///< replaced, freed by collectRetired()
     std::map<std::string, std::string> _failures;  ///< path -> error
     std::set<std::string> _reported;
+    /// What each file opened or watched looked like on disk (reloadChanged()).
+    struct FileStamp {
+        bool exists = false;
+        int64_t modified = 0;  ///< last write time, the clock's ticks
+        uintmax_t size = 0;
+        bool operator==(const FileStamp&) const = default;
+    };
+    static FileStamp stampOf(const std::string& path);
+    void remember(const std::string& path);  ///< _mutex held: stamp a path seen for the first time
+    std::map<std::string, FileStamp> _stamps;
 };
 
 }  // namespace principled::shading

@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <unistd.h>
+#include <filesystem>
+#include <chrono>
+#include <fstream>
 #include <cmath>
 #include <map>
 #include <set>
@@ -651,4 +655,97 @@ def RenderProduct "Product"
     bool clipped = false;
     for (const auto& w : warnings) clipped = clipped || w.find("overscan is not supported") != std::string::npos;
     EXPECT_TRUE(clipped);
+}
+
+namespace {
+// A w x h PFM (Portable Float Map) of one colour: little-endian RGB floats.
+void writePfm(const std::filesystem::path& path, int w, int h, glm::vec3 c, int secondsAhead) {
+    std::ofstream f(path, std::ios::binary);
+    f << "PF\n" << w << " " << h << "\n-1.0\n";
+    for (int i = 0; i < w * h; ++i) f.write(reinterpret_cast<const char*>(&c), sizeof(c));
+    f.close();
+    std::error_code ec;  // a new modification time even on file systems with coarse clocks
+    std::filesystem::last_write_time(path, std::filesystem::file_time_type::clock::now() + std::chrono::seconds(secondsAhead), ec);
+}
+}  // namespace
+
+TEST(RenderSession, ReloadTexturesShowsFilesEditedOnDisk) {
+    // An emissive card textured from one file in front of a dome textured from another. After
+    // both files are rewritten, reloadTextures() re-reads them and the image shows the new
+    // colours; with nothing edited it does nothing (the image keeps its samples).
+    const auto dir = std::filesystem::temp_directory_path() / ("principled_reload_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto card = dir / "card.pfm", sky = dir / "sky.pfm";
+    writePfm(card, 4, 4, {0.5f, 0.0f, 0.0f}, 1);
+    writePfm(sky, 8, 4, {0.0f, 0.0f, 0.25f}, 1);
+    const std::string usda = R"(#usda 1.0
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Mesh "Card" (prepend apiSchemas = ["MaterialBindingAPI"])
+{
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)]
+    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "vertex")
+    rel material:binding = </Glow>
+}
+def Material "Glow"
+{
+    token outputs:surface.connect = </Glow/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0, 0, 0)
+        color3f inputs:emissiveColor.connect = </Glow/T.outputs:rgb>
+        token outputs:surface
+    }
+    def Shader "T"
+    {
+        uniform token info:id = "UsdUVTexture"
+        asset inputs:file = @)" + card.string() + R"(@
+        float2 inputs:st.connect = </Glow/St.outputs:result>
+        float3 outputs:rgb
+    }
+    def Shader "St"
+    {
+        uniform token info:id = "UsdPrimvarReader_float2"
+        string inputs:varname = "st"
+        float2 outputs:result
+    }
+}
+def DomeLight "Sky"
+{
+    asset inputs:texture:file = @)" + sky.string() + R"(@
+}
+)";
+    host::SessionOptions o;
+    o.width = o.height = 16;
+    o.samplesPerPixel = 2;
+    auto s = host::RenderSession::openString(usda, "reload.usda", o);
+    auto run = [&] {
+        while (!s->step()) {
+        }
+        const float* c = s->color();
+        const size_t centre = (8 * 16 + 8) * 4, corner = 0;
+        return std::pair{glm::vec3(c[centre], c[centre + 1], c[centre + 2]),
+                         glm::vec3(c[corner], c[corner + 1], c[corner + 2])};
+    };
+    // (0.01: the card also reflects a little of the sky through its specular lobe.)
+    auto [cardBefore, skyBefore] = run();
+    EXPECT_NEAR(cardBefore.x, 0.5f, 0.01f);
+    EXPECT_NEAR(skyBefore.z, 0.25f, 0.01f);
+    EXPECT_FALSE(s->reloadTextures());
+    EXPECT_TRUE(s->converged());  // nothing re-read: the finished image stands
+    writePfm(card, 4, 4, {0.0f, 0.75f, 0.0f}, 2);
+    writePfm(sky, 8, 4, {0.125f, 0.0f, 0.0f}, 2);
+    EXPECT_TRUE(s->reloadTextures());
+    auto [cardAfter, skyAfter] = run();
+    EXPECT_NEAR(cardAfter.x, 0.0f, 0.01f);
+    EXPECT_NEAR(cardAfter.y, 0.75f, 0.01f);
+    EXPECT_NEAR(skyAfter.x, 0.125f, 0.01f);
+    EXPECT_NEAR(skyAfter.z, 0.0f, 0.01f);
+    std::filesystem::remove_all(dir);
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -775,4 +776,44 @@ TEST(TextureCacheNativePng, PointLookupsDoNotLoadTheBackend) {
     (void)cache.sample(*r.texture, Wrap::Repeat, Wrap::Repeat, {0.5f, 0.5f},
                        glm::vec4(0.25f, 0.0f, 0.0f, 0.25f));
     EXPECT_NE(principled::imageio::loadedBackend(), nullptr);
+}
+
+TEST(TextureCacheReload, ReloadChangedReadsAgainOnlyWhenAFileChanged) {
+    TempDir dir;
+    TextureCache cache;
+    const std::string path = dir.file("edited.exr"), watched = dir.file("light.exr");
+    auto fill = [&](const std::string& p, float v) {
+        if (!writeImage(p, 4, 4, 3, std::vector<float>(4 * 4 * 3, v), OIIO::TypeDesc::FLOAT)) return false;
+        // A new modification time even on file systems with coarse clocks.
+        std::error_code ec;
+        static int tick = 0;
+        std::filesystem::last_write_time(p, std::filesystem::file_time_type::clock::now() + std::chrono::seconds(++tick), ec);
+        return !ec;
+    };
+    ASSERT_TRUE(fill(path, 0.25f));
+    const Texture* t = cache.open(path).texture;
+    ASSERT_NE(t, nullptr);
+    EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.25f, 1e-6f);
+    EXPECT_FALSE(cache.reloadChanged());  // nothing edited: nothing re-read
+    EXPECT_NE(t->resident(), nullptr);
+    ASSERT_TRUE(fill(path, 0.75f));
+    EXPECT_TRUE(cache.reloadChanged());
+    EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.75f, 1e-6f);
+    EXPECT_FALSE(cache.reloadChanged());  // the new state is the one remembered
+    // A watched file (a light's) that appears, changes or vanishes counts too.
+    cache.watch(watched);
+    EXPECT_FALSE(cache.reloadChanged());
+    ASSERT_TRUE(fill(watched, 1.0f));
+    EXPECT_TRUE(cache.reloadChanged());
+    EXPECT_FALSE(cache.reloadChanged());
+    std::filesystem::remove(watched);
+    EXPECT_TRUE(cache.reloadChanged());
+    // A file missing when first opened is read once it exists.
+    const std::string late = dir.file("late.exr");
+    EXPECT_EQ(cache.open(late).texture, nullptr);
+    ASSERT_TRUE(fill(late, 0.5f));
+    EXPECT_TRUE(cache.reloadChanged());
+    const Texture* l = cache.open(late).texture;
+    ASSERT_NE(l, nullptr);
+    EXPECT_NEAR(cache.sample(*l, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.5f, 1e-6f);
 }

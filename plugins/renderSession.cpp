@@ -116,6 +116,9 @@ void RenderSession::setup() {
         throw UserError("resolution must be between 1x1 and 32768x32768");
     if (_options.renderDelegate) {
         _delegate = _options.renderDelegate;  // the host's settings stand
+        // Its texture cache outlives the previous stage: files rewritten since (a host that
+        // re-exports a scene writes the same paths) are read again, not served from the cache.
+        _delegate->reloadTextures(true);
     } else {
         _ownedDelegate = std::make_unique<embree::EmbreeRenderDelegate>();
         _delegate = _ownedDelegate.get();

@@ -340,6 +340,10 @@ PrdStatus prdSetFraming(PrdDelegate* d, const char* conformPolicy, double pixelA
                           return a->setFraming(s, conformPolicy, pixelAspectRatio, dataWindowNDC);
                       });
 }
+PrdStatus prdReloadTextures(PrdDelegate* d, int onlyChanged, int* reloaded) {
+    return forwardNew(d, "prdReloadTextures", d && PRD_HAS(d->api, reloadTextures),
+                      [&](const PrdRendererApi* a, PrdSession* s) { return a->reloadTextures(s, onlyChanged, reloaded); });
+}
 PrdStatus prdAovCount(PrdDelegate* d, int* count) {
     return forward(d, "prdAovCount",
                    [&](const PrdRendererApi* a, PrdSession* s) { return a->aovCount(s, count); });

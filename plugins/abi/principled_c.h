@@ -206,6 +206,13 @@ PRD_API PrdStatus prdSetResolution(PrdDelegate* delegate, int width, int height)
 PRD_API PrdStatus prdSetFraming(PrdDelegate* delegate, const char* conformPolicy, double pixelAspectRatio,
                                 const double dataWindowNDC[4]);
 
+/** Texture files edited on disk are read again from the next pass (PRD_ABI_MINOR 2;
+ *  PRD_ERROR_UNSUPPORTED from an older plugin): with onlyChanged, those whose modification
+ *  time or size changed since they were read (material textures and light images); else
+ *  all of them. *reloaded (may be NULL) is set to 1 when anything is re-read (the image then
+ *  restarts), else 0. Needs an open stage. */
+PRD_API PrdStatus prdReloadTextures(PrdDelegate* delegate, int onlyChanged, int* reloaded);
+
 /** AOVs this renderer can bind ("color", "depth", "primId", ...). */
 PRD_API PrdStatus prdAovCount(PrdDelegate* delegate, int* count);
 /** AOV `index`: name, format, channels; strings valid until the delegate is destroyed. */

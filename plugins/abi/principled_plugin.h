@@ -78,9 +78,11 @@ typedef struct PrdRendererApi {
     PrdStatus (*setAttributeTyped)(PrdSession* s, const char* primPath, const char* attribute,
                                    const char* typeName, const double* values, size_t count);
 
-    /* PRD_ABI_MINOR 2: the image's framing (UsdRender conform policy, pixel aspect, data window). */
+    /* PRD_ABI_MINOR 2: the image's framing (UsdRender conform policy, pixel aspect, data window)
+     * and texture reloading. */
     PrdStatus (*setFraming)(PrdSession* s, const char* conformPolicy, double pixelAspectRatio,
                             const double dataWindowNDC[4]);
+    PrdStatus (*reloadTextures)(PrdSession* s, int onlyChanged, int* reloaded);
 } PrdRendererApi;
 
 /** Size of a PRD_ABI_MINOR 0 table (up to takeWarnings): the smallest a host accepts. */

@@ -193,6 +193,12 @@ PrdStatus setResolution(PrdSession* s, int width, int height) {
 PrdStatus setFraming(PrdSession* s, const char* conformPolicy, double pixelAspectRatio, const double dataWindowNDC[4]) {
     return guard(s, [&](EmbreeSession& e) { e.setFraming(conformPolicy, pixelAspectRatio, dataWindowNDC); });
 }
+PrdStatus reloadTextures(PrdSession* s, int onlyChanged, int* reloaded) {
+    return guard(s, [&](EmbreeSession& e) {
+        const bool r = e.reloadTextures(onlyChanged != 0);
+        if (reloaded) *reloaded = r ? 1 : 0;
+    });
+}
 PrdStatus aovCount(PrdSession* s, int* count) {
     return guard(s, [&](EmbreeSession& e) { *need(count, "count") = e.aovCount(); });
 }
@@ -285,6 +291,7 @@ const PrdRendererApi kApi = {
     connectAttribute,
     setAttributeTyped,
     setFraming,
+    reloadTextures,
 };
 
 }  // namespace

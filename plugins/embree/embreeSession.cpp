@@ -350,6 +350,10 @@ void EmbreeSession::setFraming(const char* conformPolicy, double pixelAspectRati
     if (_session) _session->setFraming(_framing);
 }
 
+bool EmbreeSession::reloadTextures(bool onlyChanged) {
+    return requireStage("prdReloadTextures").reloadTextures(onlyChanged);
+}
+
 PrdAovInfo EmbreeSession::describeAov(const std::string& name) {
     for (const Aov& a : _aovs)
         if (a.name == name) return {a.name, a.format, a.channels, a.multiSampled};

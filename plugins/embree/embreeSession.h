@@ -75,6 +75,8 @@ class EmbreeSession {
     void setResolution(int width, int height);
     /// conformPolicy null: the stage's framing; otherwise validated (INVALID_ARGUMENT naming the value).
     void setFraming(const char* conformPolicy, double pixelAspectRatio, const double* dataWindowNDC);
+    /// RenderSession::reloadTextures on the open stage (NO_STAGE without one).
+    bool reloadTextures(bool onlyChanged);
 
     int aovCount() const { return static_cast<int>(_aovs.size()); }
     PrdAovInfo aovInfo(int index) const;

@@ -475,6 +475,16 @@ light input updates light tables; points rebuild that mesh; a string sets a toke
             },
             "(width, height) in pixels (default 640x360); setting it reallocates bound buffers.")
         .def(
+            "reload_textures",
+            [](Delegate& d, bool onlyChanged) {
+                int reloaded = 0;
+                check(prdReloadTextures(d.h(), onlyChanged ? 1 : 0, &reloaded), d.d);
+                return reloaded != 0;
+            },
+            py::arg("only_changed") = true,
+            "Reads texture files edited on disk again from the next pass: those whose modification "
+            "time or size changed (only_changed), else all. Returns whether anything is re-read.")
+        .def(
             "set_framing",
             [](Delegate& d, std::optional<std::string> policy, double pixelAspectRatio,
                std::optional<std::array<double, 4>> dataWindow) {

@@ -3,7 +3,8 @@
 headless: the test scene of test_render.py is synced once, then edited through Blender's data
 API with apply_updates driven from depsgraph_update_post (as view_update does):
 
-1. a vertex of the (textured) plane and of the (subdivided) sphere moves,
+1. a vertex of the (textured) plane and of the (subdivided) sphere moves; the plane's texture
+   is painted over (its file re-written and re-read),
 2. a Subdivision modifier on the plane and an Array modifier on the sphere (topology change,
    the plane's st re-exported),
 3. a new cube with a new material, and a new point light,
@@ -104,6 +105,20 @@ def main():
         bpy.context.view_layer.update()
         img = compare("vertex move", s, log, n0, {"geometry": 2})
         T.check(float(np.abs(img - img0).max()) > 0.05, "the vertex move changed the image")
+
+        # The plane's generated texture painted over (pixels set, as Texture Paint does): its
+        # pixels file is written again and the delegate re-reads it; no rebuild.
+        n0 = len(log)
+        tex = bpy.data.images["PlaneTex"]
+        px = np.empty(len(tex.pixels), np.float32)
+        tex.pixels.foreach_get(px)
+        px.reshape(-1, 4)[:, :3] = (0.1, 0.6, 0.9)
+        tex.pixels.foreach_set(px)
+        tex.update()
+        tex.update_tag()  # what painting does: the depsgraph sends the Image as updated
+        bpy.context.view_layer.update()
+        img = compare("texture painted", s, log, n0, {"textures": 1})
+        T.check(float(np.abs(img - img0).max()) > 0.05, "the painted texture changed the image")
 
         n0 = len(log)
         plane.modifiers.new("Subdiv", "SUBSURF").levels = 1

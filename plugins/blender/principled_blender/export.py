@@ -383,6 +383,27 @@ class TextureWriter:
             self.files[key] = out
         return self.files[key], "r"
 
+    def refresh(self, image):
+        """After an edit of `image` (painted, reloaded, regenerated): None when no texture of the
+        export uses it; "rewritten" when its pixels file was written again (same path);
+        "file" when it is read from its own file, which may have changed on disk; "moved" when it
+        should now come from another file (painted but unsaved, or saved): the materials using
+        it must be exported again."""
+        path = self.files.get(image.name)
+        if path is None:
+            return None
+        written = os.path.dirname(path) == os.path.abspath(self.directory)
+        own = image.source == "FILE" and not image.packed_file and not image.is_dirty
+        if own != (not written):
+            return "moved"
+        if own:
+            return "file"
+        self.files[image.name] = self._write_pixels(image)
+        if image.name + "\0alpha" in self.files:
+            del self.files[image.name + "\0alpha"]
+            self.alpha_file_for(image)
+        return "rewritten"
+
     def _write_pixels(self, image):
         w, h = image.size
         if w == 0 or h == 0:

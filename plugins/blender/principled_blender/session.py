@@ -158,10 +158,11 @@ class Session:
         and rebuild."""
         ex = self.export
         done = {"materials": 0, "lights": 0, "transforms": 0, "world": 0, "geometry": 0,
-                "added": 0, "removed": 0, "rebuild": False}
+                "added": 0, "removed": 0, "textures": 0, "rebuild": False}
         if ex is None:
             return done | {"rebuild": True}
         rebuild = False
+        textures = None     # "all" / "changed": texture files to read again
         membership = False  # objects may have been added, deleted, hidden or shown
         geometry = {}       # object name -> evaluated object whose mesh changed
         unknown = []        # objects not in the export: added below, or only instanced
@@ -265,6 +266,14 @@ class Session:
                 membership = True
             elif isinstance(idd, bpy.types.Scene):
                 membership = True
+            elif isinstance(idd, bpy.types.Image):
+                # Painted, reloaded or regenerated: its texture file is written again (or, read
+                # from its own file, checked for a change on disk) and the delegate re-reads it.
+                what = ex.textures.refresh(idd.original)
+                if what == "moved":
+                    rebuild = True
+                elif what is not None:
+                    textures = "all" if what == "rewritten" else (textures or "changed")
             # Mesh datablock edits come with is_updated_geometry on every object using it.
         if not rebuild:
             for name, obj in geometry.items():
@@ -281,6 +290,8 @@ class Session:
                 # An object edited that is not among the depsgraph's own objects: seen only
                 # through instances the export did not give a mesh (no triangles until now).
                 rebuild = any(n not in ex.top_objects for n in unknown)
+        if textures and not rebuild:
+            done["textures"] = int(self.delegate.reload_textures(only_changed=textures == "changed"))
         done["rebuild"] = rebuild
         self.last_update = done
         return done

@@ -332,6 +332,20 @@ TEST_F(AbiTest, FramingCropsAndRestoresTheImage) {
     EXPECT_EQ(halves().first, 0.0);
 }
 
+TEST_F(AbiTest, ReloadTexturesReportsWhetherAnythingWasRead) {
+    // The scene has no texture: nothing to re-read, unless asked to drop everything.
+    int reloaded = -1;
+    ASSERT_EQ(prdReloadTextures(d, 1, &reloaded), PRD_OK) << prdLastError(d);
+    EXPECT_EQ(reloaded, 0);
+    ASSERT_EQ(prdReloadTextures(d, 0, &reloaded), PRD_OK) << prdLastError(d);
+    EXPECT_EQ(reloaded, 1);
+    EXPECT_EQ(prdReloadTextures(d, 1, nullptr), PRD_OK);
+    PrdDelegate* fresh = nullptr;
+    ASSERT_EQ(prdCreateDelegate("PrincipledEmbreeRenderer", &fresh), PRD_OK);
+    EXPECT_EQ(prdReloadTextures(fresh, 1, &reloaded), PRD_ERROR_NO_STAGE);
+    prdDestroyDelegate(fresh);
+}
+
 TEST_F(AbiTest, PointsEditRebuildsThatMesh) {
     renderToConvergence();
     double rebuilt = stats()["meshesRebuilt"];

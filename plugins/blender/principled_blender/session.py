@@ -136,6 +136,9 @@ class Session:
         a change in which inputs are texture-linked rebuilds. Light: intensity/color/angle/
         radius/cone or the area emitter's radiance. Object transform only: set_transform on its
         Xform (no mesh rebuild). World color: the dome light's color (a world texture: rebuild).
+        Image (painted, reloaded): its pixels file is written again, or its own file checked,
+        and the delegate re-reads texture files (reload_textures); an image that now needs
+        another file rebuilds.
 
         Geometry (edit-mode data, modifiers, sculpting, material slots) of an exported mesh-like
         object: only that object's evaluated mesh is re-exported (export.MeshData, as the full

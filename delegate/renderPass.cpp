@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include <tbb/blocked_range2d.h>
@@ -173,11 +174,14 @@ bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
     unsigned sv = _delegate->contentVersion();
     unsigned setv = _delegate->renderSettingsVersion();
     std::ostringstream key;
+    key << std::setprecision(17);  // any change of a value restarts (6 digits missed small ones)
     key << state.cameraId.str() << '|' << state.width << 'x' << state.height;
     for (const auto& b : state.aovBindings) key << '|' << b.aovName.str() << '@' << b.renderBuffer;
     const hd::Framing& fr = state.framing;
+    const glm::ivec4 rect = fr.pixelRect(state.width, state.height);
     key << '|' << int(fr.conform) << ',' << fr.pixelAspectRatio << ',' << fr.dataWindowNDC.x << ','
-        << fr.dataWindowNDC.y << ',' << fr.dataWindowNDC.z << ',' << fr.dataWindowNDC.w;
+        << fr.dataWindowNDC.y << ',' << fr.dataWindowNDC.z << ',' << fr.dataWindowNDC.w << '|' << rect.x << ','
+        << rect.y << ',' << rect.z << ',' << rect.w;
     if (auto* cam = static_cast<Camera*>(renderIndex()->sprim(tokens::camera(), state.cameraId))) {
         const double* m = &cam->transform()[0][0];
         for (int i = 0; i < 16; ++i) key << ',' << m[i];
@@ -212,6 +216,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _lumSum.assign(pixels, 0.0);
         _lumSqSum.assign(pixels, 0.0);
         _pixelSamples.assign(pixels, 0);
+        _frozenVariance.clear();  // (pixels outside a data window start done: no stale variance)
         _ltSum.clear();  // allocated by the first pass with light paths
         _ltN1.clear();
         _ltN2.clear();
@@ -366,7 +371,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
                 photons.insert(photons.end(), chunkPhotons[size_t(c)].begin(), chunkPhotons[size_t(c)].end());
                 for (const Integrator::Splat& sp : chunkSplats[size_t(c)]) {
                     const size_t p = size_t(sp.y) * size_t(state.width) + size_t(sp.x);
-                    const double ls = luminance(sp.value);
+                    const double ls = luminance(sp.value) * exposure;  // in the pixel statistics' (exposed) units
                     // (Pixels adaptive sampling stopped keep no splats: not counted either.)
                     if (_pixelSamples[p] > 0 && !_pixelDone[p])
                         splatSquares += ls * ls * CausticBudget::displayWeight(_lumSum[p] / _pixelSamples[p]);

@@ -176,12 +176,13 @@ void RenderSession::chooseCamera(const std::string& request) {
     } else if (!cams.empty()) {
         _cameraPath = cams.front().str();
     } else {
-        _cameraPath = _sceneDelegate
-                          ->addDefaultCamera(_index.get(),
-                                             double(_options.width) / double(_options.height))
-                          .str();
+        _cameraPath = _sceneDelegate->addDefaultCamera(_index.get(), _options.width, _options.height, _framing).str();
     }
-    // Adaptive subdivision measures meshes from the render camera.
+    updateDicingView();
+}
+
+void RenderSession::updateDicingView() {
+    // Adaptive subdivision measures meshes from the render camera, through the image's window.
     Path cam(_cameraPath);
     glm::dmat4 xf = _sceneDelegate->getTransform(cam);
     auto param = [&](const char* n, float fallback) {
@@ -235,6 +236,7 @@ void RenderSession::setResolution(int width, int height) {
     _options.width = width;
     _options.height = height;
     for (auto& [name, buf] : _buffers) buf = allocate(name);
+    updateDicingView();
     _color = _buffers.front().second;
 }
 
@@ -252,6 +254,7 @@ bool RenderSession::reloadTextures(bool onlyChanged) {
 void RenderSession::setFraming(const std::optional<hd::Framing>& framing) {
     _options.framing = framing;
     _framing = framing.value_or(_stageFraming);
+    updateDicingView();
 }
 
 bool RenderSession::step() {

@@ -142,6 +142,7 @@ private:
     void setup();
     void applySettings();
     void chooseCamera(const std::string& request);
+    void updateDicingView();  ///< the camera, resolution or framing changed
     embree::EmbreeRenderBuffer* allocate(const std::string& name);
 
     SessionOptions _options;

@@ -46,10 +46,10 @@ const usd::Attribute* authored(const usd::Prim& p, const char* name) {
 void framing(const usd::Prim& p, hd::Framing* out, std::vector<std::string>* warnings) {
     if (const usd::Attribute* a = authored(p, "pixelAspectRatio")) {
         const auto v = a->get().getDouble();
-        if (v && *v > 0.0 && std::isfinite(*v) && float(*v) > 0.0f && std::isfinite(float(*v)))
+        if (v && hd::Framing::validPixelAspectRatio(*v))
             out->pixelAspectRatio = float(*v);
         else
-            warnings->push_back(p.path() + ": pixelAspectRatio must be a finite number > 0; ignored");
+            warnings->push_back(p.path() + ": pixelAspectRatio must be a number from 1e-4 to 1e4; ignored");
     }
     if (const usd::Attribute* a = authored(p, "aspectRatioConformPolicy")) {
         const auto token = a->get().getString();

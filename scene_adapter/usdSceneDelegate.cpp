@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "delegate/hd/camera.h"
 #include "delegate/hd/tokens.h"
 #include "scene_adapter/implicitShapes.h"
 #include "scene_adapter/usda/stage.h"
@@ -542,7 +543,16 @@ Value UsdSceneDelegate::getCameraParamValue(const Path& id, const Token& param) 
 }
 
 Path UsdSceneDelegate::addDefaultCamera(RenderIndex* index, double aspect) {
+    hd::Framing framing;
+    return addDefaultCamera(index, 1000000, std::max(1, int(std::lround(1000000.0 / std::clamp(aspect, 1e-3, 1e3)))), framing);
+}
+
+Path UsdSceneDelegate::addDefaultCamera(RenderIndex* index, int width, int height, const hd::Framing& framing) {
     if (!_defaultCamera.empty()) return _defaultCamera;
+    // The image-plane window the framing gives the fallback apertures with this lens.
+    hd::Camera probe{hd::Path("/__principled/probe")};
+    probe.set(glm::dmat4(1.0), _defaultCameraFocal, 2.0955f, 1.52908f);
+    const glm::vec4 window = probe.screenWindow(width, height, framing);
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     auto grow = [&](const glm::dmat4& m, const glm::dvec3& p) {
         glm::dvec3 w = glm::dvec3(m * glm::dvec4(p, 1.0));
@@ -577,9 +587,11 @@ Path UsdSceneDelegate::addDefaultCamera(RenderIndex* index, double aspect) {
     glm::dvec3 up = zUp ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
     // From the front (+Z for Y-up, -Y for Z-up), raised by about 20 degrees.
     glm::dvec3 dir = glm::normalize(zUp ? glm::dvec3(0, -1, 0.35) : glm::dvec3(0, 0.35, 1));
-    // Fit the bounding sphere inside the narrower field of view (fallback apertures).
-    double vHalf = std::atan(0.5 * 1.52908 / 5.0);
-    double hHalf = std::atan(std::tan(vHalf) * std::max(aspect, 1e-3));
+    // Fit the bounding sphere inside the narrower field of view (the window's half angles; an
+    // off-centre window cannot happen: the fallback aperture has no offset).
+    double vHalf = std::atan(0.5 * std::max(1e-6, double(window.w - window.z)));
+    double hHalf = std::atan(0.5 * std::max(1e-6, double(window.y - window.x)));
+    if (!std::isfinite(vHalf) || !std::isfinite(hHalf)) vHalf = hHalf = std::atan(0.5 * 1.52908 / 5.0);
     double half = std::min(vHalf, hHalf);
     double dist = 1.1 * radius / std::sin(half);
     glm::dvec3 eye = center + dir * dist;

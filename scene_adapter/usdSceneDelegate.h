@@ -14,6 +14,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "delegate/hd/framing.h"
 #include "delegate/hd/renderIndex.h"
 #include "delegate/hd/sceneDelegate.h"
 #include "scene_adapter/materialBinding.h"
@@ -50,6 +51,9 @@ public:
     /// Adds (once) a camera framing the world bounds of the populated geometry, looking along
     /// the stage's horizontal axis from the front and slightly above; returns its id.
     hd::Path addDefaultCamera(hd::RenderIndex* index, double aspect);
+    /// The same for an image of width x height pixels framed by `framing` (its conform policy and
+    /// pixel aspect ratio shape the window the scene is fitted into).
+    hd::Path addDefaultCamera(hd::RenderIndex* index, int width, int height, const hd::Framing& framing);
 
     /// Problems found while populating (prim path first).
     const std::vector<std::string>& warnings() const { return _warnings; }

@@ -48,7 +48,9 @@ double Camera::exposureScale(double exposure, double time, double iso, double fS
     // responsivity * time * (iso / 100) * 2^exposure / fStop^2.
     const double s = responsivity * time * (iso / 100.0) * std::exp2(exposure) / (fStop * fStop);
     const bool inputsValid = time >= 0.0 && iso >= 0.0 && fStop > 0.0 && responsivity >= 0.0;
-    return inputsValid && std::isfinite(s) ? s : -1.0;
+    // Finite as a float too: the image is scaled in float, and an infinite factor would turn
+    // every sample into one the render buffer drops (a black image).
+    return inputsValid && std::isfinite(s) && std::isfinite(float(s)) ? s : -1.0;
 }
 
 void Camera::set(const glm::dmat4& xform, float focalLength, float hAperture, float vAperture,

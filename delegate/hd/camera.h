@@ -51,7 +51,7 @@ public:
     /// are not. A product that is negative or not finite is replaced by 1 with a warning.
     float exposureScale() const { return _exposureScale; }
     /// The exposure model's product for the given attribute values; -1 when it is not a finite
-    /// number >= 0 (a negative or non-finite input, or fStop 0).
+    /// number >= 0 within float range (a negative or non-finite input, or fStop 0).
     static double exposureScale(double exposure, double time, double iso, double fStop, double responsivity);
 
     /// The image-plane window at distance 1 (perspective) or in scene units (orthographic)

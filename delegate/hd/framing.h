@@ -31,6 +31,9 @@ struct Framing {
     glm::ivec4 pixelRect(int width, int height) const;
     bool operator==(const Framing&) const = default;
 
+    /// Pixel aspect ratios the renderer accepts: 1e-4 to 1e4 (beyond them the window's far side
+    /// overflows or collapses in float).
+    static bool validPixelAspectRatio(double r) { return r >= 1e-4 && r <= 1e4; }
     /// The policy a UsdRender aspectRatioConformPolicy token names; nullopt for any other text.
     static std::optional<Conform> conformFromToken(std::string_view token);
     /// The names conformFromToken accepts, for messages.

@@ -198,7 +198,7 @@ PRD_API PrdStatus prdSetResolution(PrdDelegate* delegate, int width, int height)
 /** How the image frames the camera (PRD_ABI_MINOR 2; PRD_ERROR_UNSUPPORTED from an older
  *  plugin), as UsdRenderSettingsBase's attributes: conformPolicy "expandAperture" (the
  *  fallback), "cropAperture", "adjustApertureWidth", "adjustApertureHeight" or
- *  "adjustPixelAspectRatio"; pixelAspectRatio > 0 (pixel width / height); dataWindowNDC
+ *  "adjustPixelAspectRatio"; pixelAspectRatio 1e-4..1e4 (pixel width / height); dataWindowNDC
  *  (xmin, ymin, xmax, ymax) within the unit square, (0, 0) the bottom left, NULL = all of it:
  *  only pixels whose centres lie in it are rendered (a crop; the rest stay at their clear
  *  value). conformPolicy NULL returns to the stage's own RenderSettings framing. Kept across

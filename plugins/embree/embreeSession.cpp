@@ -330,10 +330,9 @@ void EmbreeSession::setFraming(const char* conformPolicy, double pixelAspectRati
             throw SessionError(PRD_ERROR_INVALID_ARGUMENT, std::string("conform policy '") + conformPolicy +
                                                                "' is not " + hd::Framing::kConformTokens);
         f.conform = *policy;
-        if (!(pixelAspectRatio > 0.0) || !std::isfinite(pixelAspectRatio) || !std::isfinite(float(pixelAspectRatio)) ||
-            !(float(pixelAspectRatio) > 0.0f))
+        if (!hd::Framing::validPixelAspectRatio(pixelAspectRatio))
             throw SessionError(PRD_ERROR_INVALID_ARGUMENT, "pixel aspect ratio " + std::to_string(pixelAspectRatio) +
-                                                               " must be a finite number > 0");
+                                                               " must be a number from 1e-4 to 1e4");
         f.pixelAspectRatio = float(pixelAspectRatio);
         if (dataWindowNDC) {
             const double* w = dataWindowNDC;

@@ -488,17 +488,23 @@ light input updates light tables; points rebuild that mesh; a string sets a toke
             "set_framing",
             [](Delegate& d, std::optional<std::string> policy, double pixelAspectRatio,
                std::optional<std::array<double, 4>> dataWindow) {
+                // None is "the stage's framing": a pixel aspect or window given with it would be
+                // dropped without a word.
+                if (!policy && (pixelAspectRatio != 1.0 || dataWindow))
+                    throw py::value_error("set_framing: conform_policy None returns to the stage's framing; "
+                                          "give a policy (e.g. 'expandAperture') with a pixel aspect ratio or data window");
                 check(prdSetFraming(d.h(), policy ? policy->c_str() : nullptr, pixelAspectRatio,
                                     dataWindow ? dataWindow->data() : nullptr),
                       d.d);
             },
-            py::arg("conform_policy") = py::none(), py::arg("pixel_aspect_ratio") = 1.0,
+            py::arg("conform_policy") = "expandAperture", py::arg("pixel_aspect_ratio") = 1.0,
             py::arg("data_window") = py::none(),
             "How the image frames the camera, as UsdRenderSettingsBase: conform_policy "
             "'expandAperture' | 'cropAperture' | 'adjustApertureWidth' | 'adjustApertureHeight' | "
             "'adjustPixelAspectRatio', pixel_aspect_ratio (pixel width / height), data_window "
             "(xmin, ymin, xmax, ymax) in [0, 1], (0, 0) the bottom left: only pixels whose centres "
-            "lie in it are rendered. conform_policy None: the stage's own RenderSettings framing.")
+            "lie in it are rendered. conform_policy None (with no other argument): back to the stage's "
+            "own RenderSettings framing.")
         // AOVs
         .def(
             "aovs",

@@ -123,12 +123,13 @@ def all_tests():
     # region's size equal, pixel for pixel, to that region of the full image (sampling is per pixel).
     full = render_image(scene)
     scene.render.use_border, scene.render.use_crop_to_border = True, True
-    scene.render.border_min_x, scene.render.border_max_x = 0.3, 0.8
+    # Edges as Blender truncates them: x 0.3 * 128 = 38.4 -> 38, 0.7 * 128 = 89.6 -> 89 (51
+    # wide; rounding would give 52 and fail), y 0.2 * 16 = 3.2 -> 3, 0.9 * 16 = 14.4 -> 14.
+    scene.render.border_min_x, scene.render.border_max_x = 0.3, 0.7
     scene.render.border_min_y, scene.render.border_max_y = 0.2, 0.9
-    part = render_image(scene, (64, 11))  # round(0.8 * 128) - round(0.3 * 128) = 102 - 38; 14 - 3
-    check(part.shape == (11, 64, 4) and np.array_equal(part, full[16 - 14:16 - 3, 38:102]),
-          f"render region 0.3-0.8 x 0.2-0.9: result {part.shape}, equal to the full image's region: "
-          f"{part.shape == (11, 64, 4) and np.array_equal(part, full[16 - 14:16 - 3, 38:102])}")
+    part = render_image(scene, (51, 11))
+    same = part.shape == (11, 51, 4) and np.array_equal(part, full[16 - 14:16 - 3, 38:89])
+    check(same, f"render region 0.3-0.7 x 0.2-0.9: result {part.shape}, equal to the full image's region: {same}")
     # Without cropping Blender places the region in the full frame; the rest stays empty.
     scene.render.use_crop_to_border = False
     scene.render.image_settings.file_format = "OPEN_EXR"
@@ -140,7 +141,7 @@ def all_tests():
     saved = saved.reshape(img.size[1], img.size[0], 4)[::-1]
     bpy.data.images.remove(img)
     inside = np.zeros((H, W), bool)
-    inside[2:13, 38:102] = True
+    inside[2:13, 38:89] = True
     check(saved.shape == (H, W, 4) and np.allclose(saved[inside], full[inside], atol=1e-6) and
           not saved[~inside].any(),
           f"render region without cropping: a {saved.shape} image with the region in place and "

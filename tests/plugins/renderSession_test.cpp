@@ -749,3 +749,76 @@ def DomeLight "Sky"
     EXPECT_NEAR(skyAfter.z, 0.0f, 0.01f);
     std::filesystem::remove_all(dir);
 }
+
+TEST(RenderSession, FramingChangesRestartExactlyAndLeaveNoStaleData) {
+    // Review findings: (1) a data window moved by less than 6 significant digits still restarts
+    // (column 500 of 1000 joins the window); (2) pixels a new window leaves out carry no
+    // variance from an earlier adaptive render; (3) the framing camera of a stage without one
+    // fits the scene into the framed window (cropAperture with pixel aspect 2 made it clip).
+    using principled::hd::Framing;
+    {
+        host::SessionOptions o;
+        o.width = 1000, o.height = 2;
+        o.samplesPerPixel = 1;
+        o.aovs = {"sampleCount"};
+        auto s = host::RenderSession::openString("#usda 1.0\ndef Sphere \"Ball\" {}\n", "edge.usda", o);
+        Framing f;
+        f.dataWindowNDC = {0.0f, 0.0f, 0.50049996f, 1.0f};  // centre of column 500 is 0.5005
+        s->setFraming(f);
+        while (!s->step()) {
+        }
+        auto samplesAt = [&](int x) {
+            for (const auto& a : s->aovs())
+                if (a.name == "sampleCount") return static_cast<const float*>(a.pixels)[x];
+            return -1.0f;
+        };
+        EXPECT_EQ(samplesAt(499), 1.0f);
+        EXPECT_EQ(samplesAt(500), 0.0f);
+        f.dataWindowNDC.z = 0.50050004f;
+        s->setFraming(f);
+        while (!s->step()) {
+        }
+        EXPECT_EQ(samplesAt(500), 1.0f) << "a small move of the window did not restart";
+    }
+    {
+        host::SessionOptions o;
+        o.width = o.height = 16;
+        o.samplesPerPixel = 16;
+        o.noiseThreshold = 0.5f;
+        o.aovs = {"variance"};
+        auto s = host::RenderSession::openString(
+            "#usda 1.0\ndef Sphere \"Ball\" {}\ndef DistantLight \"Sun\" { float intensity = 50000 }\n", "var.usda", o);
+        while (!s->step()) {
+        }
+        Framing f;
+        f.dataWindowNDC = {0.0f, 0.0f, 0.5f, 1.0f};
+        s->setFraming(f);
+        while (!s->step()) {
+        }
+        const float* v = nullptr;
+        for (const auto& a : s->aovs())
+            if (a.name == "variance") v = static_cast<const float*>(a.pixels);
+        ASSERT_NE(v, nullptr);
+        int stale = 0;
+        for (int y = 0; y < 16; ++y)
+            for (int x = 8; x < 16; ++x) stale += v[y * 16 + x] != 0.0f;
+        EXPECT_EQ(stale, 0);
+    }
+    {
+        host::SessionOptions o;
+        o.width = 32, o.height = 18;
+        o.samplesPerPixel = 1;
+        o.framing = Framing{};
+        o.framing->conform = Framing::Conform::CropAperture;
+        o.framing->pixelAspectRatio = 2.0f;
+        auto s = host::RenderSession::openString("#usda 1.0\ndef Sphere \"Ball\" {}\n", "fit.usda", o);
+        while (!s->step()) {
+        }
+        const float* c = s->color();
+        int edge = 0, inside = 0;
+        for (int x = 0; x < 32; ++x) edge += (c[x * 4 + 3] > 0.0f) + (c[(17 * 32 + x) * 4 + 3] > 0.0f);
+        for (int p = 0; p < 32 * 18; ++p) inside += c[p * 4 + 3] > 0.0f;
+        EXPECT_EQ(edge, 0) << "the ball is clipped at the top or bottom";
+        EXPECT_GT(inside, 20);
+    }
+}

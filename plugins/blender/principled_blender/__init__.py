@@ -87,13 +87,14 @@ def _apply_settings(delegate, settings, report=None):
 
 def border_rect(render, w, h):
     """Blender's render border (Output > Format > Render Region) as pixel bounds (x0, y0, x1, y1),
-    rows counted from the bottom, rounded as Blender rounds it (half up); None when it is off or
-    covers the whole image."""
+    rows counted from the bottom, as Blender computes them (the float product truncated: its
+    render result has exactly that size); None when it is off or covers the whole image."""
     if not render.use_border:
         return None
+    import numpy as np
 
     def px(v, n):
-        return min(max(int(math.floor(v * n + 0.5)), 0), n)
+        return min(max(int(np.float32(v) * np.float32(n)), 0), n)
 
     x0, x1 = px(render.border_min_x, w), px(render.border_max_x, w)
     y0, y1 = px(render.border_min_y, h), px(render.border_max_y, h)
@@ -158,9 +159,10 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
 
     def _render(self, depsgraph):
         scene = depsgraph.scene
-        scale = scene.render.resolution_percentage / 100.0
-        w = max(1, int(scene.render.resolution_x * scale))
-        h = max(1, int(scene.render.resolution_y * scale))
+        # Blender's own integer arithmetic (its render result has this size).
+        pct = scene.render.resolution_percentage
+        w = max(1, scene.render.resolution_x * pct // 100)
+        h = max(1, scene.render.resolution_y * pct // 100)
         t0 = time.perf_counter()
         s = _session.Session()
         try:
@@ -179,7 +181,10 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
             rect = border_rect(scene.render, w, h)
             if rect:
                 x0, y0, x1, y1 = rect
-                s.delegate.set_framing("expandAperture", 1.0, (x0 / w, y0 / h, x1 / w, y1 / h))
+                try:
+                    s.delegate.set_framing("expandAperture", 1.0, (x0 / w, y0 / h, x1 / w, y1 / h))
+                except Exception as e:  # an older renderer plugin: the full frame, cropped below
+                    self.report({"WARNING"}, f"principled: render region traced in full ({e})")
             for wmsg in warnings + s.delegate.take_warnings():
                 self.report({"WARNING"}, f"principled: {wmsg}")
             for msg in s.export.info:

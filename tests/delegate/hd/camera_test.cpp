@@ -104,6 +104,9 @@ TEST(Camera, ExposureScaleFollowsTheUsdGeomCameraExposureModel) {
     EXPECT_EQ(Camera::exposureScale(nan, 1.0, 100.0, 1.0, 1.0), -1.0);
     EXPECT_EQ(Camera::exposureScale(2000.0, 1.0, 100.0, 1.0, 1.0), -1.0);  // 2^2000 overflows
     EXPECT_EQ(Camera::exposureScale(0.0, inf, 100.0, 1.0, 1.0), -1.0);
+    EXPECT_GT(Camera::exposureScale(127.0, 1.0, 100.0, 1.0, 1.0), 0.0);  // 2^127 fits a float
+    EXPECT_EQ(Camera::exposureScale(128.0, 1.0, 100.0, 1.0, 1.0), -1.0);  // 2^128 does not: the image would go black
+    EXPECT_EQ(Camera::exposureScale(0.0, 1.0, 100.0, 1e-30, 1.0), -1.0);
     Camera c{Path("/cam")};
     EXPECT_EQ(c.exposureScale(), 1.0f);
     c.setExposureScale(4.0f);

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string_view>
+#include <tuple>
 #include <unordered_map>
 
 #include <glm/gtc/quaternion.hpp>
@@ -76,6 +78,55 @@ std::string interpolation(const usd::Attribute* a, const char* fallback) {
     if (const usd::Value* m = a->metadata("interpolation"))
         if (auto s = m->getString()) return *s;
     return fallback;
+}
+
+// One sub-shape of a BlendShape: its weight and its offsets (3 per point of the shape; empty
+// for the rest shape at weight 0).
+struct SubShape {
+    double weight = 0.0;
+    std::vector<double> offsets, normalOffsets;
+};
+
+// A BlendShape's sub-shapes sorted by weight: the rest (0), the shape itself (1) and its
+// inbetweens (`inbetweens:NAME` point offsets with a `weight` metadatum, optional
+// `inbetweens:NAME:normalOffsets`). Inbetweens at 0 or 1, without a weight, or with offsets
+// that do not match the shape's points are left out with a warning.
+std::vector<SubShape> blendSubShapes(const usd::Prim& shape, const std::vector<double>& offsets,
+                                     const std::vector<double>& normalOffsets, size_t count, double time,
+                                     std::vector<std::string>* warnings) {
+    std::vector<SubShape> out{{0.0, {}, {}}, {1.0, offsets, normalOffsets}};
+    constexpr std::string_view kPrefix = "inbetweens:";
+    for (const usd::Attribute* a : shape.attributes()) {
+        const std::string& name = a->name();
+        if (name.rfind(kPrefix, 0) != 0 || name.find(':', kPrefix.size()) != std::string::npos) continue;
+        const usd::Value* wm = a->metadata("weight");
+        const std::optional<double> weight = wm ? wm->getDouble() : std::nullopt;
+        // UsdSkelBlendShapeQuery's rule: within 1e-6 of 0 or 1 an inbetween would divide by ~0.
+        if (!weight || !std::isfinite(*weight) || std::abs(*weight) <= 1e-6 || std::abs(*weight - 1.0) <= 1e-6) {
+            warnings->push_back(shape.path() + "." + name + ": an inbetween needs a weight other than 0 and 1; skipped");
+            continue;
+        }
+        SubShape sub{*weight, numbers(a, time, 3), {}};
+        if (const usd::Attribute* n = shape.attribute(name + ":normalOffsets")) sub.normalOffsets = numbers(n, time, 3);
+        if (sub.offsets.size() != 3 * count || (!sub.normalOffsets.empty() && sub.normalOffsets.size() != 3 * count)) {
+            warnings->push_back(shape.path() + "." + name + ": inbetween offsets do not match the shape's " +
+                                std::to_string(count) + " points; skipped");
+            continue;
+        }
+        out.push_back(std::move(sub));
+    }
+    std::stable_sort(out.begin(), out.end(), [](const SubShape& a, const SubShape& b) { return a.weight < b.weight; });
+    return out;
+}
+
+// The two sub-shapes a blend weight w falls between (the nearest two beyond the ends) and w's
+// position from the lower to the upper one.
+std::tuple<const SubShape*, const SubShape*, double> bracketSubShapes(const std::vector<SubShape>& subs, double w) {
+    auto it = std::upper_bound(subs.begin(), subs.end(), w, [](double v, const SubShape& s) { return v < s.weight; });
+    const size_t upper = it == subs.end() ? subs.size() - 1 : std::max<size_t>(1, size_t(it - subs.begin()));
+    const SubShape* lo = &subs[upper - 1];
+    const SubShape* hi = &subs[upper];
+    return {lo, hi, (w - lo->weight) / (hi->weight - lo->weight)};
 }
 
 // Joint i's parent: the joint whose path is the longest proper prefix of its own ("A/B/C" ->
@@ -328,19 +379,26 @@ std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& me
             if (offsets.size() != 3 * count || (!nOffsets.empty() && nOffsets.size() != 3 * count))
                 return fail(shape->path() + ": offsets (" + std::to_string(offsets.size() / 3) + ") do not match its " +
                             std::to_string(count) + " points");
-            for (const usd::Attribute* a : shape->attributes())
-                if (a->name().rfind("inbetweens:", 0) == 0) {
-                    warnings->push_back(shape->path() + ": inbetween shapes are not applied");
-                    break;
+            // Sub-shapes (UsdSkelBlendShapeQuery): the rest at weight 0, the shape at 1 and its
+            // inbetweens at their own weights; a weight between two of them blends those two
+            // linearly, one beyond them all extrapolates the nearest two.
+            const std::vector<SubShape> subShapes = blendSubShapes(*shape, offsets, nOffsets, count, time, warnings);
+            const auto [lower, upper, alpha] = bracketSubShapes(subShapes, w->second);
+            if ((!lower->normalOffsets.empty() || !upper->normalOffsets.empty()) && normalOffsets.empty())
+                normalOffsets.assign(np, glm::dvec3(0.0));
+            for (const auto& [sub, weight] : {std::pair{lower, 1.0 - alpha}, std::pair{upper, alpha}}) {
+                if (sub->offsets.empty() || weight == 0.0) continue;  // the rest shape adds nothing
+                for (size_t j = 0; j < count; ++j) {
+                    const double target = sparse && sparse->hasValue() ? indices[j] : double(j);
+                    if (!(target >= 0.0 && target < double(np))) return fail(shape->path() + ": a point index is out of range");
+                    const size_t point = size_t(target);
+                    const std::vector<double>& o = sub->offsets;
+                    base[point] += weight * glm::dvec3(o[3 * j], o[3 * j + 1], o[3 * j + 2]);
+                    if (!sub->normalOffsets.empty()) {
+                        const std::vector<double>& n = sub->normalOffsets;
+                        normalOffsets[point] += weight * glm::dvec3(n[3 * j], n[3 * j + 1], n[3 * j + 2]);
+                    }
                 }
-            if (!nOffsets.empty() && normalOffsets.empty()) normalOffsets.assign(np, glm::dvec3(0.0));
-            for (size_t j = 0; j < count; ++j) {
-                const double target = sparse && sparse->hasValue() ? indices[j] : double(j);
-                if (!(target >= 0.0 && target < double(np))) return fail(shape->path() + ": a point index is out of range");
-                const size_t point = size_t(target);
-                base[point] += w->second * glm::dvec3(offsets[3 * j], offsets[3 * j + 1], offsets[3 * j + 2]);
-                if (!nOffsets.empty())
-                    normalOffsets[point] += w->second * glm::dvec3(nOffsets[3 * j], nOffsets[3 * j + 1], nOffsets[3 * j + 2]);
             }
         }
     }

@@ -59,7 +59,8 @@ using SkeletonPoseCache = std::unordered_map<std::string, std::shared_ptr<const 
 /// with blend shapes and no joint influences keeps its own transform and is not skinned.
 /// std::nullopt when the mesh is not skinned; malformed data (sizes that do not match, unknown
 /// joints, a missing or inactive skeleton) adds a warning (about the mesh, without its path)
-/// and leaves the mesh as authored. Not done: inbetween shapes, dual-quaternion skinning
+/// and leaves the mesh as authored. Inbetween shapes blend piecewise linearly by weight. Not
+/// done: dual-quaternion skinning
 /// (skel:skinningMethod), skinned prims inside instances or PointInstancer prototypes.
 std::optional<SkinnedMesh> skinMesh(const usd::Stage& stage, const usd::Prim& mesh, double time,
                                     std::vector<std::string>* warnings, SkeletonPoseCache* cache = nullptr);

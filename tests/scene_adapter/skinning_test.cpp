@@ -320,3 +320,48 @@ TEST(Skinning, MovesKeepEachMeshInItsOwnSpace) {
     editor.setAttribute("/Rig/Arm", "purpose", adapter::EditValue::text("render"));
     EXPECT_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 7.0);
 }
+
+TEST(Skinning, InbetweenShapesBlendPiecewiseByWeight) {
+    // "up" lifts point 0: 0.5 at its inbetween (weight 0.5), 2 at weight 1 — a bent path. A
+    // weight between two sub-shapes blends those two; beyond them all the nearest two are
+    // extrapolated (UsdSkelBlendShapeQuery). An inbetween at weight 1 is skipped with a warning.
+    // The inbetween also carries normal offsets, the primary shape none.
+    auto points = [](double weight, std::vector<std::string>* warnings = nullptr, std::vector<glm::vec3>* normals = nullptr) {
+        std::string text = scene(R"(
+        uniform token[] skel:blendShapes = ["up"]
+        rel skel:blendShapeTargets = </Rig/Arm/Up>
+        def BlendShape "Up"
+        {
+            uniform vector3f[] offsets = [(0, 0, 2)]
+            uniform int[] pointIndices = [0]
+            uniform vector3f[] inbetweens:half = [(0, 0, 0.5)] (weight = 0.5)
+            uniform vector3f[] inbetweens:half:normalOffsets = [(1, 0, 0)]
+            uniform vector3f[] inbetweens:bad = [(0, 0, 100)] (weight = 1)
+        }
+)", kAnimated);
+        const std::string scales = "        half3[] scales = [(1, 1, 1)]\n";
+        text.replace(text.find(scales), scales.size(),
+                     scales + "        uniform token[] blendShapes = [\"up\"]\n        float[] blendShapeWeights = [" +
+                         std::to_string(weight) + "]\n");
+        Posed s(text);
+        if (warnings) *warnings = s.scene->warnings();
+        if (normals) *normals = s.get("normals");
+        const auto p = s.get("points");
+        return p.empty() ? -1e9f : p[0].z;
+    };
+    EXPECT_NEAR(points(0.25), 0.25f, 1e-5f);             // halfway to the inbetween
+    EXPECT_NEAR(points(0.5), 0.5f, 1e-5f);               // the inbetween itself
+    EXPECT_NEAR(points(0.75), 0.5f * 0.5f + 0.5f * 2.0f, 1e-5f);
+    EXPECT_NEAR(points(1.0), 2.0f, 1e-5f);
+    EXPECT_NEAR(points(1.5), -1.0f * 0.5f + 2.0f * 2.0f, 1e-5f);  // extrapolated from 0.5 and 1
+    EXPECT_NEAR(points(-0.5), -0.5f, 1e-5f);             // extrapolated from 0 and 0.5
+    std::vector<std::string> warnings;
+    std::vector<glm::vec3> normals;
+    points(0.5, &warnings, &normals);
+    bool skipped = false;
+    for (const auto& w : warnings) skipped = skipped || w.find("inbetweens:bad") != std::string::npos;
+    EXPECT_TRUE(skipped);
+    ASSERT_EQ(normals.size(), 3u);
+    expectNear(normals[0], glm::normalize(glm::vec3(1, 1, 0)));  // (0, 1, 0) + 1 x (1, 0, 0)
+    expectNear(normals[1], {0, 1, 0});
+}

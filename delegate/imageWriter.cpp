@@ -30,7 +30,7 @@ std::string lowerExtension(const std::string& path) {
 }  // namespace
 
 bool writeImage(const std::string& path, int width, int height,
-                const std::vector<ImageLayer>& layers, std::string* error) {
+                const std::vector<ImageLayer>& layers, std::string* error, float pixelAspectRatio) {
     if (layers.empty() || !layers[0].pixels) {
         *error = path + ": nothing to write";
         return false;
@@ -54,6 +54,7 @@ bool writeImage(const std::string& path, int width, int height,
         for (size_t i = 0; i < names.size(); ++i)
             if (names[i] == "A") spec.alphaChannel = int(i);
         spec.strings["compression"] = "zip";
+        if (pixelAspectRatio != 1.0f) spec.numbers["PixelAspectRatio"] = pixelAspectRatio;
         floats.resize(n * names.size());
         size_t offset = 0;
         for (const auto& l : layers) {
@@ -96,7 +97,7 @@ bool writeImage(const std::string& path, int width, int height,
     if (!writer || std::string(writer) != "oiio") {
         bool ok = ext == "exr"
                       ? imageio::writeExrFloat(path, width, height, spec.channelNames,
-                                               floats.data(), &reason)
+                                               floats.data(), &reason, pixelAspectRatio)
                       : imageio::writePng8(path, width, height, spec.channels, bytes.data(),
                                            &reason);
         if (!ok) *error = path + ": " + reason;

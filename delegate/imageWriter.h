@@ -19,8 +19,9 @@ struct ImageLayer {
 /// Writes layers to path: ".exr" keeps every layer as float channels ("layer.R"); ".png" writes
 /// the first layer's RGB with the sRGB transfer function, clamped to [0,1] (no alpha).
 /// Returns false with *error naming the file and the reason.
+/// pixelAspectRatio: the pixels' width / height, recorded in an EXR header.
 bool writeImage(const std::string& path, int width, int height,
-                const std::vector<ImageLayer>& layers, std::string* error);
+                const std::vector<ImageLayer>& layers, std::string* error, float pixelAspectRatio = 1.0f);
 
 /// The sRGB transfer function (IEC 61966-2-1) from linear [0,1].
 float linearToSrgb(float v);

@@ -192,6 +192,8 @@ void RenderSession::updateDicingView() {
     probe.set(xf, param("focalLength", 5.0f), param("horizontalAperture", 2.0955f),
               param("verticalAperture", 1.52908f));
     glm::vec4 w = probe.screenWindow(_options.width, _options.height, _framing);
+    const double par = (double(w.y - w.x) / _options.width) / (double(w.w - w.z) / _options.height);
+    _pixelAspectRatio = std::isfinite(par) && par > 0.0 ? float(par) : 1.0f;
     float vfov = 2.0f * std::atan(0.5f * (w.w - w.z));
     _delegate->setDicingView(glm::vec3(xf[3]), vfov, _options.height);
 }

@@ -113,6 +113,9 @@ public:
     const std::string& cameraPath() const { return _cameraPath; }
     /// How the image frames the camera (SessionOptions::framing, or the stage's).
     const hd::Framing& framing() const { return _framing; }
+    /// The pixels' width / height as rendered: the framing's, or under adjustPixelAspectRatio
+    /// what maps the camera's aperture onto the image (written to EXR headers).
+    float pixelAspectRatio() const { return _pixelAspectRatio; }
     /// The stage's camera prims (a framing camera is added only when it has none).
     const std::vector<hd::Path>& cameras() const;
     /// Renders through camera `primPath` from the next step ("": the first camera, else the
@@ -158,6 +161,7 @@ private:
     std::string _cameraPath;
     hd::Framing _framing;
     hd::Framing _stageFraming;  ///< what the stage's RenderSettings ask for
+    float _pixelAspectRatio = 1.0f;
     std::vector<std::string> _notes;  ///< the session's own warnings (render settings)
     size_t _adapterWarningsTaken = 0;
     size_t _stageWarningsTaken = 0;

@@ -162,11 +162,13 @@ int runRender(const RenderArgs& a) {
                 p.replace_filename(path.stem().string() + "." + (l.name.empty() ? "color" : l.name) + ".exr");
                 embree::ImageLayer single = l;
                 single.name.clear();
-                if (!embree::writeImage(p.string(), session->width(), session->height(), {single}, &error))
+                if (!embree::writeImage(p.string(), session->width(), session->height(), {single}, &error,
+                                        session->pixelAspectRatio()))
                     return fail(error);
             }
         } else if (!embree::writeImage(out, session->width(), session->height(),
-                                       exr ? layers : std::vector<embree::ImageLayer>{layers[0]}, &error)) {
+                                       exr ? layers : std::vector<embree::ImageLayer>{layers[0]}, &error,
+                                       session->pixelAspectRatio())) {
             return fail(error);
         }
     }

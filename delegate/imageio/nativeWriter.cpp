@@ -4,6 +4,7 @@
 // output loads neither OpenImageIO nor OpenEXR's C++ libraries (docs/performance.md, section 0).
 #include "delegate/imageio/nativeWriter.h"
 
+#include <cmath>
 #include <openexr.h>
 #include <png.h>
 
@@ -26,7 +27,7 @@ void exrError(exr_const_context_t, exr_result_t code, const char* msg) {
 
 bool writeExrFloat(const std::string& path, int width, int height,
                    const std::vector<std::string>& names, const float* pixels,
-                   std::string* error) {
+                   std::string* error, float pixelAspectRatio) {
     const size_t nch = names.size();
     if (width <= 0 || height <= 0 || nch == 0) {
         *error = "nothing to write";
@@ -46,6 +47,8 @@ bool writeExrFloat(const std::string& path, int width, int height,
     if (rv == EXR_ERR_SUCCESS) rv = exr_add_part(f, nullptr, EXR_STORAGE_SCANLINE, &part);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_initialize_required_attr_simple(f, part, width, height, EXR_COMPRESSION_ZIP);
+    if (rv == EXR_ERR_SUCCESS && pixelAspectRatio != 1.0f && std::isfinite(pixelAspectRatio) && pixelAspectRatio > 0.0f)
+        rv = exr_set_pixel_aspect_ratio(f, part, pixelAspectRatio);
     // OpenEXRCore keeps the channel list sorted by name, as the format requires.
     for (size_t c = 0; c < nch && rv == EXR_ERR_SUCCESS; ++c)
         rv = exr_add_channel(f, part, names[c].c_str(), EXR_PIXEL_FLOAT,

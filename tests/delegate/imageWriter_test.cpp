@@ -43,6 +43,13 @@ TEST(ImageWriter, ExrRoundTripsFloatsAndPngIsEncoded) {
     EXPECT_EQ(b[1], 255);  // clamped
     EXPECT_FALSE(embree::writeImage((dir / "a.bmp").string(), 2, 1, {layer}, &err));
     EXPECT_NE(err.find(".exr or .png"), std::string::npos);
+    // The pixel aspect ratio reaches the EXR header (1 unless given).
+    EXPECT_FLOAT_EQ(in->spec().get_float_attribute("PixelAspectRatio", 0.0f), 1.0f);
+    std::string wide = (dir / "wide.exr").string();
+    ASSERT_TRUE(embree::writeImage(wide, 2, 1, {layer}, &err, 2.0f)) << err;
+    auto win = OIIO::ImageInput::open(wide);
+    ASSERT_TRUE(win);
+    EXPECT_FLOAT_EQ(win->spec().get_float_attribute("PixelAspectRatio", 0.0f), 2.0f);
 }
 
 // EXR and PNG are encoded by delegate/imageio/nativeWriter.cpp with OpenEXRCore and libpng (no

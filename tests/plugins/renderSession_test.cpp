@@ -617,6 +617,17 @@ def RenderProduct "Product"
     const auto stretched = render("    uniform token aspectRatioConformPolicy = \"adjustPixelAspectRatio\"");
     EXPECT_GE(extent(stretched, true), 15);
     EXPECT_NEAR(extent(stretched, false), 8, 1);
+    // The pixel aspect ratio the images record: 2 when the 2:1 aperture is stretched over the
+    // square image, the framing's own otherwise.
+    {
+        auto s = host::RenderSession::openString(stage("    uniform token aspectRatioConformPolicy = \"adjustPixelAspectRatio\""),
+                                                 "framing.usda", o);
+        EXPECT_FLOAT_EQ(s->pixelAspectRatio(), 2.0f);
+        auto t = host::RenderSession::openString(stage("    float pixelAspectRatio = 0.5"), "framing.usda", o);
+        EXPECT_FLOAT_EQ(t->pixelAspectRatio(), 0.5f);
+        auto u = host::RenderSession::openString(stage(""), "framing.usda", o);
+        EXPECT_FLOAT_EQ(u->pixelAspectRatio(), 1.0f);
+    }
     // cropAperture: the window is 0.2 x 0.2, the ball fills it.
     const auto cropped = render("    uniform token aspectRatioConformPolicy = \"cropAperture\"");
     EXPECT_GE(extent(cropped, true), 15);

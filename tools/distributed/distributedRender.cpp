@@ -128,7 +128,7 @@ void writeOutputs(host::RenderSession& session, const std::vector<std::string>& 
         fs::path tmp = path.parent_path() /
                        ("." + path.stem().string() + ".tmp" + std::to_string(getpid()) + path.extension().string());
         std::string error;
-        if (!embree::writeImage(tmp.string(), session.width(), session.height(), ls, &error)) {
+        if (!embree::writeImage(tmp.string(), session.width(), session.height(), ls, &error, session.pixelAspectRatio())) {
             fs::remove(tmp, ec);
             throw RankError(path.string() + ": " + error);
         }

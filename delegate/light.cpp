@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "delegate/colorTemperature.h"
+#include "delegate/environmentFormat.h"
 #include "delegate/environmentSampling.h"
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
@@ -152,12 +153,25 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
             _record.irradiance = scaled * kPi;
             auto file = getString(delegate->getLightParamValue(id(), Token("texture:file")));
             if (file && !file->empty()) {
-                auto format = getString(delegate->getLightParamValue(id(), Token("texture:format")));
-                if (format && *format != "automatic" && *format != "latlong")
-                    param->warn(id(), "dome texture format '" + *format + "' is not supported; read as latlong");
+                auto formatToken = getString(delegate->getLightParamValue(id(), Token("texture:format")));
+                std::optional<DomeFormat> format = domeFormatFromToken(formatToken.value_or("automatic"));
+                if (!format) {
+                    param->warn(id(), "dome texture format '" + *formatToken + "' is not supported; read as latlong");
+                    format = DomeFormat::LatLong;
+                }
                 std::string error;
                 if (auto* textures = param->textureCache()) textures->watch(*file);  // reloadTextures() sees edits
-                if (auto env = loadImage(*file, "dome texture", true, &error)) {
+                const bool latLong = *format == DomeFormat::LatLong;
+                auto env = loadImage(*file, "dome texture", latLong, &error);
+                if (env && !latLong) {
+                    // A mirrored ball or angular map, resampled once into the lat-long layout.
+                    env = std::make_shared<EnvironmentMap>(resampleToLatLong(*env, *format));
+                    glm::dvec3 sum(0.0);
+                    for (const auto& t : env->texels) sum += glm::dvec3(t);
+                    env->mean = glm::vec3(sum / double(env->texels.size()));
+                    prepareEnvironmentSampling(*env);
+                }
+                if (env) {
                     glm::mat3 r(xf);
                     for (int c = 0; c < 3; ++c) {
                         float l = glm::length(r[c]);

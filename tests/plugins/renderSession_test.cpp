@@ -833,3 +833,59 @@ TEST(RenderSession, FramingChangesRestartExactlyAndLeaveNoStaleData) {
         EXPECT_GT(inside, 20);
     }
 }
+
+TEST(RenderSession, DomeTexturesInMirroredBallAndAngularLayouts) {
+    // A square image, red on its right half and blue on its left, as an angular or mirrored-ball
+    // dome: a camera looking along +X sees red, along -X blue (read as lat-long, +X would be
+    // the blue quarter). cubeMapVerticalCross is warned about and read as lat-long.
+    const auto dir = std::filesystem::temp_directory_path() / ("principled_domefmt_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto probe = dir / "probe.pfm";
+    {
+        const int n = 64;
+        std::ofstream f(probe, std::ios::binary);
+        f << "PF\n" << n << " " << n << "\n-1.0\n";
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const glm::vec3 c = x >= n / 2 ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
+                f.write(reinterpret_cast<const char*>(&c), sizeof(c));
+            }
+    }
+    auto look = [&](const std::string& format, double yaw, std::vector<std::string>* warnings = nullptr) {
+        const std::string usda = R"(#usda 1.0
+def Camera "Cam"
+{
+    float xformOp:rotateY = )" + std::to_string(yaw) + R"(
+    uniform token[] xformOpOrder = ["xformOp:rotateY"]
+    float focalLength = 500
+}
+def DomeLight "Sky"
+{
+    asset inputs:texture:file = @)" + probe.string() + R"(@
+    token inputs:texture:format = ")" + format + R"("
+}
+)";
+        host::SessionOptions o;
+        o.width = o.height = 4;
+        o.samplesPerPixel = 1;
+        auto s = host::RenderSession::openString(usda, "dome.usda", o);
+        while (!s->step()) {
+        }
+        if (warnings) *warnings = s->takeWarnings();
+        const float* c = s->color();
+        return glm::vec3(c[(2 * 4 + 2) * 4], c[(2 * 4 + 2) * 4 + 1], c[(2 * 4 + 2) * 4 + 2]);
+    };
+    for (const char* format : {"angular", "mirroredBall"}) {
+        const glm::vec3 plusX = look(format, -90.0), minusX = look(format, 90.0);  // rotateY -90: -Z turns to +X
+        EXPECT_GT(plusX.x, 0.9f) << format;
+        EXPECT_LT(plusX.z, 0.1f) << format;
+        EXPECT_GT(minusX.z, 0.9f) << format;
+        EXPECT_LT(minusX.x, 0.1f) << format;
+    }
+    std::vector<std::string> warnings;
+    look("cubeMapVerticalCross", 0.0, &warnings);
+    bool warned = false;
+    for (const auto& w : warnings) warned = warned || w.find("cubeMapVerticalCross") != std::string::npos;
+    EXPECT_TRUE(warned);
+    std::filesystem::remove_all(dir);
+}

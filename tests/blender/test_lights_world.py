@@ -169,6 +169,27 @@ def env_world(scene, rotation_z=None):
     scene.world = world
 
 
+def ball_world(scene):
+    """A Mirror Ball environment: right half red, left half blue, top quarter green."""
+    n = 64
+    img = bpy.data.images.new("Ball", n, n, float_buffer=True)
+    px = np.zeros((n, n, 4), np.float32)  # rows bottom to top (Blender)
+    px[:, :, 3] = 1
+    c = (np.arange(n) + 0.5) / n
+    px[:, c >= 0.5, 0] = 1.0
+    px[:, c < 0.5, 2] = 1.0
+    px[c > 0.75, :, :3] = (0, 1, 0)
+    img.pixels.foreach_set(px.ravel())
+    world = bpy.data.worlds.new("BallSky")
+    world.use_nodes = True
+    nt = world.node_tree
+    env = nt.nodes.new("ShaderNodeTexEnvironment")
+    env.image = img
+    env.projection = "MIRROR_BALL"
+    nt.links.new(env.outputs["Color"], nt.nodes["Background"].inputs["Color"])
+    scene.world = world
+
+
 def look(cam, rotation):
     cam.rotation_euler = rotation
     bpy.context.view_layer.update()
@@ -197,6 +218,27 @@ def test_world_texture():
         check(np.allclose(rgb, want, atol=1e-3),
               f"world texture + Mapping Z 90: looking {name} sees {want} "
               f"({np.round(rgb, 4).tolist()})")
+
+
+def test_mirror_ball_world():
+    """A Mirror Ball world texture exports as a mirroredBall dome: each view sees the colour
+    Cycles 3.4 sees (+X red, -X blue, +Z green)."""
+    scene = empty_scene(8, 8, 4)
+    ball_world(scene)
+    bpy.ops.object.camera_add(location=(0, 0, 0))
+    cam = bpy.context.active_object
+    cam.data.lens = 100.0
+    scene.camera = cam
+    r90 = math.pi / 2
+    for name, rot, want in (("+X", (r90, 0, -r90), (1, 0, 0)), ("-X", (r90, 0, r90), (0, 0, 1)),
+                            ("+Z", (math.pi, 0, 0), (0, 1, 0))):
+        look(cam, rot)
+        ours = render_combined(scene)[:, :, :3].reshape(-1, 3).mean(axis=0)
+        theirs = tr.render_cycles(scene, "ball-" + name, 4)[:, :, :3].reshape(-1, 3).mean(axis=0)
+        scene.render.engine = "PRINCIPLED"
+        check(np.allclose(ours, want, atol=0.02) and np.allclose(theirs, want, atol=0.02),
+              f"mirror ball world: looking {name} sees {want}: principled "
+              f"{np.round(ours, 3).tolist()}, Cycles {np.round(theirs, 3).tolist()}")
 
 
 def test_light_edits():
@@ -307,4 +349,5 @@ def test_portal():
     check(abs(a - b) < 0.02 * b, f"the portal emits nothing (mean {a:.4f} against {b:.4f})")
 
 
-tr.run_main(test_spot_conversion, test_spot_render, test_world_texture, test_light_edits, test_portal)
+tr.run_main(test_spot_conversion, test_spot_render, test_world_texture, test_mirror_ball_world, test_light_edits,
+            test_portal)

@@ -1383,6 +1383,16 @@ DOME_TO_BLENDER = ((0.0, 0.0, 1.0, 0.0),
                    (0.0, 0.0, 0.0, 1.0))
 
 
+# Cycles' Mirror Ball projection looks a world direction d up at the ball normal n = (d - Y) /
+# |d - Y| (u = (n.x + 1)/2, v = (n.z + 1)/2): the ball's centre shows -Y, +X is to the right and
+# +Z up. The delegate's mirroredBall puts the dome's local +Z at the centre, +X right, +Y up:
+# local X, Y, Z go to world +X, +Z, -Y (a rotation, det +1). Column-vector matrix:
+BALL_TO_BLENDER = ((1.0, 0.0, 0.0, 0.0),
+                   (0.0, 0.0, -1.0, 0.0),
+                   (0.0, 1.0, 0.0, 0.0),
+                   (0.0, 0.0, 0.0, 1.0))
+
+
 def _mapping_rotation(node, warnings):
     """A Mapping node in front of the Environment Texture -> the rotation R it applies to the
     lookup direction (lookup = R d for Point/Vector/Normal types, R^-1 d for Texture), or None
@@ -1405,16 +1415,17 @@ def _mapping_rotation(node, warnings):
 
 def world_params(world, textures=None):
     """World -> ({"color": dome colour, "texture": file or None, "matrix": 16 numbers or
-    None}, warnings).
+    None, "format": "latlong" or "mirroredBall"}, warnings).
 
     Background colour x strength -> DomeLight inputs:color. An Environment Texture
-    (equirectangular) on the Background colour -> the dome's inputs:texture:file with
+    (equirectangular, or mirror ball: texture:format mirroredBall and BALL_TO_BLENDER) on the
+    Background colour -> the dome's inputs:texture:file with
     inputs:color = (strength, strength, strength) and the dome rotated by DOME_TO_BLENDER,
     preceded by the inverse of a Mapping node's rotation (Cycles looks the image up at R d,
     so the dome is turned by R^-1). `textures` (a TextureWriter) gives the image a file; a
     missing image is a warning and the Background socket colour is used."""
     warnings = []
-    p = {"color": [0.0, 0.0, 0.0], "texture": None, "matrix": None}
+    p = {"color": [0.0, 0.0, 0.0], "texture": None, "matrix": None, "format": "latlong"}
     if world is None:
         return p, warnings
     if not world.use_nodes or world.node_tree is None:
@@ -1438,9 +1449,9 @@ def world_params(world, textures=None):
     if src is not None and src.type == "TEX_ENVIRONMENT":
         if src.image is None:
             warnings.append("world: Environment Texture without an image; using the socket value")
-        elif src.projection != "EQUIRECTANGULAR":
+        elif src.projection not in ("EQUIRECTANGULAR", "MIRROR_BALL"):
             warnings.append(f"world: {src.projection} projection not supported (equirectangular "
-                            "only); using the socket value")
+                            "and mirror ball only); using the socket value")
         elif textures is not None:
             try:
                 file = textures.file_for(src.image)
@@ -1450,7 +1461,9 @@ def world_params(world, textures=None):
             if file is not None:
                 from mathutils import Matrix
 
-                m = Matrix(DOME_TO_BLENDER)
+                ball = src.projection == "MIRROR_BALL"
+                m = Matrix(BALL_TO_BLENDER if ball else DOME_TO_BLENDER)
+                p["format"] = "mirroredBall" if ball else "latlong"
                 vec = _linked_node(src.inputs["Vector"])
                 if vec is not None and vec.type == "MAPPING":
                     r = _mapping_rotation(vec, warnings)
@@ -1902,7 +1915,7 @@ class SceneExport:
         b.set_attribute(dome, "float", "inputs:intensity", 1.0)
         if wp["texture"]:
             b.set_attribute_string(dome, "asset", "inputs:texture:file", wp["texture"])
-            b.set_attribute_string(dome, "token", "inputs:texture:format", "latlong")
+            b.set_attribute_string(dome, "token", "inputs:texture:format", wp["format"])
             b.set_transform(dome, wp["matrix"])
         self.world_texture = wp["texture"]
         return b

@@ -92,14 +92,16 @@ std::unique_ptr<RenderPass> EmbreeRenderDelegate::createRenderPass(RenderIndex* 
     return std::make_unique<EmbreeRenderPass>(index, this);
 }
 
-bool EmbreeRenderDelegate::reloadTextures(bool onlyChanged) {
+EmbreeRenderDelegate::TextureReload EmbreeRenderDelegate::reloadTextures(bool onlyChanged) {
+    TextureReload r;
     if (onlyChanged) {
-        if (!_textures.reloadChanged()) return false;
+        r.paths = _textures.reloadChanged();
+        r.any = !r.paths.empty();
     } else {
-        _textures.invalidate();
+        r.any = r.all = _textures.reloadAll();
     }
-    ++_contentVersion;  // the next pass starts over
-    return true;
+    if (r.any) ++_contentVersion;  // the next pass starts over
+    return r;
 }
 
 void EmbreeRenderDelegate::commitResources(ChangeTracker*) {

@@ -48,13 +48,19 @@ public:
     /// Bumped by every commit that changed what is rendered (the render pass restarts on it,
     /// not on every edit the change tracker saw).
     unsigned contentVersion() const { return _contentVersion.load(); }
+    /// What reloadTextures() re-reads: nothing (!any), every file (all), or `paths`.
+    struct TextureReload {
+        bool any = false;
+        bool all = false;
+        std::vector<std::string> paths;
+    };
     /// Texture files edited on disk: onlyChanged re-reads the files (material textures, and the
-    /// lights' through TextureCache::watch) whose modification time or size changed, else every
-    /// one. Returns whether anything is re-read; the render restarts then. The caller re-syncs
-    /// the lights and materials (RenderSession::reloadTextures): lights read their images at
-    /// sync, materials take their textures' descriptions (channels, colour tags) at sync.
-    /// Call between render passes.
-    bool reloadTextures(bool onlyChanged);
+    /// lights' through TextureCache::watch) that changed (TextureCache::reloadChanged), else
+    /// every one. The render restarts when anything is re-read. The caller re-syncs the
+    /// materials and the lights whose images changed (RenderSession::reloadTextures): lights
+    /// read their images at sync, materials take their textures' descriptions (channels,
+    /// colour tags) at sync. Call between render passes.
+    TextureReload reloadTextures(bool onlyChanged);
 
     std::map<std::string, double> renderStats() const override;
     /// What the committed scene uses and what the renderer skips for it, in one line

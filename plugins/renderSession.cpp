@@ -2,6 +2,7 @@
 #include "plugins/renderSession.h"
 
 #include <algorithm>
+#include <set>
 #include <cerrno>
 #include <limits>
 #include <utility>
@@ -243,12 +244,23 @@ void RenderSession::setResolution(int width, int height) {
 }
 
 bool RenderSession::reloadTextures(bool onlyChanged) {
-    if (!_delegate->reloadTextures(onlyChanged)) return false;
+    const embree::EmbreeRenderDelegate::TextureReload r = _delegate->reloadTextures(onlyChanged);
+    if (!r.any) return false;
     hd::ChangeTracker& tracker = _index->changeTracker();
     const hd::DirtyBits bits = hd::SprimDirty::Params | hd::SprimDirty::MaterialParams | hd::SprimDirty::Resource;
+    const std::set<std::string> changed(r.paths.begin(), r.paths.end());
     for (const Token& type : _delegate->supportedSprimTypes()) {
         if (type == tokens::camera()) continue;
-        for (const Path& id : _index->sprimIds(type)) tracker.markSprimDirty(id, bits);
+        const bool material = type == tokens::material();
+        for (const Path& id : _index->sprimIds(type)) {
+            // Materials compile cheaply (their textures stay cached but the changed ones); a
+            // light re-reads its image at sync, so only lights whose image changed do.
+            if (!material && !r.all) {
+                const auto file = getString(_sceneDelegate->getLightParamValue(id, Token("texture:file")));
+                if (!file || !changed.count(*file)) continue;
+            }
+            tracker.markSprimDirty(id, bits);
+        }
     }
     return true;
 }

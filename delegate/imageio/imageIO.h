@@ -77,6 +77,9 @@ class TextureSystem {
     virtual bool lookup(void* handle, int wrapS, int wrapT, float s, float t, float dsdx,
                         float dtdx, float dsdy, float dtdy, int channels, float* out) = 0;
     virtual void invalidateAll() = 0;
+    /// Drops one file's tiles and handle state; force false: only when the file's modification
+    /// time is newer than when the system opened it.
+    virtual void invalidate(const std::string& path, bool force) = 0;
     virtual size_t memoryUsed() = 0;
 
   protected:

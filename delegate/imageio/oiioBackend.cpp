@@ -162,6 +162,7 @@ class OiioTextureSystem final : public TextureSystem {
         return true;
     }
     void invalidateAll() override { _ts->invalidate_all(true); }
+    void invalidate(const std::string& path, bool force) override { _ts->invalidate(OIIO::ustring(path), force); }
     size_t memoryUsed() override {
         // ImageCache "stat:cache_memory_used" (int64) is the tile memory currently resident.
         long long used = 0;

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+
+#include <sys/stat.h>
 #include <new>
 
 namespace principled::shading {
@@ -142,7 +144,10 @@ TextureOpenResult TextureCache::openUdim(const std::string& pattern) {
         std::string tile = pattern;
         tile.replace(at, kUdimToken.size(), std::to_string(1001 + i));
         std::error_code ec;
-        if (!std::filesystem::exists(tile, ec)) continue;
+        if (!std::filesystem::exists(tile, ec)) {
+            remember(tile);  // stamped as missing: reloadChanged() sees it appear
+            continue;
+        }
         TextureOpenResult r = openFile(tile);
         if (r.texture) {
             tiles[i] = r.texture;
@@ -253,8 +258,8 @@ TextureCache::Reading TextureCache::read(const std::string& path) {
 
 TextureOpenResult TextureCache::openFile(const std::string& path) {
     TextureOpenResult result;
-    std::unique_lock lock(_mutex);
     remember(path);
+    std::unique_lock lock(_mutex);
     for (;;) {
         auto it = _textures.find(path);
         if (it == _textures.end()) break;
@@ -483,7 +488,13 @@ void* TextureCache::handleFor(const Texture& texture) const {
     auto& tex = const_cast<Texture&>(texture);
     std::string e;
     imageio::ImageSpec spec;
-    void* h = self->ensureSystem(&e) ? ts(_system.load())->open(texture.path, &spec, &e) : nullptr;
+    // The texture system is process-wide: another cache (an earlier render delegate) may have
+    // left tiles of this file from before an edit; they go if the file is newer than them.
+    void* h = nullptr;
+    if (self->ensureSystem(&e)) {
+        ts(_system.load())->invalidate(texture.path, false);
+        h = ts(_system.load())->open(texture.path, &spec, &e);
+    }
     if (!h) {
         tex.handleFailed.store(true, std::memory_order_release);
         // Once per file (this path runs once: handleFailed is set above).
@@ -496,61 +507,127 @@ void* TextureCache::handleFor(const Texture& texture) const {
     return h;
 }
 
-void TextureCache::invalidate() {
-    std::lock_guard<std::mutex> lock(_mutex);
-    ++_generation;  // reads in progress publish stale versions
-    _failures.clear();
-    _reported.clear();
-    for (auto& [path, texture] : _textures) {
-        if (!texture->udimTiles.empty()) continue;
-        texture->handleFailed.store(false, std::memory_order_release);
-        const TextureVersion* old = texture->owned.get();
-        if (!old || old->stale) continue;  // being read for the first time, or already stale
-        // Same description, no pixels: lookups that load it re-read the file.
-        auto stale = std::make_unique<TextureVersion>();
-        stale->info = old->info;
-        stale->stale = true;
-        publish(*texture, std::move(stale));
+void TextureCache::invalidate() { invalidatePaths(nullptr); }
+
+void TextureCache::invalidatePaths(const std::set<std::string>* changed) {
+    auto hit = [&](const std::string& path) { return !changed || changed->count(path) > 0; };
+    std::vector<std::string> systemPaths;  // files whose texture-system tiles go too
+    {
+        std::lock_guard<std::mutex> lock(_mutex);
+        ++_generation;  // reads in progress publish stale versions
+        // A failure may be a file that exists now (or a UDIM set that has a tile now).
+        _failures.clear();
+        _reported.clear();
+        for (auto it = _textures.begin(); it != _textures.end();) {
+            Texture& texture = *it->second;
+            if (!texture.udimTiles.empty()) {
+                // A set whose tiles changed (one may have appeared) is built again by the next
+                // open() of its pattern; lookups still holding the old one keep it (retired with
+                // the cache, a few hundred bytes each).
+                bool touched = !changed;
+                for (int i = 0; i < kUdimTiles && !touched; ++i) touched = hit(udimTilePath(it->first, i));
+                if (touched) {
+                    _retiredSets.push_back(std::move(it->second));
+                    it = _textures.erase(it);
+                    continue;
+                }
+                ++it;
+                continue;
+            }
+            if (hit(it->first)) {
+                texture.handleFailed.store(false, std::memory_order_release);
+                systemPaths.push_back(it->first);
+                const TextureVersion* old = texture.owned.get();
+                if (old && !old->stale) {  // not being read for the first time, not already stale
+                    // Same description, no pixels: lookups that load it re-read the file.
+                    auto stale = std::make_unique<TextureVersion>();
+                    stale->info = old->info;
+                    stale->stale = true;
+                    publish(texture, std::move(stale));
+                }
+            }
+            ++it;
+        }
     }
     // Process-wide, like the texture system; nothing to drop before the backend is loaded.
-    if (imageio::Backend* io = imageio::loadedBackend()) io->textureSystem().invalidateAll();
+    if (imageio::Backend* io = imageio::loadedBackend()) {
+        if (!changed)
+            io->textureSystem().invalidateAll();
+        else
+            for (const std::string& path : *changed) io->textureSystem().invalidate(path, true);
+    }
+}
+
+std::string TextureCache::udimTilePath(const std::string& pattern, int index) {
+    std::string tile = pattern;
+    const size_t at = tile.find(kUdimToken);
+    if (at != std::string::npos) tile.replace(at, kUdimToken.size(), std::to_string(1001 + index));
+    return tile;
 }
 
 TextureCache::FileStamp TextureCache::stampOf(const std::string& path) {
+    // One stat: modification and change times to the nanosecond, inode and size (a file
+    // replaced by a rename, or rewritten, moves at least one of them).
     FileStamp s;
-    std::error_code ec;
-    const auto time = std::filesystem::last_write_time(path, ec);
-    if (ec) return s;
-    const uintmax_t size = std::filesystem::file_size(path, ec);
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return s;
     s.exists = true;
-    s.modified = int64_t(time.time_since_epoch().count());
-    s.size = ec ? 0 : size;
+    s.modified = int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
+    s.changed = int64_t(st.st_ctim.tv_sec) * 1000000000 + st.st_ctim.tv_nsec;
+    s.inode = uint64_t(st.st_ino);
+    s.size = uintmax_t(st.st_size);
     return s;
 }
 
 void TextureCache::remember(const std::string& path) {
-    if (_stamps.find(path) == _stamps.end()) _stamps.emplace(path, stampOf(path));
-}
-
-void TextureCache::watch(const std::string& path) {
+    {
+        std::lock_guard lock(_mutex);
+        if (_stamps.count(path)) return;
+    }
+    const FileStamp stamp = stampOf(path);  // the file system is asked without the lock
     std::lock_guard lock(_mutex);
-    remember(path);
+    _stamps.emplace(path, stamp);  // (another thread may have stamped it meanwhile: kept)
 }
 
-bool TextureCache::reloadChanged() {
+void TextureCache::watch(const std::string& path) { remember(path); }
+
+std::vector<std::string> TextureCache::reloadChanged() {
     std::vector<std::pair<std::string, FileStamp>> known;
     {
         std::lock_guard lock(_mutex);
         known.assign(_stamps.begin(), _stamps.end());
     }
     // The file system is asked without the lock (lookups go on meanwhile).
-    std::vector<std::pair<std::string, FileStamp>> changed;
+    std::vector<std::pair<std::string, FileStamp>> now;
     for (const auto& [path, stamp] : known)
-        if (FileStamp now = stampOf(path); !(now == stamp)) changed.emplace_back(path, now);
-    if (changed.empty()) return false;
+        if (FileStamp current = stampOf(path); !(current == stamp)) now.emplace_back(path, current);
+    std::vector<std::string> changed;
+    if (now.empty()) return changed;
+    std::set<std::string> paths;
     {
         std::lock_guard lock(_mutex);
-        for (auto& [path, stamp] : changed) _stamps[path] = stamp;
+        for (auto& [path, stamp] : now) {
+            _stamps[path] = stamp;
+            paths.insert(path);
+        }
+    }
+    invalidatePaths(&paths);
+    changed.assign(paths.begin(), paths.end());
+    return changed;
+}
+
+bool TextureCache::reloadAll() {
+    std::vector<std::string> known;
+    {
+        std::lock_guard lock(_mutex);
+        if (_stamps.empty() && _textures.empty()) return false;  // nothing was ever read
+        for (const auto& [path, stamp] : _stamps) known.push_back(path);
+    }
+    std::vector<std::pair<std::string, FileStamp>> now;
+    for (const auto& path : known) now.emplace_back(path, stampOf(path));
+    {
+        std::lock_guard lock(_mutex);
+        for (auto& [path, stamp] : now) _stamps[path] = stamp;  // what is read next is what is on disk now
     }
     invalidate();
     return true;

@@ -167,11 +167,16 @@ class TextureCache {
 
     /// Notes a file another reader loads (a light's texture) so reloadChanged() watches it too.
     void watch(const std::string& path);
-    /// invalidate() if any file this cache has opened or watches changed on disk since it was
-    /// first seen or last reloaded (modification time or size; a file that appeared or
-    /// vanished counts). Returns whether it did. UDIM tiles added to a set after it was opened
-    /// are not seen (the set keeps the tiles it found).
-    bool reloadChanged();
+    /// Drops what this cache holds of the files it has opened or watches that changed on disk
+    /// since they were first seen or last reloaded (modification or change time, inode or size;
+    /// a file that appeared or vanished counts): their pixels and texture-system tiles, and the
+    /// UDIM sets with such a tile (the next open() of the pattern builds the set again, so a
+    /// tile that appeared joins it). Returns the changed paths (empty: nothing changed). A
+    /// rewrite within one tick of a coarse file-system clock that keeps the size is not seen.
+    std::vector<std::string> reloadChanged();
+    /// invalidate() with every known file re-stamped as it is now; false (nothing done) when
+    /// the cache never opened or watched a file.
+    bool reloadAll();
 
     /// Frees the versions (pixels and descriptions) retired by invalidate() and re-reads.
     /// Call it at a quiescent point, e.g. between render passes: no lookup may be in flight
@@ -233,13 +238,18 @@ class TextureCache {
     /// What each file opened or watched looked like on disk (reloadChanged()).
     struct FileStamp {
         bool exists = false;
-        int64_t modified = 0;  ///< last write time, the clock's ticks
+        int64_t modified = 0, changed = 0;  ///< mtime and ctime, nanoseconds
+        uint64_t inode = 0;
         uintmax_t size = 0;
         bool operator==(const FileStamp&) const = default;
     };
     static FileStamp stampOf(const std::string& path);
-    void remember(const std::string& path);  ///< _mutex held: stamp a path seen for the first time
+    void remember(const std::string& path);  ///< stamps a path seen for the first time (locks)
+    /// invalidate() for `changed` paths only (null: all), UDIM sets with a changed tile included.
+    void invalidatePaths(const std::set<std::string>* changed);
+    static std::string udimTilePath(const std::string& pattern, int index);  ///< tile 1001 + index
     std::map<std::string, FileStamp> _stamps;
+    std::vector<std::unique_ptr<Texture>> _retiredSets;  ///< UDIM sets rebuilt since (kept for lookups in flight)
 };
 
 }  // namespace principled::shading

@@ -347,9 +347,14 @@ class TextureWriter:
     def __init__(self, directory):
         self.directory = directory
         self.files = {}
+        self.names = {}   # image session_uid -> the name its file is keyed by (renames)
+        self.written = {}  # path -> the modification time (ns) given to its last rewrite
 
     def file_for(self, image):
         key = image.name
+        uid = getattr(getattr(image, "original", image), "session_uid", None)
+        if uid is not None:
+            self.names.setdefault(uid, key)
         if key in self.files:
             return self.files[key]
         path = None
@@ -389,20 +394,41 @@ class TextureWriter:
         "file" when it is read from its own file, which may have changed on disk; "moved" when it
         should now come from another file (painted but unsaved, or saved): the materials using
         it must be exported again."""
-        path = self.files.get(image.name)
+        uid = getattr(getattr(image, "original", image), "session_uid", None)
+        name = self.names.get(uid, image.name) if uid is not None else image.name
+        path = self.files.get(name)
         if path is None:
             return None
+        if name != image.name:
+            return "moved"  # renamed: its file is keyed (and named) by the old name
         written = os.path.dirname(path) == os.path.abspath(self.directory)
         own = image.source == "FILE" and not image.packed_file and not image.is_dirty
         if own != (not written):
             return "moved"
         if own:
+            import bpy
+
+            current = bpy.path.abspath(image.filepath, library=image.library)
+            if not current or os.path.abspath(current) != path:
+                return "moved"  # another file now
             return "file"
-        self.files[image.name] = self._write_pixels(image)
+        new_path = self._write_pixels(image)
+        if new_path != path:  # e.g. switched to float: .pfm instead of .ppm
+            return "moved"
+        self._bump_time(path)
         if image.name + "\0alpha" in self.files:
             del self.files[image.name + "\0alpha"]
-            self.alpha_file_for(image)
+            self._bump_time(self.alpha_file_for(image)[0])
         return "rewritten"
+
+    def _bump_time(self, path):
+        """Gives a rewritten file a modification time at least 2 s past its previous rewrite, so
+        the delegate's change check (time, size) sees it even on coarse file-system clocks."""
+        import time
+
+        t = max(time.time_ns(), self.written.get(path, 0) + 2_000_000_000)
+        os.utime(path, ns=(t, t))
+        self.written[path] = t
 
     def _write_pixels(self, image):
         w, h = image.size

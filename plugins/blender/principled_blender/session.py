@@ -165,7 +165,7 @@ class Session:
         if ex is None:
             return done | {"rebuild": True}
         rebuild = False
-        textures = None     # "all" / "changed": texture files to read again
+        textures = None     # "changed": texture files to read again (only those that changed)
         membership = False  # objects may have been added, deleted, hidden or shown
         geometry = {}       # object name -> evaluated object whose mesh changed
         unknown = []        # objects not in the export: added below, or only instanced
@@ -276,7 +276,7 @@ class Session:
                 if what == "moved":
                     rebuild = True
                 elif what is not None:
-                    textures = "all" if what == "rewritten" else (textures or "changed")
+                    textures = "changed"
             # Mesh datablock edits come with is_updated_geometry on every object using it.
         if not rebuild:
             for name, obj in geometry.items():
@@ -294,7 +294,7 @@ class Session:
                 # through instances the export did not give a mesh (no triangles until now).
                 rebuild = any(n not in ex.top_objects for n in unknown)
         if textures and not rebuild:
-            done["textures"] = int(self.delegate.reload_textures(only_changed=textures == "changed"))
+            done["textures"] = int(self.delegate.reload_textures(only_changed=True))
         done["rebuild"] = rebuild
         self.last_update = done
         return done

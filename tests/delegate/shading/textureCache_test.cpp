@@ -794,26 +794,112 @@ TEST(TextureCacheReload, ReloadChangedReadsAgainOnlyWhenAFileChanged) {
     const Texture* t = cache.open(path).texture;
     ASSERT_NE(t, nullptr);
     EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.25f, 1e-6f);
-    EXPECT_FALSE(cache.reloadChanged());  // nothing edited: nothing re-read
+    EXPECT_TRUE(cache.reloadChanged().empty());  // nothing edited: nothing re-read
     EXPECT_NE(t->resident(), nullptr);
     ASSERT_TRUE(fill(path, 0.75f));
-    EXPECT_TRUE(cache.reloadChanged());
+    EXPECT_FALSE(cache.reloadChanged().empty());
     EXPECT_NEAR(cache.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.75f, 1e-6f);
-    EXPECT_FALSE(cache.reloadChanged());  // the new state is the one remembered
+    EXPECT_TRUE(cache.reloadChanged().empty());  // the new state is the one remembered
     // A watched file (a light's) that appears, changes or vanishes counts too.
     cache.watch(watched);
-    EXPECT_FALSE(cache.reloadChanged());
+    EXPECT_TRUE(cache.reloadChanged().empty());
     ASSERT_TRUE(fill(watched, 1.0f));
-    EXPECT_TRUE(cache.reloadChanged());
-    EXPECT_FALSE(cache.reloadChanged());
+    EXPECT_FALSE(cache.reloadChanged().empty());
+    EXPECT_TRUE(cache.reloadChanged().empty());
     std::filesystem::remove(watched);
-    EXPECT_TRUE(cache.reloadChanged());
+    EXPECT_FALSE(cache.reloadChanged().empty());
     // A file missing when first opened is read once it exists.
     const std::string late = dir.file("late.exr");
     EXPECT_EQ(cache.open(late).texture, nullptr);
     ASSERT_TRUE(fill(late, 0.5f));
-    EXPECT_TRUE(cache.reloadChanged());
+    EXPECT_FALSE(cache.reloadChanged().empty());
     const Texture* l = cache.open(late).texture;
     ASSERT_NE(l, nullptr);
     EXPECT_NEAR(cache.sample(*l, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.5f, 1e-6f);
+}
+
+namespace {
+// Writes a size x size float image of one value with a modification time `ahead` seconds from
+// now (distinct times even on file systems with coarse clocks).
+bool fillAhead(const std::string& p, int size, float v, int ahead) {
+    if (!writeImage(p, size, size, 3, std::vector<float>(size_t(size) * size * 3, v), OIIO::TypeDesc::FLOAT))
+        return false;
+    std::error_code ec;
+    std::filesystem::last_write_time(p, std::filesystem::file_time_type::clock::now() + std::chrono::seconds(ahead), ec);
+    return !ec;
+}
+}  // namespace
+
+TEST(TextureCacheReload, OnlyTheChangedFilesAreReadAgain) {
+    TempDir dir;
+    TextureCache cache;
+    const std::string a = dir.file("a.exr"), b = dir.file("b.exr");
+    ASSERT_TRUE(fillAhead(a, 4, 0.25f, 1));
+    ASSERT_TRUE(fillAhead(b, 4, 0.5f, 1));
+    const Texture* ta = cache.open(a).texture;
+    const Texture* tb = cache.open(b).texture;
+    ASSERT_TRUE(ta && tb);
+    ASSERT_TRUE(ta->resident() && tb->resident());
+    ASSERT_TRUE(fillAhead(a, 4, 0.75f, 2));
+    const std::vector<std::string> changed = cache.reloadChanged();
+    ASSERT_EQ(changed, std::vector<std::string>{a});
+    EXPECT_EQ(ta->resident(), nullptr);  // dropped, read again on the next lookup
+    EXPECT_NE(tb->resident(), nullptr);  // untouched
+    EXPECT_NEAR(cache.sample(*ta, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.75f, 1e-6f);
+    EXPECT_NEAR(cache.sample(*tb, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}).x, 0.5f, 1e-6f);
+}
+
+TEST(TextureCacheReload, AForcedReloadRestampsAndAnEmptyCacheHasNothingToReload) {
+    TempDir dir;
+    TextureCache cache;
+    EXPECT_FALSE(cache.reloadAll());  // nothing was ever read
+    const std::string a = dir.file("a.exr");
+    ASSERT_TRUE(fillAhead(a, 4, 0.25f, 1));
+    ASSERT_TRUE(cache.open(a).texture);
+    ASSERT_TRUE(fillAhead(a, 4, 0.5f, 2));
+    EXPECT_TRUE(cache.reloadAll());
+    EXPECT_TRUE(cache.reloadChanged().empty());  // the forced reload read the file as it is now
+}
+
+TEST(TextureCacheReload, UdimTilesThatAppearJoinTheSet) {
+    TempDir dir;
+    TextureCache cache;
+    const std::string pattern = dir.file("t.<UDIM>.exr");
+    EXPECT_EQ(cache.open(pattern).texture, nullptr);  // no tile yet
+    ASSERT_TRUE(fillAhead(dir.file("t.1001.exr"), 4, 0.25f, 1));
+    EXPECT_FALSE(cache.reloadChanged().empty());
+    const Texture* set = cache.open(pattern).texture;
+    ASSERT_NE(set, nullptr);
+    glm::vec4 rgba(-1.0f);
+    EXPECT_TRUE(cache.lookup(*set, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}, glm::vec4(0.0f), &rgba));
+    EXPECT_NEAR(rgba.x, 0.25f, 1e-6f);
+    EXPECT_FALSE(cache.lookup(*set, Wrap::Clamp, Wrap::Clamp, {1.5f, 0.5f}, glm::vec4(0.0f), &rgba));  // no 1002
+    ASSERT_TRUE(fillAhead(dir.file("t.1002.exr"), 4, 0.75f, 2));
+    EXPECT_FALSE(cache.reloadChanged().empty());
+    const Texture* again = cache.open(pattern).texture;  // built again, with the new tile
+    ASSERT_NE(again, nullptr);
+    EXPECT_TRUE(cache.lookup(*again, Wrap::Clamp, Wrap::Clamp, {1.5f, 0.5f}, glm::vec4(0.0f), &rgba));
+    EXPECT_NEAR(rgba.x, 0.75f, 1e-6f);
+    // The old set stays usable for lookups that still hold it.
+    EXPECT_TRUE(cache.lookup(*set, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}, glm::vec4(0.0f), &rgba));
+}
+
+TEST(TextureCacheReload, ANewCacheDoesNotGetTilesAnEarlierOneReadBeforeAnEdit) {
+    // The texture system is process-wide: filtered lookups of a second cache must see a file
+    // edited after a first cache read it.
+    TempDir dir;
+    const std::string a = dir.file("shared.exr");
+    ASSERT_TRUE(fillAhead(a, 16, 0.25f, 1));
+    const glm::vec4 footprint(0.1f, 0.0f, 0.0f, 0.1f);  // a filtered lookup: the texture system
+    {
+        TextureCache first;
+        const Texture* t = first.open(a).texture;
+        ASSERT_NE(t, nullptr);
+        EXPECT_NEAR(first.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}, footprint).x, 0.25f, 1e-5f);
+    }
+    ASSERT_TRUE(fillAhead(a, 16, 0.75f, 3));
+    TextureCache second;
+    const Texture* t = second.open(a).texture;
+    ASSERT_NE(t, nullptr);
+    EXPECT_NEAR(second.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}, footprint).x, 0.75f, 1e-5f);
 }

@@ -195,13 +195,19 @@ def look(cam, rotation):
     bpy.context.view_layer.update()
 
 
-def test_world_texture():
-    scene = empty_scene(8, 8, 4)
-    env_world(scene)
+def sky_camera(scene):
+    """A narrow (100 mm) camera at the origin looking at the sky, the scene's camera."""
     bpy.ops.object.camera_add(location=(0, 0, 0))
     cam = bpy.context.active_object
     cam.data.lens = 100.0
     scene.camera = cam
+    return cam
+
+
+def test_world_texture():
+    scene = empty_scene(8, 8, 4)
+    env_world(scene)
+    cam = sky_camera(scene)
     r90 = math.pi / 2
     views = {"+Y": ((r90, 0, 0), (2, 0, 0)), "-Y": ((r90, 0, math.pi), (0, 0, 2)),
              "+Z": ((math.pi, 0, 0), (0, 2, 0))}
@@ -225,10 +231,7 @@ def test_mirror_ball_world():
     Cycles 3.4 sees (+X red, -X blue, +Z green)."""
     scene = empty_scene(8, 8, 4)
     ball_world(scene)
-    bpy.ops.object.camera_add(location=(0, 0, 0))
-    cam = bpy.context.active_object
-    cam.data.lens = 100.0
-    scene.camera = cam
+    cam = sky_camera(scene)
     r90 = math.pi / 2
     for name, rot, want in (("+X", (r90, 0, -r90), (1, 0, 0)), ("-X", (r90, 0, r90), (0, 0, 1)),
                             ("+Z", (math.pi, 0, 0), (0, 1, 0))):

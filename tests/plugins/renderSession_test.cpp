@@ -471,21 +471,28 @@ def Scope "Render"
     EXPECT_TRUE(warned);
 }
 
+namespace {
+// A unit ball lit by a sun, seen by /Cam from 6 units along +Z; `camera` adds lines to the camera.
+std::string sunlitBall(const std::string& camera) {
+    return R"(#usda 1.0
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, 6)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+)" + camera + R"(
+}
+def Sphere "Ball" {}
+def DistantLight "Sun" { float intensity = 50000 }
+)";
+}
+}  // namespace
+
 TEST(RenderSession, CameraExposureScalesTheLightAovsOnly) {
     // The same render with the camera one stop up (exposure 1) and with a physical exposure that
     // cancels out (1/2 s at ISO 200, f/1): the first is exactly twice as bright in every light AOV,
     // the second equal; depth and normals do not change. A broken exposure warns and keeps 1.
     auto render = [](const std::string& exposure, std::vector<std::string>* warnings = nullptr) {
-        const std::string usda = R"(#usda 1.0
-def Camera "Cam"
-{
-    double3 xformOp:translate = (0, 0, 6)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-)" + exposure + R"(
-}
-def Sphere "Ball" {}
-def DistantLight "Sun" { float intensity = 50000 }
-)";
+        const std::string usda = sunlitBall(exposure);
         host::SessionOptions o;
         o.width = o.height = 16;
         o.samplesPerPixel = 4;
@@ -528,16 +535,7 @@ def DistantLight "Sun" { float intensity = 50000 }
 TEST(RenderSession, CameraLensAndExposureEditsRestartTheImage) {
     // An edit of the camera's fStop or exposure changes the image: the progressive accumulation
     // starts again (no blend of the old and new images), and the new exposure shows exactly.
-    const std::string usda = R"(#usda 1.0
-def Camera "Cam"
-{
-    double3 xformOp:translate = (0, 0, 6)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-    float focusDistance = 6
-}
-def Sphere "Ball" {}
-def DistantLight "Sun" { float intensity = 50000 }
-)";
+    const std::string usda = sunlitBall("    float focusDistance = 6");
     host::SessionOptions o;
     o.width = o.height = 16;
     o.samplesPerPixel = 8;

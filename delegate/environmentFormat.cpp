@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "delegate/lightSampling.h"
 
 namespace principled::embree {
@@ -55,15 +57,19 @@ glm::vec3 bilinear(const EnvironmentMap& m, glm::vec2 uv) {
 
 EnvironmentMap resampleToLatLong(const EnvironmentMap& src, DomeFormat format) {
     EnvironmentMap out;
-    out.height = std::max(1, src.height);
+    // As many texels as the image has, about: N = sqrt(area) rows (a 1 x 4096 image is not a
+    // 8192 x 4096 map), at most 4096 (a 8192 x 4096 map, 400 MB).
+    const double area = double(std::max(0, src.width)) * double(std::max(0, src.height));
+    out.height = int(std::clamp(std::lround(std::sqrt(area)), 1L, 4096L));
     out.width = 2 * out.height;
     out.texels.resize(size_t(out.width) * size_t(out.height));
     if (src.width <= 0 || src.height <= 0 || src.texels.empty()) return out;
-    for (int y = 0; y < out.height; ++y)
+    tbb::parallel_for(0, out.height, [&](int y) {
         for (int x = 0; x < out.width; ++x) {
             const glm::vec3 d = latLongToDirection({(float(x) + 0.5f) / float(out.width), (float(y) + 0.5f) / float(out.height)});
             out.texels[size_t(y) * size_t(out.width) + size_t(x)] = bilinear(src, domeImagePosition(format, d));
         }
+    });
     return out;
 }
 

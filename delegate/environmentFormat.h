@@ -26,7 +26,8 @@ std::optional<DomeFormat> domeFormatFromToken(std::string_view token);
 /// (Debevec 1998, "Rendering Synthetic Objects into Real Scenes", the angular map).
 glm::vec2 domeImagePosition(DomeFormat format, const glm::vec3& d);
 
-/// A lat-long map of 2N x N texels (N = the source's height) whose texels are bilinear lookups
+/// A lat-long map of 2N x N texels (N = sqrt of the source's texel count, at most 4096) whose
+/// texels are bilinear lookups
 /// of `src` (a mirroredBall or angular image) at their centres' directions. Sampling
 /// distributions are not prepared.
 EnvironmentMap resampleToLatLong(const EnvironmentMap& src, DomeFormat format);

@@ -116,6 +116,16 @@ std::vector<SubShape> blendSubShapes(const usd::Prim& shape, const std::vector<d
         out.push_back(std::move(sub));
     }
     std::stable_sort(out.begin(), out.end(), [](const SubShape& a, const SubShape& b) { return a.weight < b.weight; });
+    // Two sub-shapes at (nearly) one weight leave nothing to blend between: the first stays.
+    for (size_t i = 1; i < out.size();) {
+        if (out[i].weight - out[i - 1].weight <= 1e-6) {
+            warnings->push_back(shape.path() + ": two inbetweens at weight " + std::to_string(out[i].weight) +
+                                "; one is skipped");
+            out.erase(out.begin() + std::ptrdiff_t(out[i].offsets.empty() ? i - 1 : i));
+        } else {
+            ++i;
+        }
+    }
     return out;
 }
 

@@ -40,7 +40,10 @@ hd::Value toHdValue(const usd::Value& v) {
             return hd::Value(hd::Token(*v.getString()));
         case K::Asset: {
             usd::AssetPath a = *v.getAsset();
-            return hd::Value(a.resolved.empty() ? a.authored : a.resolved);
+            // A missing file is still named where the layer points (it may appear later: texture
+            // reloads watch that path), not relative to the working directory.
+            if (!a.resolved.empty()) return hd::Value(a.resolved);
+            return hd::Value(a.anchored.empty() ? a.authored : a.anchored);
         }
         case K::NumberArray: {
             const std::vector<double>& n = *v.numbers();

@@ -489,10 +489,11 @@ void* TextureCache::handleFor(const Texture& texture) const {
     std::string e;
     imageio::ImageSpec spec;
     // The texture system is process-wide: another cache (an earlier render delegate) may have
-    // left tiles of this file from before an edit; they go if the file is newer than them.
+    // left tiles of this file from before an edit. OpenImageIO's own newer-than check counts
+    // whole seconds, so this cache's first handle of a file drops them unconditionally.
     void* h = nullptr;
     if (self->ensureSystem(&e)) {
-        ts(_system.load())->invalidate(texture.path, false);
+        ts(_system.load())->invalidate(texture.path, true);
         h = ts(_system.load())->open(texture.path, &spec, &e);
     }
     if (!h) {
@@ -570,7 +571,9 @@ TextureCache::FileStamp TextureCache::stampOf(const std::string& path) {
     // replaced by a rename, or rewritten, moves at least one of them).
     FileStamp s;
     struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) return s;
+    // Not a regular file (a directory, whose times move with its entries): stamped like a
+    // missing one, so only becoming a file counts as a change.
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return s;
     s.exists = true;
     s.modified = int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
     s.changed = int64_t(st.st_ctim.tv_sec) * 1000000000 + st.st_ctim.tv_nsec;

@@ -25,11 +25,16 @@ std::string directoryOf(std::string_view file) {
     return p.lexically_normal().parent_path().string();
 }
 
-std::string resolveAsset(std::string_view authored, std::string_view anchorDir) {
+std::string anchorAsset(std::string_view authored, std::string_view anchorDir) {
     if (authored.empty()) return {};
     fs::path p{std::string(authored)};
     if (p.is_relative()) p = fs::path(std::string(anchorDir)) / p;
-    p = p.lexically_normal();
+    return p.lexically_normal().string();
+}
+
+std::string resolveAsset(std::string_view authored, std::string_view anchorDir) {
+    if (authored.empty()) return {};
+    const fs::path p{anchorAsset(authored, anchorDir)};
     if (authored.find("<UDIM>") != std::string_view::npos) return p.string();
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) return {};

@@ -11,6 +11,9 @@ namespace principled::usd {
 /// The absolute, lexically normal path of `authored` anchored at `anchorDir`, or "" when no
 /// such file exists. Paths with a "<UDIM>" tile pattern resolve without the existence check.
 std::string resolveAsset(std::string_view authored, std::string_view anchorDir);
+/// The authored path made absolute against anchorDir (lexically normal), existing or not; ""
+/// for an empty path.
+std::string anchorAsset(std::string_view authored, std::string_view anchorDir);
 
 /// The directory containing `file` as an absolute path ("" -> the current directory).
 std::string directoryOf(std::string_view file);

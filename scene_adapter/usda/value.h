@@ -22,6 +22,9 @@ namespace principled::usd {
 struct AssetPath {
     std::string authored;
     std::string resolved;
+    /// The authored path made absolute against the layer's directory whether or not the file
+    /// exists ("" for an empty path): where a file that appears later will be looked for.
+    std::string anchored;
     bool operator==(const AssetPath&) const = default;
 };
 

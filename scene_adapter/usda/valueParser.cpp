@@ -22,6 +22,7 @@ AssetPath Parser::assetFromToken(const Token& t) const {
     AssetPath a;
     a.authored = std::string(s.substr(q, s.size() - 2 * q));
     a.resolved = resolveAsset(a.authored, _anchor);
+    a.anchored = anchorAsset(a.authored, _anchor);
     return a;
 }
 

@@ -91,3 +91,21 @@ TEST(EnvironmentFormat, ResampledMapsMatchTheEnvironmentTheyWereMadeFrom) {
         EXPECT_LT(worst, 0.02) << int(format);
     }
 }
+
+TEST(EnvironmentFormat, ResampledSizeFollowsTheImagesArea) {
+    // About as many texels as the image: a 1 x 4096 strip gives 128 x 64, not 8192 x 4096.
+    EnvironmentMap strip;
+    strip.width = 1;
+    strip.height = 4096;
+    strip.texels.assign(4096, glm::vec3(1.0f));
+    const EnvironmentMap ll = resampleToLatLong(strip, DomeFormat::Angular);
+    EXPECT_EQ(ll.height, 64);
+    EXPECT_EQ(ll.width, 128);
+    EnvironmentMap square;
+    square.width = square.height = 256;
+    square.texels.assign(256 * 256, glm::vec3(0.5f));
+    const EnvironmentMap sq = resampleToLatLong(square, DomeFormat::MirroredBall);
+    EXPECT_EQ(sq.height, 256);
+    EXPECT_EQ(sq.width, 512);
+    EXPECT_NEAR(sq.texels[size_t(100) * 512 + 200].x, 0.5f, 1e-6f);
+}

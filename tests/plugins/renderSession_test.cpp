@@ -887,3 +887,36 @@ def DomeLight "Sky"
     EXPECT_TRUE(warned);
     std::filesystem::remove_all(dir);
 }
+
+TEST(RenderSession, ARelativeTextureThatAppearsLaterIsFoundBesideTheLayer) {
+    // A dome image named relative to its layer, missing when the stage opens (the working
+    // directory is elsewhere): once it is written beside the layer, reloadTextures() reads it.
+    const auto dir = std::filesystem::temp_directory_path() / ("principled_relative_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    {
+        std::ofstream(dir / "sky.usda") << R"(#usda 1.0
+def DomeLight "Sky"
+{
+    asset inputs:texture:file = @./sky.pfm@
+}
+def Camera "Cam" {}
+)";
+    }
+    host::SessionOptions o;
+    o.width = o.height = 4;
+    o.samplesPerPixel = 1;
+    auto s = host::RenderSession::openFile((dir / "sky.usda").string(), o);
+    while (!s->step()) {
+    }
+    const std::vector<std::string> warnings = s->takeWarnings();
+    bool named = false;
+    for (const auto& w : warnings) named = named || w.find((dir / "sky.pfm").string()) != std::string::npos;
+    EXPECT_TRUE(named) << "the warning names the path beside the layer";
+    writePfm(dir / "sky.pfm", 8, 4, {0.25f, 0.0f, 0.0f}, 1);
+    EXPECT_TRUE(s->reloadTextures());
+    while (!s->step()) {
+    }
+    EXPECT_NEAR(s->color()[0], 0.25f, 1e-3f);
+    EXPECT_NEAR(s->color()[2], 0.0f, 1e-3f);
+    std::filesystem::remove_all(dir);
+}

@@ -365,3 +365,27 @@ TEST(Skinning, InbetweenShapesBlendPiecewiseByWeight) {
     expectNear(normals[0], glm::normalize(glm::vec3(1, 1, 0)));  // (0, 1, 0) + 1 x (1, 0, 0)
     expectNear(normals[1], {0, 1, 0});
 }
+
+TEST(Skinning, InbetweensAtOneWeightKeepThePoseFinite) {
+    // Two inbetweens at 1.5 bracket nothing: one is skipped with a warning, and weights at and
+    // beyond them extrapolate from the remaining pair (1 -> 1.5) instead of dividing by zero.
+    std::string text = scene(R"(
+        uniform token[] skel:blendShapes = ["up"]
+        rel skel:blendShapeTargets = </Rig/Arm/Up>
+        def BlendShape "Up"
+        {
+            uniform vector3f[] offsets = [(0, 0, 2)]
+            uniform int[] pointIndices = [0]
+            uniform vector3f[] inbetweens:a = [(0, 0, 3)] (weight = 1.5)
+            uniform vector3f[] inbetweens:b = [(0, 0, 9)] (weight = 1.5)
+        }
+)", kAnimated);
+    const std::string scales = "        half3[] scales = [(1, 1, 1)]\n";
+    text.replace(text.find(scales), scales.size(),
+                 scales + "        uniform token[] blendShapes = [\"up\"]\n        float[] blendShapeWeights = [2]\n");
+    Posed s(text);
+    const auto p = s.get("points");
+    ASSERT_EQ(p.size(), 3u);
+    EXPECT_NEAR(p[0].z, 4.0f, 1e-5f);  // 1 -> 1.5 is 2 -> 3; at 2: 4
+    EXPECT_TRUE(s.warned("two inbetweens at weight"));
+}

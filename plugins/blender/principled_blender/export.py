@@ -348,7 +348,6 @@ class TextureWriter:
         self.directory = directory
         self.files = {}
         self.names = {}   # image session_uid -> the name its file is keyed by (renames)
-        self.written = {}  # path -> the modification time (ns) given to its last rewrite
 
     def file_for(self, image):
         key = image.name
@@ -382,9 +381,11 @@ class TextureWriter:
             image.pixels.foreach_get(px)
             a = px.reshape(h, w, 4)[::-1, :, 3]
             out = os.path.join(self.directory, usd_name(image.name, "Image") + "_alpha.pgm")
+            prev = _mtime_ns(out)
             with open(out, "wb") as f:
                 f.write(b"P5\n%d %d\n255\n" % (w, h))
                 f.write(np.clip(np.round(a * 255.0), 0, 255).astype(np.uint8).tobytes())
+            _after_rewrite(out, prev)
             self.files[key] = out
         return self.files[key], "r"
 
@@ -415,20 +416,10 @@ class TextureWriter:
         new_path = self._write_pixels(image)
         if new_path != path:  # e.g. switched to float: .pfm instead of .ppm
             return "moved"
-        self._bump_time(path)
         if image.name + "\0alpha" in self.files:
             del self.files[image.name + "\0alpha"]
-            self._bump_time(self.alpha_file_for(image)[0])
+            self.alpha_file_for(image)
         return "rewritten"
-
-    def _bump_time(self, path):
-        """Gives a rewritten file a modification time at least 2 s past its previous rewrite, so
-        the delegate's change check (time, size) sees it even on coarse file-system clocks."""
-        import time
-
-        t = max(time.time_ns(), self.written.get(path, 0) + 2_000_000_000)
-        os.utime(path, ns=(t, t))
-        self.written[path] = t
 
     def _write_pixels(self, image):
         w, h = image.size
@@ -440,6 +431,7 @@ class TextureWriter:
         px = px.reshape(h, w, 4)
         os.makedirs(self.directory, exist_ok=True)
         base = os.path.join(self.directory, usd_name(image.name, "Image"))
+        prev = _mtime_ns(base + (".pfm" if image.is_float else ".ppm"))
         if image.is_float:
             path = _write_pfm(base + ".pfm", px)
         else:
@@ -450,6 +442,7 @@ class TextureWriter:
             with open(path, "wb") as f:
                 f.write(b"P6\n%d %d\n255\n" % (w, h))
                 f.write(rgb.tobytes())
+        _after_rewrite(path, prev)
         return path
 
     def file_for_pixels(self, key, px):
@@ -461,6 +454,26 @@ class TextureWriter:
             name = "Bake_%d" % len(self.files)
             self.files[key] = _write_pfm(os.path.join(self.directory, name + ".pfm"), px)
         return self.files[key]
+
+
+def _mtime_ns(path):
+    """A file's modification time in ns, None when it does not exist."""
+    try:
+        return os.stat(path).st_mtime_ns
+    except OSError:
+        return None
+
+
+def _after_rewrite(path, prev_ns):
+    """A file written over an earlier version (modified at prev_ns) gets a modification time at
+    least 2 s past it, so the delegate's change check (times, size) sees the new pixels even on
+    file systems with coarse clocks; a new file keeps its time."""
+    if prev_ns is None:
+        return
+    import time
+
+    t = max(time.time_ns(), prev_ns + 2_000_000_000)
+    os.utime(path, ns=(t, t))
 
 
 def _write_pfm(path, px):

@@ -903,3 +903,33 @@ TEST(TextureCacheReload, ANewCacheDoesNotGetTilesAnEarlierOneReadBeforeAnEdit) {
     ASSERT_NE(t, nullptr);
     EXPECT_NEAR(second.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}, footprint).x, 0.75f, 1e-5f);
 }
+
+TEST(TextureCacheReload, SameSecondEditsAndDirectoriesAreHandled) {
+    // (1) A second cache's filtered lookups see an edit made within the same second as a first
+    // cache's read (OpenImageIO's own newer-than check counts whole seconds). (2) A watched
+    // path that is a directory does not count as changed when files appear inside it.
+    TempDir dir;
+    const std::string a = dir.file("same.exr");
+    auto fill = [&](float v) {
+        return writeImage(a, 16, 16, 3, std::vector<float>(16 * 16 * 3, v), OIIO::TypeDesc::FLOAT);
+    };
+    const glm::vec4 footprint(0.1f, 0.0f, 0.0f, 0.1f);
+    ASSERT_TRUE(fill(0.25f));
+    {
+        TextureCache first;
+        const Texture* t = first.open(a).texture;
+        ASSERT_NE(t, nullptr);
+        EXPECT_NEAR(first.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}, footprint).x, 0.25f, 1e-5f);
+    }
+    ASSERT_TRUE(fill(0.75f));  // no time pushed: most likely the same second
+    TextureCache second;
+    const Texture* t = second.open(a).texture;
+    ASSERT_NE(t, nullptr);
+    EXPECT_NEAR(second.sample(*t, Wrap::Clamp, Wrap::Clamp, {0.5f, 0.5f}, footprint).x, 0.75f, 1e-5f);
+
+    const std::string sub = dir.file("folder");
+    std::filesystem::create_directories(sub);
+    second.watch(sub);
+    { std::ofstream(sub + "/note.txt") << "x"; }
+    EXPECT_TRUE(second.reloadChanged().empty());
+}

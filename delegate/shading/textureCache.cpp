@@ -592,7 +592,14 @@ void TextureCache::remember(const std::string& path) {
     _stamps.emplace(path, stamp);  // (another thread may have stamped it meanwhile: kept)
 }
 
-void TextureCache::watch(const std::string& path) { remember(path); }
+void TextureCache::watch(const std::string& path) {
+    // The watcher (a light) is about to read the file: its stamp is the file as it is now.
+    const FileStamp stamp = stampOf(path);
+    std::lock_guard lock(_mutex);
+    // A file this cache also serves keeps its first stamp (its pixels may be older than now).
+    if (_textures.count(path) && _stamps.count(path)) return;
+    _stamps[path] = stamp;
+}
 
 std::vector<std::string> TextureCache::reloadChanged() {
     std::vector<std::pair<std::string, FileStamp>> known;

@@ -165,7 +165,9 @@ class TextureCache {
     /// previous version finishes on it (retired, not freed), later ones read the file again.
     void invalidate();
 
-    /// Notes a file another reader loads (a light's texture) so reloadChanged() watches it too.
+    /// Notes a file another reader loads (a light's texture) so reloadChanged() watches it too;
+    /// call it just before reading: the file is stamped as it is now (a light re-synced for
+    /// another reason does not count as a change later).
     void watch(const std::string& path);
     /// Drops what this cache holds of the files it has opened or watches that changed on disk
     /// since they were first seen or last reloaded (modification or change time, inode or size;

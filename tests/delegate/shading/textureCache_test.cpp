@@ -933,3 +933,18 @@ TEST(TextureCacheReload, SameSecondEditsAndDirectoriesAreHandled) {
     { std::ofstream(sub + "/note.txt") << "x"; }
     EXPECT_TRUE(second.reloadChanged().empty());
 }
+
+TEST(TextureCacheReload, AWatcherThatReadsAgainLeavesNothingToReload) {
+    // A light re-synced for another reason reads its image again (watch() first): a reload
+    // after that has nothing to do.
+    TempDir dir;
+    TextureCache cache;
+    const std::string sky = dir.file("sky.exr");
+    ASSERT_TRUE(fillAhead(sky, 4, 0.25f, 1));
+    cache.watch(sky);
+    ASSERT_TRUE(fillAhead(sky, 4, 0.5f, 2));
+    cache.watch(sky);  // the light read it again
+    EXPECT_TRUE(cache.reloadChanged().empty());
+    ASSERT_TRUE(fillAhead(sky, 4, 0.75f, 3));
+    EXPECT_FALSE(cache.reloadChanged().empty());  // an edit since is still seen
+}

@@ -321,28 +321,38 @@ TEST(Skinning, MovesKeepEachMeshInItsOwnSpace) {
     EXPECT_EQ(s.scene->getTransform(hd::Path("/Rig/Arm"))[3][0], 7.0);
 }
 
-TEST(Skinning, InbetweenShapesBlendPiecewiseByWeight) {
-    // "up" lifts point 0: 0.5 at its inbetween (weight 0.5), 2 at weight 1 — a bent path. A
-    // weight between two sub-shapes blends those two; beyond them all the nearest two are
-    // extrapolated (UsdSkelBlendShapeQuery). An inbetween at weight 1 is skipped with a warning.
-    // The inbetween also carries normal offsets, the primary shape none.
-    auto points = [](double weight, std::vector<std::string>* warnings = nullptr, std::vector<glm::vec3>* normals = nullptr) {
-        std::string text = scene(R"(
+namespace {
+// The arm with one blend shape "up" (point 0 lifted by 2) plus `inbetweens` (attribute lines of
+// the BlendShape), animated at blend weight `weight`.
+std::string upShapeScene(const std::string& inbetweens, double weight) {
+    std::string text = scene(R"(
         uniform token[] skel:blendShapes = ["up"]
         rel skel:blendShapeTargets = </Rig/Arm/Up>
         def BlendShape "Up"
         {
             uniform vector3f[] offsets = [(0, 0, 2)]
             uniform int[] pointIndices = [0]
-            uniform vector3f[] inbetweens:half = [(0, 0, 0.5)] (weight = 0.5)
-            uniform vector3f[] inbetweens:half:normalOffsets = [(1, 0, 0)]
-            uniform vector3f[] inbetweens:bad = [(0, 0, 100)] (weight = 1)
+)" + inbetweens + R"(
         }
 )", kAnimated);
-        const std::string scales = "        half3[] scales = [(1, 1, 1)]\n";
-        text.replace(text.find(scales), scales.size(),
-                     scales + "        uniform token[] blendShapes = [\"up\"]\n        float[] blendShapeWeights = [" +
-                         std::to_string(weight) + "]\n");
+    const std::string scales = "        half3[] scales = [(1, 1, 1)]\n";
+    text.replace(text.find(scales), scales.size(),
+                 scales + "        uniform token[] blendShapes = [\"up\"]\n        float[] blendShapeWeights = [" +
+                     std::to_string(weight) + "]\n");
+    return text;
+}
+}  // namespace
+
+TEST(Skinning, InbetweenShapesBlendPiecewiseByWeight) {
+    // "up" lifts point 0: 0.5 at its inbetween (weight 0.5), 2 at weight 1 — a bent path. A
+    // weight between two sub-shapes blends those two; beyond them all the nearest two are
+    // extrapolated (UsdSkelBlendShapeQuery). An inbetween at weight 1 is skipped with a warning.
+    // The inbetween also carries normal offsets, the primary shape none.
+    auto points = [](double weight, std::vector<std::string>* warnings = nullptr, std::vector<glm::vec3>* normals = nullptr) {
+        const std::string text = upShapeScene(R"(
+            uniform vector3f[] inbetweens:half = [(0, 0, 0.5)] (weight = 0.5)
+            uniform vector3f[] inbetweens:half:normalOffsets = [(1, 0, 0)]
+            uniform vector3f[] inbetweens:bad = [(0, 0, 100)] (weight = 1))", weight);
         Posed s(text);
         if (warnings) *warnings = s.scene->warnings();
         if (normals) *normals = s.get("normals");
@@ -369,20 +379,9 @@ TEST(Skinning, InbetweenShapesBlendPiecewiseByWeight) {
 TEST(Skinning, InbetweensAtOneWeightKeepThePoseFinite) {
     // Two inbetweens at 1.5 bracket nothing: one is skipped with a warning, and weights at and
     // beyond them extrapolate from the remaining pair (1 -> 1.5) instead of dividing by zero.
-    std::string text = scene(R"(
-        uniform token[] skel:blendShapes = ["up"]
-        rel skel:blendShapeTargets = </Rig/Arm/Up>
-        def BlendShape "Up"
-        {
-            uniform vector3f[] offsets = [(0, 0, 2)]
-            uniform int[] pointIndices = [0]
+    const std::string text = upShapeScene(R"(
             uniform vector3f[] inbetweens:a = [(0, 0, 3)] (weight = 1.5)
-            uniform vector3f[] inbetweens:b = [(0, 0, 9)] (weight = 1.5)
-        }
-)", kAnimated);
-    const std::string scales = "        half3[] scales = [(1, 1, 1)]\n";
-    text.replace(text.find(scales), scales.size(),
-                 scales + "        uniform token[] blendShapes = [\"up\"]\n        float[] blendShapeWeights = [2]\n");
+            uniform vector3f[] inbetweens:b = [(0, 0, 9)] (weight = 1.5))", 2.0);
     Posed s(text);
     const auto p = s.get("points");
     ASSERT_EQ(p.size(), 3u);

@@ -70,6 +70,9 @@ EnvironmentMap resampleToLatLong(const EnvironmentMap& src, DomeFormat format) {
             out.texels[size_t(y) * size_t(out.width) + size_t(x)] = bilinear(src, domeImagePosition(format, d));
         }
     });
+    glm::dvec3 sum(0.0);
+    for (const auto& t : out.texels) sum += glm::dvec3(t);
+    out.mean = glm::vec3(sum / double(out.texels.size()));
     return out;
 }
 

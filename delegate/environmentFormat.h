@@ -29,7 +29,7 @@ glm::vec2 domeImagePosition(DomeFormat format, const glm::vec3& d);
 /// A lat-long map of 2N x N texels (N = sqrt of the source's texel count, at most 4096) whose
 /// texels are bilinear lookups
 /// of `src` (a mirroredBall or angular image) at their centres' directions. Sampling
-/// distributions are not prepared.
+/// distributions are not prepared; the mean texel is set.
 EnvironmentMap resampleToLatLong(const EnvironmentMap& src, DomeFormat format);
 
 }  // namespace principled::embree

@@ -166,9 +166,6 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 if (env && !latLong) {
                     // A mirrored ball or angular map, resampled once into the lat-long layout.
                     env = std::make_shared<EnvironmentMap>(resampleToLatLong(*env, *format));
-                    glm::dvec3 sum(0.0);
-                    for (const auto& t : env->texels) sum += glm::dvec3(t);
-                    env->mean = glm::vec3(sum / double(env->texels.size()));
                     prepareEnvironmentSampling(*env);
                 }
                 if (env) {

@@ -178,10 +178,9 @@ bool EmbreeRenderPass::needsRestart(const RenderPassState& state) {
     key << state.cameraId.str() << '|' << state.width << 'x' << state.height;
     for (const auto& b : state.aovBindings) key << '|' << b.aovName.str() << '@' << b.renderBuffer;
     const hd::Framing& fr = state.framing;
-    const glm::ivec4 rect = fr.pixelRect(state.width, state.height);
+    // (Exact digits: the window's pixel rectangle follows from these values.)
     key << '|' << int(fr.conform) << ',' << fr.pixelAspectRatio << ',' << fr.dataWindowNDC.x << ','
-        << fr.dataWindowNDC.y << ',' << fr.dataWindowNDC.z << ',' << fr.dataWindowNDC.w << '|' << rect.x << ','
-        << rect.y << ',' << rect.z << ',' << rect.w;
+        << fr.dataWindowNDC.y << ',' << fr.dataWindowNDC.z << ',' << fr.dataWindowNDC.w;
     if (auto* cam = static_cast<Camera*>(renderIndex()->sprim(tokens::camera(), state.cameraId))) {
         const double* m = &cam->transform()[0][0];
         for (int i = 0; i < 16; ++i) key << ',' << m[i];

@@ -179,10 +179,10 @@ void RenderSession::chooseCamera(const std::string& request) {
     } else {
         _cameraPath = _sceneDelegate->addDefaultCamera(_index.get(), _options.width, _options.height, _framing).str();
     }
-    updateDicingView();
+    updateCameraWindow();
 }
 
-void RenderSession::updateDicingView() {
+void RenderSession::updateCameraWindow() {
     // Adaptive subdivision measures meshes from the render camera, through the image's window.
     Path cam(_cameraPath);
     glm::dmat4 xf = _sceneDelegate->getTransform(cam);
@@ -239,7 +239,7 @@ void RenderSession::setResolution(int width, int height) {
     _options.width = width;
     _options.height = height;
     for (auto& [name, buf] : _buffers) buf = allocate(name);
-    updateDicingView();
+    updateCameraWindow();
     _color = _buffers.front().second;
 }
 
@@ -268,7 +268,7 @@ bool RenderSession::reloadTextures(bool onlyChanged) {
 void RenderSession::setFraming(const std::optional<hd::Framing>& framing) {
     _options.framing = framing;
     _framing = framing.value_or(_stageFraming);
-    updateDicingView();
+    updateCameraWindow();
 }
 
 bool RenderSession::step() {

@@ -145,7 +145,9 @@ private:
     void setup();
     void applySettings();
     void chooseCamera(const std::string& request);
-    void updateDicingView();  ///< the camera, resolution or framing changed
+    /// The camera's window for this image (the camera, resolution or framing changed): the
+    /// dicing view of adaptive subdivision and the rendered pixel aspect ratio.
+    void updateCameraWindow();
     embree::EmbreeRenderBuffer* allocate(const std::string& name);
 
     SessionOptions _options;

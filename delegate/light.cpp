@@ -89,6 +89,24 @@ std::shared_ptr<EnvironmentMap> loadImage(const std::string& path, const std::st
 
 }  // namespace
 
+std::shared_ptr<const EnvironmentMap> Light::image(EmbreeRenderParam* param, const std::string& file, bool dome,
+                                                   DomeFormat format, std::string* error) {
+    shading::TextureCache* textures = param->textureCache();
+    const std::string key = std::string(dome ? "dome " : "rect ") + std::to_string(int(format)) + " " + file;
+    const uint64_t version = textures ? textures->fileVersion(file) : 0;
+    if (textures && _cached.image && _cached.key == key && _cached.version == version) return _cached.image;
+    if (textures) textures->watch(file);  // reloadTextures() sees later edits of the file
+    const bool latLong = dome && format == DomeFormat::LatLong;
+    std::shared_ptr<EnvironmentMap> img = loadImage(file, dome ? "dome texture" : "rect light texture", latLong, error);
+    if (img && dome && !latLong) {
+        // A mirrored ball or angular map, resampled once into the lat-long layout.
+        img = std::make_shared<EnvironmentMap>(resampleToLatLong(*img, format));
+        prepareEnvironmentSampling(*img);
+    }
+    _cached = img ? CachedImage{key, version, img} : CachedImage{};
+    return img;
+}
+
 void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* bits) {
     auto* param = static_cast<EmbreeRenderParam*>(renderParam);
     if (!_registered) {
@@ -160,23 +178,14 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                     format = DomeFormat::LatLong;
                 }
                 std::string error;
-                if (auto* textures = param->textureCache()) textures->watch(*file);  // reloadTextures() sees edits
-                const bool latLong = *format == DomeFormat::LatLong;
-                auto env = loadImage(*file, "dome texture", latLong, &error);
-                if (env && !latLong) {
-                    // A mirrored ball or angular map, resampled once into the lat-long layout.
-                    env = std::make_shared<EnvironmentMap>(resampleToLatLong(*env, *format));
-                    prepareEnvironmentSampling(*env);
-                }
-                if (env) {
+                if (auto env = image(param, *file, true, *format, &error)) {
                     glm::mat3 r(xf);
                     for (int c = 0; c < 3; ++c) {
                         float l = glm::length(r[c]);
                         if (l > 0.0f) r[c] /= l;
                     }
-                    env->localToWorld = r;
-                    env->worldToLocal = glm::transpose(r);
-                    env->scale = scaled;
+                    _record.domeLocalToWorld = r;
+                    _record.domeWorldToLocal = glm::transpose(r);
                     _record.environment = std::move(env);
                 } else {
                     param->warn(id(), error + "; using its constant colour");
@@ -220,8 +229,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                                            : getString(delegate->getLightParamValue(id(), Token("texture:file")));
                 if (file && !file->empty()) {
                     std::string error;
-                    if (auto* textures = param->textureCache()) textures->watch(*file);
-                    if (auto img = loadImage(*file, "rect light texture", false, &error))
+                    if (auto img = image(param, *file, false, DomeFormat::LatLong, &error))
                         _record.rectTexture = std::move(img);
                     else
                         param->warn(id(), error + "; using its constant colour");
@@ -294,6 +302,7 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 _enabled = false;
             }
         }
+        if (!_record.environment && !_record.rectTexture) _cached = CachedImage{};  // no image held for nothing
         param->markLightsDirty();
     }
     *bits = SprimDirty::Clean;

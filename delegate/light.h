@@ -3,6 +3,10 @@
 // Converts USD light units into the radiance and irradiance the integrator samples (docs/lights.md).
 #pragma once
 
+#include <memory>
+#include <string>
+
+#include "delegate/environmentFormat.h"
 #include "delegate/hd/prim.h"
 #include "delegate/hd/token.h"
 #include "delegate/renderParam.h"
@@ -20,7 +24,20 @@ public:
     bool enabled() const override { return _enabled; }
 
 private:
+    /// The light's texture (dome or rect) for `file`: the image an earlier sync read when the
+    /// same file in the same layout has not been reloaded since (TextureCache::fileVersion), so
+    /// an intensity, colour or transform edit does not read and resample it again; else read now.
+    /// Null with *error when it cannot be read.
+    std::shared_ptr<const EnvironmentMap> image(EmbreeRenderParam* param, const std::string& file, bool dome,
+                                                DomeFormat format, std::string* error);
+
     hd::Token _type;
+    struct CachedImage {
+        std::string key;       ///< dome or rect, layout and path
+        uint64_t version = 0;  ///< TextureCache::fileVersion of the path when it was read
+        std::shared_ptr<const EnvironmentMap> image;
+    };
+    CachedImage _cached;
     LightRecord _record;
     bool _enabled = true;
     bool _registered = false;

@@ -57,9 +57,9 @@ const glm::vec3& nearestTexel(const EnvironmentMap& img, float u, float v) {
     return img.texels[size_t(y) * img.width + x];
 }
 
-glm::vec3 envLookup(const EnvironmentMap& env, const glm::vec3& dWorld) {
-    glm::vec2 uv = directionToLatLong(env.worldToLocal * dWorld);
-    return nearestTexel(env, uv.x, uv.y) * env.scale;
+glm::vec3 envLookup(const LightRecord& l, const glm::vec3& dWorld) {
+    glm::vec2 uv = directionToLatLong(l.domeWorldToLocal * dWorld);
+    return nearestTexel(*l.environment, uv.x, uv.y) * l.radiance;
 }
 
 // A rect light's texture at rectangle coordinates (a, b) in [-1, 1]^2 along (axisU, axisV):
@@ -71,8 +71,9 @@ glm::vec3 rectTexel(const LightRecord& l, float a, float b) {
     return nearestTexel(*l.rectTexture, 0.5f * (1.0f - a), 0.5f * (1.0f - b));
 }
 
-float envPdf(const EnvironmentMap& env, const glm::vec3& dWorld, bool misCompensation) {
-    glm::vec3 d = env.worldToLocal * dWorld;
+float envPdf(const LightRecord& l, const glm::vec3& dWorld, bool misCompensation) {
+    const EnvironmentMap& env = *l.environment;
+    glm::vec3 d = l.domeWorldToLocal * dWorld;
     glm::vec2 uv = directionToLatLong(d);
     float sinTheta = std::sqrt(std::max(0.0f, 1.0f - d.y * d.y));
     if (sinTheta <= 1e-6f) return 0.0f;
@@ -88,7 +89,7 @@ float portalShare(const LightRecord& l) { return l.environment && l.environment-
 
 // The dome's own density for direction d (its map, or cosine about ng for a constant dome).
 float domeOwnPdf(const LightRecord& l, const glm::vec3& d, const glm::vec3& ng, bool misCompensation) {
-    if (l.environment && l.environment->latLong) return envPdf(*l.environment, d, misCompensation);
+    if (l.environment && l.environment->latLong) return envPdf(l, d, misCompensation);
     return std::max(0.0f, glm::dot(ng, d)) / kPi;
 }
 
@@ -236,7 +237,7 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
                 if (throughPortal) {
                     float portalPdf;
                     if (!l.portals->sample(p, v, &out->wi, &portalPdf)) return false;
-                    out->Li = l.environment && l.environment->latLong ? envLookup(*l.environment, out->wi) : l.radiance;
+                    out->Li = l.environment && l.environment->latLong ? envLookup(l, out->wi) : l.radiance;
                     out->pdf = domeMixturePdf(l, p, out->wi, ng, misCompensation);
                     return out->pdf > 0.0f;
                 }
@@ -248,8 +249,8 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
                 glm::vec3 dLocal = latLongToDirection(uv);
                 float sinTheta = std::sqrt(std::max(0.0f, 1.0f - dLocal.y * dLocal.y));
                 if (sinTheta <= 1e-6f || mapPdf <= 0.0f) return false;
-                out->wi = glm::normalize(env.localToWorld * dLocal);
-                out->Li = envLookup(env, out->wi);
+                out->wi = glm::normalize(l.domeLocalToWorld * dLocal);
+                out->Li = envLookup(l, out->wi);
                 out->pdf = portals ? domeMixturePdf(l, p, out->wi, ng, misCompensation)
                                    : mapPdf / (2.0f * kPi * kPi * sinTheta);
                 return out->pdf > 0.0f;
@@ -543,7 +544,7 @@ bool intersectAreaLight(const LightRecord& l, const glm::vec3& o, const glm::vec
 bool environmentRadiance(const LightRecord& l, const glm::vec3& origin, const glm::vec3& d, const glm::vec3& ng,
                          glm::vec3* Le, float* pdf, bool misCompensation) {
     if (l.kind == LightRecord::Kind::Dome) {
-        *Le = l.environment && l.environment->latLong ? envLookup(*l.environment, d) : l.radiance;
+        *Le = l.environment && l.environment->latLong ? envLookup(l, d) : l.radiance;
         if (pdf) *pdf = domeMixturePdf(l, origin, d, ng, misCompensation);
         return true;
     }

@@ -475,7 +475,7 @@ void EmbreeRenderDelegate::computeLightPower() {
                 break;
             case LightRecord::Kind::Dome: {
                 glm::vec3 L = l.radiance;
-                if (l.environment) L = l.environment->mean * l.environment->scale;
+                if (l.environment) L = l.environment->mean * l.radiance;
                 _lightPower[i] = lum(L) * kPi * kPi;
                 _lightPowerScales[i] = 1;
                 break;

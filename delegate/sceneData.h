@@ -145,9 +145,6 @@ struct EnvironmentMap {
     const Distribution2D& sampling(bool misCompensation) const {
         return misCompensation && !compensated.empty() ? compensated : plain();
     }
-    glm::mat3 worldToLocal{1.0f};   ///< the dome's rotation (its frame: +Y up)
-    glm::mat3 localToWorld{1.0f};
-    glm::vec3 scale{1.0f};          ///< color * intensity * 2^exposure
 
 private:
     mutable Distribution2D _plain;
@@ -204,7 +201,12 @@ struct LightRecord {
     bool point = false;
     float area = 0.0f;
     LightShaping shaping;                ///< sphere/rect/disk/cylinder: UsdLux ShapingAPI cone
-    std::shared_ptr<const EnvironmentMap> environment;  ///< dome texture (null: constant)
+    /// Dome texture (null: constant), unscaled and in the dome's own frame: the image is shared
+    /// between syncs of the light (an intensity or rotation edit does not read it again), so
+    /// what varies per sync (radiance, the rotation below) lives in the record.
+    std::shared_ptr<const EnvironmentMap> environment;
+    glm::mat3 domeWorldToLocal{1.0f};  ///< the dome's rotation (its frame: +Y up)
+    glm::mat3 domeLocalToWorld{1.0f};
     /// Rect light texture:file (texels only; null: constant). Texel (0, 0), the image's top
     /// left, sits at the light's (+X, +Y) corner.
     std::shared_ptr<const EnvironmentMap> rectTexture;

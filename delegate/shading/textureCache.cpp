@@ -618,6 +618,7 @@ std::vector<std::string> TextureCache::reloadChanged() {
         std::lock_guard lock(_mutex);
         for (auto& [path, stamp] : now) {
             _stamps[path] = stamp;
+            ++_fileVersions[path];
             paths.insert(path);
         }
     }
@@ -638,9 +639,17 @@ bool TextureCache::reloadAll() {
     {
         std::lock_guard lock(_mutex);
         for (auto& [path, stamp] : now) _stamps[path] = stamp;  // what is read next is what is on disk now
+        ++_reloadAlls;
     }
     invalidate();
     return true;
+}
+
+uint64_t TextureCache::fileVersion(const std::string& path) const {
+    std::lock_guard lock(_mutex);
+    const auto it = _fileVersions.find(path);
+    // Both counts only grow, so their sum changes whenever either does.
+    return _reloadAlls + (it == _fileVersions.end() ? 0 : it->second);
 }
 
 size_t TextureCache::collectRetired() {

@@ -179,6 +179,10 @@ class TextureCache {
     /// invalidate() with every known file re-stamped as it is now; false (nothing done) when
     /// the cache never opened or watched a file.
     bool reloadAll();
+    /// How many times `path` was reloaded (reloadChanged() found it changed, or reloadAll()
+    /// ran): a reader that keeps what it read of a watched file (a light's image) reads it again
+    /// only when this differs from the value it read it at.
+    uint64_t fileVersion(const std::string& path) const;
 
     /// Frees the versions (pixels and descriptions) retired by invalidate() and re-reads.
     /// Call it at a quiescent point, e.g. between render passes: no lookup may be in flight
@@ -251,6 +255,8 @@ class TextureCache {
     void invalidatePaths(const std::set<std::string>* changed);
     static std::string udimTilePath(const std::string& pattern, int index);  ///< tile 1001 + index
     std::map<std::string, FileStamp> _stamps;
+    std::map<std::string, uint64_t> _fileVersions;  ///< reloadChanged() counts per path
+    uint64_t _reloadAlls = 0;                       ///< reloadAll() calls that did something
     std::vector<std::unique_ptr<Texture>> _retiredSets;  ///< UDIM sets rebuilt since (kept for lookups in flight)
 };
 

@@ -84,7 +84,6 @@ TEST(EnvironmentSampling, LightSampleAndEscapedRayAgreeOnTheDensity) {
     LightRecord light;
     light.kind = LightRecord::Kind::Dome;
     auto env = sunSky();
-    env->localToWorld = env->worldToLocal = glm::mat3(1.0f);
     light.environment = env;
     const glm::vec3 p(0.0f), ng(0.0f, 1.0f, 0.0f);
     for (bool compensated : {false, true}) {

@@ -12,6 +12,8 @@
 #include <map>
 #include <set>
 
+#include "delegate/renderDelegate.h"
+#include "delegate/sceneData.h"
 #include "scene_adapter/stageEditor.h"
 #include "scene_adapter/usda/error.h"
 
@@ -756,6 +758,56 @@ def DomeLight "Sky"
     EXPECT_NEAR(cardAfter.y, 0.75f, 0.01f);
     EXPECT_NEAR(skyAfter.x, 0.125f, 0.01f);
     EXPECT_NEAR(skyAfter.z, 0.0f, 0.01f);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(RenderSession, LightEditsKeepTheLightsImageUntilItsFileIsReloaded) {
+    using principled::adapter::EditValue;
+    // A dome's image is read once: an intensity or rotation edit re-syncs the light without
+    // reading (or resampling) its file again, so a file rewritten on disk shows only after
+    // reloadTextures(), at the edited intensity. A texture:file edit reads the new file at once.
+    const auto dir = std::filesystem::temp_directory_path() / ("principled_lightimg_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto sky = dir / "sky.pfm", other = dir / "other.pfm";
+    writePfm(sky, 8, 4, {0.0f, 0.0f, 0.25f}, 1);
+    writePfm(other, 8, 4, {0.0f, 0.5f, 0.0f}, 1);
+    const std::string usda = "#usda 1.0\ndef Camera \"Cam\" {}\ndef DomeLight \"Sky\"\n{\n    asset inputs:texture:file = @" +
+                             sky.string() + "@\n}\n";
+    host::SessionOptions o;
+    o.width = o.height = 8;
+    o.samplesPerPixel = 1;
+    auto s = host::RenderSession::openString(usda, "lightimg.usda", o);
+    auto pixel = [&] {
+        while (!s->step()) {
+        }
+        const float* c = s->color();
+        return glm::vec3(c[0], c[1], c[2]);
+    };
+    auto dome = [&] {
+        const embree::SceneSnapshot& snap = s->delegate()->snapshot();
+        for (const auto& l : snap.lights)
+            if (l.kind == embree::LightRecord::Kind::Dome) return l.environment.get();
+        return static_cast<const embree::EnvironmentMap*>(nullptr);
+    };
+    EXPECT_NEAR(pixel().z, 0.25f, 1e-4f);
+    const embree::EnvironmentMap* first = dome();
+    ASSERT_NE(first, nullptr);
+    writePfm(sky, 8, 4, {0.125f, 0.0f, 0.0f}, 2);  // rewritten, not yet reloaded
+    s->editor().setAttribute("/Sky", "inputs:intensity", EditValue::of({2.0}));
+    glm::vec3 c = pixel();
+    EXPECT_NEAR(c.z, 0.5f, 1e-4f) << "the edit re-read the file";
+    EXPECT_NEAR(c.x, 0.0f, 1e-6f);
+    EXPECT_EQ(dome(), first) << "the image was read again for an intensity edit";
+    EXPECT_TRUE(s->reloadTextures());
+    c = pixel();
+    EXPECT_NEAR(c.x, 0.25f, 1e-4f);  // the new file at the edited intensity
+    EXPECT_NEAR(c.z, 0.0f, 1e-6f);
+    const embree::EnvironmentMap* reloaded = dome();
+    EXPECT_NE(reloaded, nullptr);
+    s->editor().setAttribute("/Sky", "inputs:texture:file", EditValue::text(other.string()));
+    c = pixel();
+    EXPECT_NEAR(c.y, 1.0f, 1e-4f);
+    EXPECT_NEAR(c.x, 0.0f, 1e-6f);
     std::filesystem::remove_all(dir);
 }
 

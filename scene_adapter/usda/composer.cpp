@@ -4,6 +4,8 @@
 // arcs only into the root layer stack, ancestral arcs before direct arcs of the same kind.
 #include "scene_adapter/usda/composer.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <filesystem>
 #include <unordered_set>
@@ -103,6 +105,26 @@ const LayerStack* Composer::loadStack(const Layer* root) {
     return raw;
 }
 
+namespace {
+
+// A layer's time codes per second: timeCodesPerSecond, else framesPerSecond, else 24 (the
+// fallbacks UsdStage uses for the root layer; Pcp applies the same to every layer stack).
+double timeCodesPerSecond(const Layer& layer) {
+    for (const char* key : {"timeCodesPerSecond", "framesPerSecond"})
+        if (const Value* v = layer.field(key))
+            if (auto d = v->getDouble(); d && std::isfinite(*d) && *d > 0.0) return *d;
+    return 24.0;
+}
+
+// The authored offset of an arc (sublayer or reference) from a layer at `innerTcps` into one
+// at `outerTcps`: Pcp multiplies its scale by the ratio, so one second stays one second.
+LayerOffset withTimeScale(LayerOffset authored, double outerTcps, double innerTcps) {
+    authored.scale *= outerTcps / innerTcps;
+    return authored;
+}
+
+}  // namespace
+
 void Composer::addToStack(LayerStack& stack, const Layer* layer, LayerOffset offset,
                           std::vector<const Layer*>& chain) {
     stack.layers.push_back(layer);
@@ -129,7 +151,9 @@ void Composer::addToStack(LayerStack& stack, const Layer* layer, LayerOffset off
                  Diagnostic::Severity::Error);
             continue;
         }
-        addToStack(stack, subLayer, offset.compose(sub.offset), chain);
+        addToStack(stack, subLayer,
+                   offset.compose(withTimeScale(sub.offset, timeCodesPerSecond(*layer), timeCodesPerSecond(*subLayer))),
+                   chain);
     }
     chain.pop_back();
 }
@@ -331,14 +355,25 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
     child->arc = arc;
     // Maps and time offsets of the whole subtree continue through this arc: first the
     // reference (target -> the referencing prim), then the referencing node's own mapping.
-    std::vector<MapStep> outer{{target, path::stripVariants(node.site), false}};
+    // An internal reference or payload (no asset path) stays in the same layer stack, so paths
+    // outside the referenced prim keep their meaning there (Pcp adds the root identity for such
+    // arcs, as for class arcs): a binding to a material beside the source prim still resolves.
+    std::vector<MapStep> outer{{target, path::stripVariants(node.site), ref.assetPath.empty()}};
     outer.insert(outer.end(), node.map->begin(), node.map->end());
     // Time mapping: the node's, then the offset of the sublayer that authored the arc, then
     // the arc's own (offset; scale).
     LayerOffset authoring;
+    const Layer* authoringLayer = node.stack->layers.front();
     for (std::size_t i = 0; i < node.stack->layers.size(); ++i)
-        if (node.stack->layers[i]->file == ref.location.file) authoring = node.stack->offsets[i];
-    LayerOffset offset = node.offset.compose(authoring).compose(ref.offset);
+        if (node.stack->layers[i]->file == ref.location.file) {
+            authoring = node.stack->offsets[i];
+            authoringLayer = node.stack->layers[i];
+        }
+    // Between layers of different time codes per second the arc's scale takes their ratio (the
+    // authoring layer's offset already carries its own ratio to the stack's root).
+    const LayerOffset arcOffset = withTimeScale(ref.offset, timeCodesPerSecond(*authoringLayer),
+                                                timeCodesPerSecond(*stack->layers.front()));
+    LayerOffset offset = node.offset.compose(authoring).compose(arcOffset);
     std::vector<Node*> todo{child.get()};
     while (!todo.empty()) {
         Node* n = todo.back();

@@ -83,13 +83,63 @@ def "Inst" ( references = </Proto> ) { }
     EXPECT_EQ(mesh->relationship("material:binding")->targets(),
               (std::vector<std::string>{"/Inst/Mat"}));
     EXPECT_EQ(mesh->relationship("relative")->targets(), (std::vector<std::string>{"/Inst/Mat"}));
-    EXPECT_TRUE(mesh->relationship("outside")->targets().empty());
-    EXPECT_TRUE(hasWarning(*stage, "target </Elsewhere> lies outside the referenced prim"));
+    // An internal reference keeps the layer stack's namespace outside the referenced prim (Pcp
+    // adds the root identity for internal arcs): the target is kept as authored.
+    EXPECT_EQ(mesh->relationship("outside")->targets(), (std::vector<std::string>{"/Elsewhere"}));
+    EXPECT_FALSE(hasWarning(*stage, "lies outside the referenced prim")) << allWarnings(*stage);
     EXPECT_EQ(stage->prim("/Inst/Mat")->attribute("outputs:surface")->connections(),
               (std::vector<std::string>{"/Inst/Mat/Shader.outputs:surface"}));
     // The source is composed too, unmapped.
     EXPECT_EQ(stage->prim("/Proto/mesh")->relationship("material:binding")->targets(),
               (std::vector<std::string>{"/Proto/Mat"}));
+}
+
+TEST(Composer, AnExternalReferenceDropsTargetsOutsideTheReferencedPrim) {
+    // Across layer stacks a path outside the referenced prim means nothing in the stage (a
+    // different file's namespace): dropped with a warning. An internal reference in that file
+    // keeps its own file's namespace, mapped on through the outer reference.
+    test::TempDir dir("outside");
+    dir.write("asset.usda", R"(#usda 1.0
+( defaultPrim = "Asset" )
+def "Asset" {
+    def Material "Mat" { }
+    def "Src" { rel material:binding = </Asset/Mat>  rel far = </Lib> }
+    def "Copy" ( references = </Asset/Src> ) { }
+}
+def "Lib" { }
+)");
+    std::string root = dir.write("root.usda", R"(#usda 1.0
+def "A" ( references = @asset.usda@ ) { }
+)");
+    auto stage = Stage::open(root);
+    EXPECT_EQ(stage->prim("/A/Copy")->relationship("material:binding")->targets(),
+              (std::vector<std::string>{"/A/Mat"}));
+    EXPECT_TRUE(stage->prim("/A/Src")->relationship("far")->targets().empty());
+    EXPECT_TRUE(hasWarning(*stage, "target </Lib> lies outside the referenced prim")) << allWarnings(*stage);
+}
+
+TEST(Composer, LayersOfOtherTimeCodesPerSecondKeepSecondsAsSeconds) {
+    // A sublayer and a referenced layer at 48 time codes per second (one by framesPerSecond
+    // alone) under a 24 tcps stage: stage time 12 (0.5 s) reads their time 24; with an authored
+    // offset the ratio scales the arc (Pcp: scale *= outer tcps / inner tcps).
+    test::TempDir dir("tcps");
+    dir.write("sub48.usda", R"(#usda 1.0
+( timeCodesPerSecond = 48 )
+def "Sub" { double x.timeSamples = { 0: 0, 48: 48 } }
+)");
+    dir.write("fps48.usda", R"(#usda 1.0
+( framesPerSecond = 48  defaultPrim = "Asset" )
+def "Asset" { double x.timeSamples = { 0: 0, 48: 48 } }
+)");
+    std::string root = dir.write("root.usda", R"(#usda 1.0
+( timeCodesPerSecond = 24  subLayers = [@sub48.usda@] )
+def "Ref" ( references = @fps48.usda@ ) { }
+def "Shifted" ( references = @fps48.usda@ (offset = 10) ) { }
+)");
+    auto stage = Stage::open(root);
+    EXPECT_DOUBLE_EQ(number(*stage, "/Sub", "x", 12.0), 24.0);
+    EXPECT_DOUBLE_EQ(number(*stage, "/Ref", "x", 12.0), 24.0);
+    EXPECT_DOUBLE_EQ(number(*stage, "/Shifted", "x", 22.0), 24.0);  // stage = 10 + 0.5 * layer
 }
 
 TEST(Composer, SubLayerStrengthAndOffsets) {

@@ -227,16 +227,18 @@ std::unique_ptr<PrimIndexNode> Composer::derive(const Node& source, std::string_
     n->map = source.map;
     n->offset = source.offset;
     n->arcLocation = source.arcLocation;
+    n->inert = source.inert;
     n->parent = parent;
     for (const auto& c : source.children)
         if (auto d = derive(*c, name, n.get())) n->children.push_back(std::move(d));
-    if (parent && n->children.empty() && !n->stack->hasPrim(n->site)) return nullptr;
+    if (parent && n->children.empty() && (n->inert || !n->stack->hasPrim(n->site))) return nullptr;
     ++_nodeCount;
     return n;
 }
 
 std::vector<const PrimSpec*> Composer::specsAt(const Node& node) {
     std::vector<const PrimSpec*> out;
+    if (node.inert) return out;  // an instance's own opinions on its descendants
     for (const Layer* layer : node.stack->layers)
         if (const PrimSpec* s = layer->prim(node.site)) out.push_back(s);
     return out;
@@ -583,7 +585,7 @@ std::string Composer::instanceKey(const std::vector<Node*>& order,
 std::vector<Composer::SpecRef> Composer::gatherSpecs(const std::vector<Node*>& order) const {
     std::vector<SpecRef> out;
     for (const Node* n : order)
-        for (std::size_t i = 0; i < n->stack->layers.size(); ++i)
+        for (std::size_t i = 0; i < n->stack->layers.size() && !n->inert; ++i)
             if (const PrimSpec* s = n->stack->layers[i]->prim(n->site))
                 out.push_back({s, n, n->offset.compose(n->stack->offsets[i])});
     return out;
@@ -727,17 +729,22 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
         prim._relationshipStore.push_back(std::move(rel));
     }
 
-    // Child names: weakest opinion first, stronger opinions append new names (Pcp order).
+    childNames = childNamesOf(specs);
+}
+
+std::vector<std::string> Composer::childNamesOf(const std::vector<SpecRef>& specs) {
+    std::vector<std::string> names;
     std::unordered_set<std::string> seen;
     for (auto it = specs.rbegin(); it != specs.rend(); ++it)
         for (const auto& c : it->spec->children)
-            if (seen.insert(c->name).second) childNames.push_back(c->name);
+            if (seen.insert(c->name).second) names.push_back(c->name);
     for (auto it = specs.rbegin(); it != specs.rend(); ++it)
         if (it->spec->nameChildrenOrder) {
             ListOp<std::string> op;
             op.set(ListOpKind::Reorder, *it->spec->nameChildrenOrder);
-            op.applyTo(childNames);
+            op.applyTo(names);
         }
+    return names;
 }
 
 void Composer::composeChildren(Prim& parent, Node* parentIndex,
@@ -763,10 +770,11 @@ void Composer::composeChildren(Prim& parent, Node* parentIndex,
         std::string primPath = path::child(parent._path, name);
         _nodeCount = 0;
         std::unique_ptr<Node> index;
+        std::vector<Node*> existing;  // the nodes before this prim's own arcs
         if (parentIndex) {
             index = derive(*parentIndex, name, nullptr);
             // Arcs authored at this level, on every node the ancestral arcs brought in.
-            std::vector<Node*> existing = strengthOrder(*index);
+            existing = strengthOrder(*index);
             _indexRoot = index.get();
             for (Node* n : existing) expandArcs(*n);
         } else {
@@ -774,6 +782,7 @@ void Composer::composeChildren(Prim& parent, Node* parentIndex,
             index->stack = _rootStack;
             index->site = primPath;
             _indexRoot = index.get();
+            existing = {index.get()};
             expandArcs(*index);
         }
         std::map<std::string, std::string> used;
@@ -785,6 +794,13 @@ void Composer::composeChildren(Prim& parent, Node* parentIndex,
         prim->_parent = &parent;
         std::vector<std::string> childNames;
         composePrim(*prim, *index, used, childNames);
+        if (prim->isInstance()) {
+            // Scenegraph instancing: an instance's descendants come from its arcs alone; what
+            // its own layer stacks say about them is ignored (so instances of one prototype
+            // agree, whichever of them is drawn as the prototype).
+            for (Node* n : existing) n->inert = true;
+            childNames = childNamesOf(gatherSpecs(strengthOrder(*index)));
+        }
         Prim* raw = prim.get();
         parent._children.push_back(raw);
         _stage._index[primPath] = raw;

@@ -50,6 +50,10 @@ struct PrimIndexNode {
     std::optional<std::vector<std::string>> variantSetNames;
     std::size_t nextVariantSet = 0;
     bool variantsDone = false;  ///< all variant sets at this site are expanded
+    /// Below an instanceable prim: this node is the instance's own (local or ancestral) layer
+    /// stack, whose opinions on the instance's descendants USD ignores; the nodes of the
+    /// instance's arcs below it still contribute. Carried to the nodes derived from it.
+    bool inert = false;
 
     void addChild(std::unique_ptr<PrimIndexNode> child);
 };
@@ -98,6 +102,9 @@ private:
     static std::vector<Node*> strengthOrder(Node& root);
     static std::vector<const PrimSpec*> specsAt(const Node& node);
     std::vector<SpecRef> gatherSpecs(const std::vector<Node*>& order) const;
+    /// Child prim names in Pcp order: weakest opinion first, stronger ones append new names,
+    /// then every nameChildrenOrder reorders.
+    static std::vector<std::string> childNamesOf(const std::vector<SpecRef>& specsStrongFirst);
     static std::string instanceKey(const std::vector<Node*>& order,
                                    const std::map<std::string, std::string>& used);
     std::optional<std::string> mapToStage(const Node& node, const std::string& path) const;

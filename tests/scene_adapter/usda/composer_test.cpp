@@ -142,6 +142,51 @@ def "Shifted" ( references = @fps48.usda@ (offset = 10) ) { }
     EXPECT_DOUBLE_EQ(number(*stage, "/Shifted", "x", 22.0), 24.0);  // stage = 10 + 0.5 * layer
 }
 
+TEST(Composer, OpinionsOnAnInstancesDescendantsAreIgnored) {
+    // Scenegraph instancing: the descendants of an instanceable prim come from its arcs; overs
+    // on them in the instance's layer stack (here the root layer, and inside a referenced
+    // asset) do not apply, and prims they define do not appear. The instance's own
+    // properties and root-stack class opinions reached by its arcs still do.
+    test::TempDir dir("inst");
+    dir.write("asset.usda", R"(#usda 1.0
+( defaultPrim = "Asset" )
+def "Asset" ( inherits = </_class_Asset> ) {
+    def "Body" { double size = 1 }
+    def "Knob" { double size = 2 }
+}
+)");
+    dir.write("set.usda", R"(#usda 1.0
+( defaultPrim = "Set" )
+def "Set" {
+    def "Inner" ( instanceable = true  references = @asset.usda@ ) {
+        over "Body" { double size = 5 }
+    }
+}
+)");
+    std::string root = dir.write("root.usda", R"(#usda 1.0
+class "_class_Asset" { over "Knob" { double size = 7 } }
+def "First" ( instanceable = true  references = @asset.usda@ ) {
+    double size = 3
+    over "Body" { double size = 9 }
+    over "Knob" ( active = false ) { }
+    def "Extra" { }
+}
+def "Second" ( instanceable = true  references = @asset.usda@ ) { }
+def "Set" ( references = @set.usda@ ) { over "Inner" { over "Body" { double size = 6 } } }
+)");
+    auto stage = Stage::open(root);
+    EXPECT_EQ(number(*stage, "/First", "size"), 3.0);
+    for (const char* inst : {"/First", "/Second", "/Set/Inner"}) {
+        const std::string p = inst;
+        EXPECT_EQ(number(*stage, p + "/Body", "size"), 1.0) << p;
+        ASSERT_NE(stage->prim(p + "/Knob"), nullptr) << p;
+        EXPECT_TRUE(stage->prim(p + "/Knob")->isActive()) << p;
+        EXPECT_EQ(number(*stage, p + "/Knob", "size"), 7.0) << p;  // the implied root-stack class
+    }
+    EXPECT_EQ(stage->prim("/First/Extra"), nullptr);
+    EXPECT_EQ(stage->prim("/First")->instanceKey(), stage->prim("/Second")->instanceKey());
+}
+
 TEST(Composer, SubLayerStrengthAndOffsets) {
     test::TempDir dir("sub");
     dir.write("weak.usda", R"(#usda 1.0

@@ -12,6 +12,7 @@
 #include "delegate/hd/camera.h"
 #include "delegate/hd/tokens.h"
 #include "scene_adapter/implicitShapes.h"
+#include "scene_adapter/primvars.h"
 #include "scene_adapter/usda/stage.h"
 #include "scene_adapter/valueConvert.h"
 #include "scene_adapter/xformOps.h"
@@ -50,21 +51,6 @@ const std::set<std::string>& ignoredTypes() {
                                          "Skeleton", "SkelAnimation", "BlendShape",
                                          "RenderProduct", "RenderVar", "Material"};
     return t;
-}
-
-Interpolation parseInterpolation(const std::string& s, Interpolation fallback) {
-    if (s == "constant") return Interpolation::Constant;
-    if (s == "uniform") return Interpolation::Uniform;
-    if (s == "varying") return Interpolation::Varying;
-    if (s == "vertex") return Interpolation::Vertex;
-    if (s == "faceVarying") return Interpolation::FaceVarying;
-    return fallback;
-}
-
-Interpolation attributeInterpolation(const usd::Attribute& a, Interpolation fallback) {
-    if (const usd::Value* m = a.metadata("interpolation"))
-        if (auto s = m->getString()) return parseInterpolation(*s, fallback);
-    return fallback;
 }
 
 // "/Mat/Shader.outputs:rgb" -> ("/Mat/Shader", "outputs:rgb").
@@ -325,7 +311,11 @@ Value UsdSceneDelegate::get(const Path& id, const Token& key) const {
         return isEmpty(v) ? attributeValue(*p, "normals") : v;
     }
     Value v = attributeValue(*p, "primvars:" + k);
-    return isEmpty(v) ? attributeValue(*p, k) : v;
+    if (isEmpty(v)) v = attributeValue(*p, k);
+    // Display colour and opacity an ancestor authors (other primvars: getIndexedPrimvar).
+    if (isEmpty(v) && (key == tokens::displayColor() || k == "displayOpacity") && !p->attribute("primvars:" + k))
+        if (const InheritedPrimvar i = inheritedPrimvar(*p, "primvars:" + k); i.attribute) v = toHdValue(i.attribute->get(_time));
+    return v;
 }
 
 Value UsdSceneDelegate::getIndexedPrimvar(const Path& id, const Token& key,
@@ -338,7 +328,17 @@ Value UsdSceneDelegate::getIndexedPrimvar(const Path& id, const Token& key,
         Value idx = attributeValue(*p, name + ":indices");
         if (auto* a = getIf<std::vector<int>>(idx)) *indices = *a;
     }
-    return get(id, key);
+    Value v = get(id, key);
+    if (isEmpty(v) && !p->attribute(name))
+        if (const InheritedPrimvar i = inheritedPrimvar(*p, name); i.attribute) {
+            // Inherited from an ancestor (constant, so an index array selects its one value).
+            v = toHdValue(i.attribute->get(_time));
+            if (const usd::Attribute* idx = i.owner->attribute(name + ":indices"); idx && idx->hasValue()) {
+                const Value iv = toHdValue(idx->get(_time));
+                if (auto* a = getIf<std::vector<int>>(iv)) *indices = *a;
+            }
+        }
+    return v;
 }
 
 std::vector<PrimvarDescriptor> UsdSceneDelegate::getPrimvarDescriptors(const Path& id,
@@ -363,6 +363,16 @@ std::vector<PrimvarDescriptor> UsdSceneDelegate::getPrimvarDescriptors(const Pat
         d.indexed = p->attribute(n + ":indices") != nullptr;
         out.push_back(d);
     }
+    // Constant primvars inherited from ancestors, unless the prim authors one of that name.
+    if (interp == Interpolation::Constant)
+        for (const InheritedPrimvar& i : inheritablePrimvars(p->parent())) {
+            if (p->attribute(i.attribute->name())) continue;
+            PrimvarDescriptor d;
+            d.name = Token(stripNamespace(i.attribute->name(), "primvars:"));
+            d.interpolation = Interpolation::Constant;
+            d.indexed = i.owner->attribute(i.attribute->name() + ":indices") != nullptr;
+            out.push_back(d);
+        }
     // A skinned mesh whose normals could not be posed has none.
     if (const Entry* e = entry(id); e && e->skinned && e->skinned->normals.empty()) {
         out.erase(std::remove_if(out.begin(), out.end(), [](const PrimvarDescriptor& d) { return d.name == tokens::normals(); }),

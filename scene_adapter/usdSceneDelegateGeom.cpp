@@ -12,6 +12,7 @@
 
 #include "delegate/hd/tokens.h"
 #include "scene_adapter/implicitShapes.h"
+#include "scene_adapter/primvars.h"
 #include "scene_adapter/usdSceneDelegate.h"
 #include "scene_adapter/usda/stage.h"
 #include "scene_adapter/valueConvert.h"
@@ -188,8 +189,11 @@ bool UsdSceneDelegate::visitInstance(const usd::Prim& prim, const glm::dmat4& wo
         type == "PointInstancer" || isImplicitShape(type))
         return false;  // an instanceable gprim is simply drawn
     if (!onlyPrototypeGeometry(prim)) return false;
-    // Instances of one prototype share its BLAS unless an inherited binding differs.
-    std::string key = prim.instanceKey() + "|" + _bindings.inheritedKey(prim) + "|" + lightLinkKey(prim);
+    // Instances of one prototype share its BLAS unless an inherited binding, light links or the
+    // constant primvars its rprims inherit from the instance and its ancestors (a per-asset
+    // displayColor, say) differ.
+    std::string key = prim.instanceKey() + "|" + _bindings.inheritedKey(prim) + "|" + lightLinkKey(prim) + "|" +
+                      inheritablePrimvarKey(prim, _time);
     auto it = _instanceGroups.find(key);
     if (it == _instanceGroups.end()) {
         // The first instance's subtree is the prototype; its rprims keep their own paths and

@@ -420,6 +420,51 @@ TEST(RenderSession, MaterialXStandardSurfaceRendersItsBaseColor) {
     EXPECT_NEAR(greyRed / greyGreen, 1.0, 0.05);
 }
 
+TEST(RenderSession, InstancesTakeTheDisplayColourTheyPassDown) {
+    // Two instances of one asset whose cube authors no colour: each instance's own constant
+    // displayColor reaches the prototype's cube (inherited primvars), so the instances cannot
+    // share one prototype; a third, uncoloured one falls back to the default grey.
+    const auto dir = std::filesystem::temp_directory_path() / ("principled_instcol_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "asset.usda") << "#usda 1.0\n( defaultPrim = \"Asset\" )\ndef Xform \"Asset\" { def Cube \"Box\" { double size = 1.5 } }\n";
+    std::ofstream(dir / "scene.usda") << R"(#usda 1.0
+def Camera "Cam" {
+    float horizontalAperture = 60
+    float verticalAperture = 20
+    double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def "Red" ( instanceable = true  references = @asset.usda@ ) {
+    color3f[] primvars:displayColor = [(1, 0, 0)]
+    double3 xformOp:translate = (-3, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def "Blue" ( instanceable = true  references = @asset.usda@ ) {
+    color3f[] primvars:displayColor = [(0, 0, 1)]
+    double3 xformOp:translate = (3, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def "Plain" ( instanceable = true  references = @asset.usda@ ) { }
+)";
+    host::SessionOptions o;
+    o.width = 48;
+    o.height = 16;
+    o.samplesPerPixel = 4;
+    auto s = host::RenderSession::openFile((dir / "scene.usda").string(), o);
+    while (!s->step()) {
+    }
+    auto at = [&](int x) {
+        const float* c = s->color() + (size_t(8) * 48 + size_t(x)) * 4;
+        return glm::vec3(c[0], c[1], c[2]);
+    };
+    const glm::vec3 left = at(12), right = at(36), middle = at(24);
+    EXPECT_GT(left.x, 5.0f * left.z) << "red instance";
+    EXPECT_GT(right.z, 5.0f * right.x) << "blue instance";
+    EXPECT_NEAR(middle.x, middle.z, 0.1f * middle.x) << "uncoloured instance";
+    std::filesystem::remove_all(dir);
+}
+
 // UsdRender: with no size and no camera asked for, the stage's RenderSettings decide (its first
 // product's camera and resolution win over the settings' own); asked for, the caller's win.
 TEST(RenderSession, TheStagesRenderSettingsGiveCameraAndResolution) {

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
+#include "delegate/primvarUtil.h"
+
 #include <filesystem>
 
 #include "delegate/hd/camera.h"
@@ -125,6 +129,39 @@ TEST(UsdSceneDelegate, TransformsTopologyAndPrimvars) {
     hd::Value st = p.scene->getIndexedPrimvar(tri, hd::Token("st"), &idx);
     EXPECT_EQ(idx, (std::vector<int>{0, 1, 1}));
     EXPECT_EQ(hd::getIf<std::vector<glm::vec2>>(st)->size(), 2u);
+}
+
+TEST(UsdSceneDelegate, ConstantPrimvarsAreInheritedFromAncestors) {
+    // UsdGeomPrimvarsAPI::FindInheritablePrimvars: constant primvars of ancestors reach a prim
+    // that authors none of that name (nearest wins; its own, or a non-constant one on a nearer
+    // ancestor, hides them), indices included.
+    Populated p(R"(#usda 1.0
+def Xform "World" {
+    color3f[] primvars:displayColor = [(1, 0, 0)]
+    float[] primvars:tint = [0.25, 0.75]
+    int[] primvars:tint:indices = [1]
+    float primvars:ramp = 3
+    def Xform "Group" {
+        float[] primvars:ramp = [1, 2, 3] (interpolation = "vertex")
+        def Sphere "Inherits" { }
+        def Sphere "Own" { color3f[] primvars:displayColor = [(0, 0, 1)] }
+    }
+}
+)");
+    const hd::Path inherits("/World/Group/Inherits"), own("/World/Group/Own");
+    auto names = [&](const hd::Path& id) {
+        std::set<std::string> out;
+        for (const auto& d : p.scene->getPrimvarDescriptors(id, hd::Interpolation::Constant)) out.insert(d.name.str());
+        return out;
+    };
+    EXPECT_EQ(names(inherits), (std::set<std::string>{"displayColor", "tint"}));  // ramp: blocked by Group's
+    EXPECT_EQ(embree::constantDisplayColor(p.scene.get(), inherits), glm::vec3(1, 0, 0));
+    EXPECT_EQ(embree::constantDisplayColor(p.scene.get(), own), glm::vec3(0, 0, 1));
+    std::vector<int> idx;
+    hd::Value tint = p.scene->getIndexedPrimvar(inherits, hd::Token("tint"), &idx);
+    ASSERT_NE(hd::getIf<std::vector<float>>(tint), nullptr);
+    EXPECT_EQ(idx, (std::vector<int>{1}));
+    EXPECT_TRUE(hd::isEmpty(p.scene->getIndexedPrimvar(inherits, hd::Token("ramp"), &idx)));
 }
 
 TEST(UsdSceneDelegate, InheritedBindingAndNetworkThroughInterfaceInputs) {

@@ -233,13 +233,16 @@ bool lightSideOk(const glm::vec3& wi, const glm::vec3& ng, const Frame& frame, c
 }
 
 
-// A tangent frame around n whose tangent follows the st parameterisation of the triangle
-// (the usual dP/du from the triangle's edges and uv deltas); any frame if st is missing or
-// degenerate.
-Frame tangentFrame(const Hit& hit, const glm::vec3& n) {
+// The tangent frame a normal map's x and y refer to, around n: x along dP/ds and y along
+// dP/dt of the texture coordinates the map is read with (the primvar behind them, through
+// UsdTransform2d's linear part; "st" when the program names none), from the triangle's edges
+// and coordinate deltas. y takes dP/dt's side of n x x, so mirrored UV shells keep their
+// map's green channel pointing along +t (the sign MikkTSpace stores per vertex). Any frame
+// when the coordinates are missing or degenerate.
+Frame tangentFrame(const Hit& hit, const glm::vec3& n, const shading::NormalMapUv* uv) {
     const GeometryRecord& rec = *hit.record;
     static const hd::Token kSt("st");  // interned once: Token() takes a global lock
-    const PrimvarChannel* st = rec.primvar(kSt);
+    const PrimvarChannel* st = rec.primvar(uv ? uv->primvar : kSt);
     if (rec.kind == GeometryRecord::Kind::Triangles && st && !st->constant && st->components >= 2) {
         const glm::uvec3& t = rec.triangles[hit.triangle];
         glm::vec3 e1 = rec.points[t.y] - rec.points[t.x], e2 = rec.points[t.z] - rec.points[t.x];
@@ -248,16 +251,19 @@ Frame tangentFrame(const Hit& hit, const glm::vec3& n) {
         const float* uv2 = rec.cornerValue(*st, hit.triangle, 2);
         glm::vec2 d1(uv1[0] - uv0[0], uv1[1] - uv0[1]);
         glm::vec2 d2(uv2[0] - uv0[0], uv2[1] - uv0[1]);
+        if (uv) d1 = uv->jacobian * d1, d2 = uv->jacobian * d2;  // into the texture's own (s, t)
         float det = d1.x * d2.y - d1.y * d2.x;
-        if (std::abs(det) > 1e-12f) {
-            glm::vec3 dpdu = (e1 * d2.y - e2 * d1.y) / det;
-            glm::vec3 tw = glm::mat3(hit.instance ? hit.instance->objectToWorld : rec.objectToWorld) * dpdu;
-            tw -= n * glm::dot(n, tw);
+        if (std::abs(det) > 1e-12f && std::isfinite(det)) {
+            const glm::mat3 toWorld(hit.instance ? hit.instance->objectToWorld : rec.objectToWorld);
+            glm::vec3 dpds = toWorld * ((e1 * d2.y - e2 * d1.y) / det);
+            glm::vec3 dpdt = toWorld * ((e2 * d1.x - e1 * d2.x) / det);
+            glm::vec3 tw = dpds - n * glm::dot(n, dpds);
             float l = glm::length(tw);
             if (l > 1e-12f && std::isfinite(l)) {
                 Frame f(n);
                 f.t = tw / l;
                 f.b = glm::cross(n, f.t);
+                if (glm::dot(f.b, dpdt) < 0.0f) f.b = -f.b;  // a mirrored shell
                 return f;
             }
         }
@@ -377,7 +383,7 @@ ShadingFrame shadingFrame(const Hit& hit, const shading::ShadedMaterial& mat, co
     if (mat.hasNormalMap && !(solidTransmission && hit.backface)) {
         // Mapped around the surface's own interpolated normal, then bent once (Cycles: the
         // Normal Map node uses the smooth normal; the closure applies the bending).
-        Frame tf = tangentFrame(hit, hit.ns);
+        Frame tf = tangentFrame(hit, hit.ns, mat.normalMapUv);
         glm::vec3 mapped = glm::normalize(tf.toWorld(mat.tangentNormal));
         if (std::isfinite(mapped.x)) ns = validReflectionNormal(hit.ng, wo, mapped);
     }

@@ -472,6 +472,8 @@ MaterialProgram MaterialProgram::compile(const MaterialNetwork& network, Texture
     }
     prog._constant = mapPreviewSurface(prog._base);
     prog.findPresenceOps();
+    prog.findNormalMapUv();
+    prog._constant.normalMapUv = prog._normalMapUv.get();
     return prog;
 }
 
@@ -533,28 +535,48 @@ ShadedMaterial MaterialProgram::evaluate(const ShadingContext& context) const {
     for (const Op& op : _ops) run(op, context, regs);
     PreviewSurfaceParams p = _base;
     for (const Binding& b : _bindings) setSlot(p, b.slot, read(regs, b.source), b.source.count);
-    return mapPreviewSurface(p);
+    ShadedMaterial m = mapPreviewSurface(p);
+    m.normalMapUv = _normalMapUv.get();
+    return m;
 }
 
-// Walks the ops backwards from the opacity binding's register: an op is needed when it writes
-// a needed register, and then its input register is needed too (a superset if a register is
-// written twice).
-void MaterialProgram::findPresenceOps() {
-    _presenceOps.clear();
+// Walks the ops backwards from a slot's binding register: an op is needed when it writes a
+// needed register, and then its input register is needed too (a superset if a register is
+// written twice). In execution order.
+std::vector<uint16_t> MaterialProgram::opsFeeding(Slot slot) const {
+    std::vector<uint16_t> ops;
     std::vector<bool> needed(kMaxRegisters, false);
     bool any = false;
     for (const Binding& b : _bindings)
-        if (b.slot == Slot::Opacity && b.source.reg >= 0) needed[size_t(b.source.reg)] = any = true;
-    if (!any) return;
+        if (b.slot == slot && b.source.reg >= 0) needed[size_t(b.source.reg)] = any = true;
+    if (!any) return ops;
     for (size_t i = _ops.size(); i-- > 0;) {
         const Op& op = _ops[i];
         if (op.out < 0 || !needed[size_t(op.out)]) continue;
-        _presenceOps.push_back(uint16_t(i));
+        ops.push_back(uint16_t(i));
         if (op.kind == Op::Kind::Primvar) continue;
         for (const Operand* in : {&op.in, &op.in2, &op.in3})
             if (in->reg >= 0) needed[size_t(in->reg)] = true;
     }
-    std::reverse(_presenceOps.begin(), _presenceOps.end());
+    std::reverse(ops.begin(), ops.end());
+    return ops;
+}
+
+void MaterialProgram::findPresenceOps() { _presenceOps = opsFeeding(Slot::Opacity); }
+
+void MaterialProgram::findNormalMapUv() {
+    // The texture nearest the normal input whose st follows a primvar: its tangent frame is the
+    // one the map's x and y were painted in.
+    _normalMapUv.reset();
+    const std::vector<uint16_t> ops = opsFeeding(Slot::Normal);
+    for (auto it = ops.rbegin(); it != ops.rend(); ++it) {
+        const Op& op = _ops[*it];
+        if (op.kind != Op::Kind::Texture) continue;
+        const TextureOp& t = _textures[size_t(op.index)];
+        if (t.footprintPrimvar.empty()) continue;
+        _normalMapUv = std::make_shared<const NormalMapUv>(NormalMapUv{t.footprintPrimvar, t.footprintJacobian});
+        return;
+    }
 }
 
 float MaterialProgram::presence(const ShadingContext& context) const {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
@@ -129,7 +130,9 @@ class MaterialProgram {
 
     static glm::vec4 read(const glm::vec4* regs, const Operand& o);
     void run(const Op& op, const ShadingContext& context, glm::vec4* regs) const;
+    std::vector<uint16_t> opsFeeding(Slot slot) const;
     void findPresenceOps();
+    void findNormalMapUv();
 
     std::vector<glm::vec4> _initial;  ///< register file before the ops run (constants)
     std::vector<Op> _ops;
@@ -139,6 +142,9 @@ class MaterialProgram {
     std::vector<Binding> _bindings;
     std::vector<uint16_t> _presenceOps;  ///< indices into _ops that opacity depends on, in order
     std::vector<hd::Token> _primvarsRead;
+    /// Where the normal map's st comes from (ShadedMaterial::normalMapUv points at it: on the
+    /// heap, so copies of the program keep the pointers of their results valid).
+    std::shared_ptr<const NormalMapUv> _normalMapUv;
     PreviewSurfaceParams _base;  ///< constant inputs; bindings overwrite the rest
     ShadedMaterial _constant;
     const TextureCache* _cache = nullptr;

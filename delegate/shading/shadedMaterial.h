@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "bsdf/bsdf.h"
+#include "delegate/hd/token.h"
 
 namespace principled::shading {
 
@@ -13,6 +14,14 @@ namespace principled::shading {
 enum class OpacityMode : uint8_t {
     Transparent,  ///< the spec's fallback: zero opacity still gets specular ("clear glass")
     Presence,     ///< zero opacity means no surface at all; partial opacity scales everything
+};
+
+/// The texture coordinates a normal map is looked up with: the primvar they derive from and
+/// d st / d primvar along the graph (UsdTransform2d's linear part). The map's x and y follow
+/// the surface's dP/ds and dP/dt in those coordinates (MaterialProgram::compile finds them).
+struct NormalMapUv {
+    hd::Token primvar;
+    glm::mat2 jacobian{1.0f};
 };
 
 /// The evaluated material. Every field is finite and inside its valid range.
@@ -30,6 +39,9 @@ struct ShadedMaterial {
     /// integrator builds the tangent frame; hasNormalMap is false when it is the constant +z.
     bool hasNormalMap = false;
     glm::vec3 tangentNormal{0.0f, 0.0f, 1.0f};
+    /// Owned by the material's program (which outlives shading); null: a constant normal input,
+    /// or no primvar behind the map (the integrator then uses "st").
+    const NormalMapUv* normalMapUv = nullptr;
 
     /// Fraction of hits that see the surface: with a threshold, 0 below it and 1 at or above
     /// it (an alpha cutout); without, the opacity itself (for stochastic transparency).

@@ -806,6 +806,99 @@ def DomeLight "Sky"
     std::filesystem::remove_all(dir);
 }
 
+TEST(RenderSession, NormalMapsFollowTheirOwnTextureCoordinates) {
+    // A quad under a sun 60 degrees up toward +Y; the map tilts the normal 60 degrees toward its
+    // +t. Seen through the coordinates the map is read with (its reader's primvar, its
+    // UsdTransform2d), +t must be where that parameterisation's t grows: toward the sun (bright),
+    // away from it (a mirrored shell: dark), or sideways (rotated 90 degrees: in between).
+    const auto dir = std::filesystem::temp_directory_path() / ("principled_nmap_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const float s60 = std::sqrt(3.0f) / 2.0f;
+    writePfm(dir / "n.pfm", 4, 4, {0.5f, 0.5f + 0.5f * s60, 0.75f}, 0);
+    auto render = [&](const std::string& primvars, const std::string& varname, float rotation) {
+        const std::string usda = R"(#usda 1.0
+def Camera "Cam" {
+    token projection = "orthographic"
+    float horizontalAperture = 40
+    float verticalAperture = 30
+    double3 xformOp:translate = (2, 1.5, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DistantLight "Sun" {
+    float inputs:intensity = 3.14159
+    bool inputs:normalize = 1
+    float inputs:angle = 0.5
+    float xformOp:rotateX = -60
+    uniform token[] xformOpOrder = ["xformOp:rotateX"]
+}
+def Mesh "Quad" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(0, 0, 0), (4, 0, 0), (4, 3, 0), (0, 3, 0)]
+    )" + primvars + R"(
+    rel material:binding = </Mat>
+}
+def Material "Mat" {
+    token outputs:surface.connect = </Mat/PS.outputs:surface>
+    def Shader "PS" {
+        uniform token info:id = "UsdPreviewSurface"
+        normal3f inputs:normal.connect = </Mat/Tex.outputs:rgb>
+        color3f inputs:diffuseColor = (1, 1, 1)
+        float inputs:roughness = 1
+        token outputs:surface
+    }
+    def Shader "Tex" {
+        uniform token info:id = "UsdUVTexture"
+        asset inputs:file = @)" + (dir / "n.pfm").string() + R"(@
+        float2 inputs:st.connect = </Mat/Xf.outputs:result>
+        float4 inputs:scale = (2, 2, 2, 1)
+        float4 inputs:bias = (-1, -1, -1, 0)
+        token inputs:sourceColorSpace = "raw"
+        token inputs:wrapS = "repeat"
+        token inputs:wrapT = "repeat"
+        float3 outputs:rgb
+    }
+    def Shader "Xf" {
+        uniform token info:id = "UsdTransform2d"
+        float2 inputs:in.connect = </Mat/Reader.outputs:result>
+        float inputs:rotation = )" + std::to_string(rotation) + R"(
+        float2 outputs:result
+    }
+    def Shader "Reader" {
+        uniform token info:id = "UsdPrimvarReader_float2"
+        string inputs:varname = ")" + varname + R"("
+        float2 outputs:result
+    }
+}
+)";
+        host::SessionOptions o;
+        o.width = 8;
+        o.height = 6;
+        o.samplesPerPixel = 4;
+        o.aovs = {"diffuse"};
+        auto s = host::RenderSession::openString(usda, "nmap.usda", o);
+        while (!s->step()) {
+        }
+        for (const auto& a : s->aovs())
+            if (a.name == "diffuse") return static_cast<const float*>(a.pixels)[(3 * 8 + 4) * 4];
+        return -1.0f;
+    };
+    const std::string st = R"(texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "vertex"))";
+    const std::string mirrored = R"(texCoord2f[] primvars:st = [(0, 1), (1, 1), (1, 0), (0, 0)] (interpolation = "vertex"))";
+    // map1 with s along -X (a flipped shell), beside an st that is not flipped.
+    const std::string map1 = st + "\n    " +
+                             R"(texCoord2f[] primvars:map1 = [(1, 1), (0, 1), (0, 0), (1, 0)] (interpolation = "vertex"))";
+    const float lit = render(st, "st", 0.0f);
+    EXPECT_NEAR(lit, 0.846f, 0.02f);  // cos(0) toward the sun's elevation, Disney diffuse at roughness 1
+    EXPECT_LT(render(mirrored, "st", 0.0f), 0.05f) << "mirrored t: the map's +y points away from the sun";
+    EXPECT_LT(render(map1, "map1", 0.0f), 0.05f) << "the frame must come from map1, not st";
+    const float sideways = render(st, "st", 90.0f);
+    EXPECT_GT(sideways, 0.2f);
+    EXPECT_LT(sideways, 0.6f) << "UsdTransform2d's rotation turns the frame";
+    std::filesystem::remove_all(dir);
+}
+
 TEST(RenderSession, LightEditsKeepTheLightsImageUntilItsFileIsReloaded) {
     using principled::adapter::EditValue;
     // A dome's image is read once: an intensity or rotation edit re-syncs the light without

@@ -27,7 +27,7 @@ inline LobeSet buildDisney(const MaterialParams& p, const Options& o) {
     glm::vec3 csheen = glm::mix(glm::vec3(1.0f), tint, std::clamp(p.sheenTint, 0.0f, 1.0f));
     // Burley 2015, "Extending the Disney BRDF to a BSDF with Integrated Subsurface Scattering",
     // §3: the diffuse-like lobes are scaled by (1 - metallic)(1 - specTrans).
-    float diffuseWeight = (1.0f - metallic) * (1.0f - specTrans);
+    float diffuseWeight = (1.0f - metallic) * (1.0f - specTrans) * std::clamp(p.diffuseScale, 0.0f, 1.0f);
     float transWeight = (1.0f - metallic) * specTrans;
 
     s.diffuse = {base * diffuseWeight, r, std::clamp(p.subsurface, 0.0f, 1.0f)};

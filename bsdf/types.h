@@ -40,6 +40,10 @@ struct MaterialParams {
     /// metallic, specular and specularTint are ignored.
     bool specularWorkflow = false;
     glm::vec3 specularColor{0.0f};
+    /// Multiplies the diffuse-like lobes (diffuse, subsurface, sheen), not the specular ones:
+    /// UsdPreviewSurface opacityMode "transparent" scales what is not specular by the opacity
+    /// (clear glass keeps its reflections). [0, 1].
+    float diffuseScale = 1.0f;
 };
 
 /// Settings that trade speed against accuracy; every one is charted in bench/.

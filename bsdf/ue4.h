@@ -15,7 +15,7 @@ inline LobeSet buildUe4(const MaterialParams& p, const Options& o) {
     float metallic = p.specularWorkflow ? 0.0f : std::clamp(p.metallic, 0.0f, 1.0f);
     // Karis 2013, "Real Shading in Unreal Engine 4", p. 2-3: c_diff = baseColor (1 - metallic),
     // F0 = mix(0.08 specular, baseColor, metallic), alpha = roughness^2.
-    s.lambert.color = base * (1.0f - metallic);
+    s.lambert.color = base * (1.0f - metallic) * std::clamp(p.diffuseScale, 0.0f, 1.0f);
     if (keepLobe(o, Lobe::Diffuse, maxComponent(s.lambert.color))) s.mask |= lobeBit(Lobe::Diffuse);
 
     glm::vec2 alpha = disneyAlpha(r, 0.0f);

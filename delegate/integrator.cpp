@@ -271,6 +271,27 @@ Frame tangentFrame(const Hit& hit, const glm::vec3& n, const shading::NormalMapU
     return Frame(n);
 }
 
+// A path meeting a surface whose opacity is below 1: whether it passes through, and the factor
+// on its throughput either way. Presence mode and cutouts: it passes with probability
+// 1 - presence, unweighted. Transparent mode (ShadedMaterial::keepsSpecular, the
+// UsdPreviewSurface fallback): the surface both reflects, its specular lobes at full strength
+// and the rest scaled by the opacity a (MaterialParams::diffuseScale), and lets 1 - a of the
+// light through: passing is picked with probability q = (1 - a) / (2 - a) and weighted
+// (1 - a) / q, shading with 1 / (1 - q) (q <= 1/2: neither weight exceeds 2).
+struct Crossing {
+    bool pass = false;
+    float weight = 1.0f;
+};
+Crossing crossPartlyPresent(const shading::ShadedMaterial& mat, Sampler& sampler) {
+    const float a = mat.presence();
+    if (mat.keepsSpecular()) {
+        const float q = (1.0f - a) / (2.0f - a);
+        return sampler.next1D() < q ? Crossing{true, (1.0f - a) / q} : Crossing{false, 1.0f / (1.0f - q)};
+    }
+    if (a <= 0.0f || sampler.next1D() >= a) return {true, 1.0f};
+    return {};
+}
+
 // How much of the shadow rays a surface at this hit stops: its material's presence
 // (UsdPreviewSurface opacity, or 0/1 with an opacityThreshold cutout).
 float presenceAt(const SceneSnapshot& scene, const Hit& hit) {
@@ -629,15 +650,20 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         const shading::ShadedMaterial* mat = hm.mat;
         const int materialIndex = hm.index;
         // Partial presence (opacity, cutouts): a stochastic choice to pass through.
-        float presence = mat->presence();
-        if (presence < 1.0f && passThrough < kMaxPassThrough) {
-            if (presence <= 0.0f || sampler.next1D() >= presence) {
+        float emissionScale = 1.0f;
+        if (mat->presence() < 1.0f && passThrough < kMaxPassThrough) {
+            const Crossing crossing = crossPartlyPresent(*mat, sampler);
+            beta *= crossing.weight;
+            if (crossing.pass) {
                 ++passThrough;
                 ray.origin = offsetOrigin(hit, ray.direction);
                 passedThrough = passedThrough || depth > 0;  // camera rays need no MIS origin
                 --depth;  // not a bounce
                 continue;
             }
+            // A transparent-mode surface emits as much as it is present (as light sampling,
+            // texturedEmission, counts it).
+            if (mat->keepsSpecular()) emissionScale = mat->presence();
         }
         if (mat->emission != glm::vec3(0.0f)) {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
@@ -652,7 +678,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             float w = (prevDelta || lightPdf <= 0.0f || !_settings.nee)
                           ? 1.0f
                           : (_settings.mis ? powerHeuristic(prevBsdfPdf, lightPdf) : 0.0f);
-            glm::vec3 c = beta * mat->emission * w;
+            glm::vec3 c = beta * mat->emission * (w * emissionScale);
             // A mesh light that light tracing starts paths from: its caustic share is theirs.
             if (caustic && ml && caustic->isCausticLight(uint32_t(ml - lights.data()))) c *= glm::vec3(1.0f) - causticCovered;
             if (depth > 0 && _settings.clampIndirect > 0.0f && maxComponent(c) > _settings.clampIndirect)
@@ -906,9 +932,10 @@ uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sample
         materialAt(_scene, _constantBsdfs, hit, context, &hm);
         const shading::ShadedMaterial& mat = *hm.mat;
         // Partial presence: the light passes through as the camera's paths do.
-        const float presence = mat.presence();
-        if (presence < 1.0f && passThrough < kMaxPassThrough) {
-            if (presence <= 0.0f || sampler.next1D() >= presence) {
+        if (mat.presence() < 1.0f && passThrough < kMaxPassThrough) {
+            const Crossing crossing = crossPartlyPresent(mat, sampler);
+            beta *= crossing.weight;
+            if (crossing.pass) {
                 ++passThrough;
                 ray.origin = offsetOrigin(hit, ray.direction);
                 --bounce;

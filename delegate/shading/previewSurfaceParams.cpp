@@ -100,6 +100,9 @@ ShadedMaterial mapPreviewSurface(const PreviewSurfaceParams& in) {
     out.opacity = clamp01(in.opacity);
     out.opacityThreshold = clamp01(in.opacityThreshold);
     out.opacityMode = in.opacityMode;
+    // Transparent mode: opacity scales the lobes that are not specular; the integrator lets
+    // (1 - opacity) of the light through as well (ShadedMaterial::keepsSpecular).
+    if (out.keepsSpecular()) out.params.diffuseScale = out.opacity;
     out.tangentNormal = unitNormal(in.normal);
     out.hasNormalMap = in.normalVaries || out.tangentNormal != glm::vec3(0.0f, 0.0f, 1.0f);
     return out;

@@ -43,6 +43,13 @@ struct ShadedMaterial {
     /// or no primvar behind the map (the integrator then uses "st").
     const NormalMapUv* normalMapUv = nullptr;
 
+    /// opacityMode "transparent" without a cutout threshold: the surface reflects at full
+    /// specular strength however low its opacity, and lets (1 - opacity) of the light through
+    /// unchanged; params.diffuseScale carries the opacity. Else presence() decides.
+    bool keepsSpecular() const {
+        return opacityMode == OpacityMode::Transparent && !(opacityThreshold > 0.0f) && opacity < 1.0f;
+    }
+
     /// Fraction of hits that see the surface: with a threshold, 0 below it and 1 at or above
     /// it (an alpha cutout); without, the opacity itself (for stochastic transparency).
     float presence() const {

@@ -93,3 +93,78 @@ TEST(Opacity, CutoutBelowThresholdCastsNoShadowAndAboveAFullOne) {
                           blocker("B", 5, "float inputs:opacity = 0.8\n        float inputs:opacityThreshold = 0.5"));
     EXPECT_NEAR(above, 0.0, 1e-6);
 }
+
+namespace {
+
+// A quad filling the view of a camera looking down at it, under a white dome (L = 1): returns
+// the mean colour (red) and, with lobe AOVs, the diffuse and specular parts.
+struct QuadLight {
+    double color = 0, diffuse = 0, specular = 0;
+};
+QuadLight quadUnderDome(const std::string& surfaceInputs) {
+    const std::string usda = R"(#usda 1.0
+def Camera "Cam" {
+    float horizontalAperture = 2
+    float verticalAperture = 2
+    double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def Mesh "Quad" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-5, -5, 0), (5, -5, 0), (5, 5, 0), (-5, 5, 0)]
+    rel material:binding = </Mat>
+}
+def Material "Mat" {
+    token outputs:surface.connect = </Mat/S.outputs:surface>
+    def Shader "S" {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0.5, 0.5, 0.5)
+        float inputs:roughness = 0.3
+        )" + surfaceInputs + R"(
+        token outputs:surface
+    }
+}
+)";
+    host::SessionOptions o;
+    o.width = o.height = 4;
+    o.samplesPerPixel = 1024;
+    o.aovs = {"diffuse", "specular"};
+    auto s = host::RenderSession::openString(usda, "quad.usda", o);
+    while (!s->step()) {
+    }
+    QuadLight q;
+    auto mean = [](const float* px, int components) {
+        double sum = 0;
+        for (int i = 0; i < 16; ++i) sum += px[components * i];
+        return sum / 16.0;
+    };
+    q.color = mean(s->color(), 4);
+    for (const auto& a : s->aovs()) {
+        if (a.name == "diffuse") q.diffuse = mean(static_cast<const float*>(a.pixels), a.components);
+        if (a.name == "specular") q.specular = mean(static_cast<const float*>(a.pixels), a.components);
+    }
+    return q;
+}
+
+}  // namespace
+
+TEST(Opacity, TransparentModeKeepsTheSpecularAndScalesTheRest) {
+    // UsdPreviewSurface opacityMode "transparent" (the fallback): at opacity a the surface
+    // reflects its full specular, a times its diffuse, and lets 1 - a of what is behind through:
+    // colour = specular + a diffuse + (1 - a) * 1 under a white dome. "presence" scales it all:
+    // a (diffuse + specular) + 1 - a.
+    const QuadLight opaque = quadUnderDome("");
+    ASSERT_GT(opaque.specular, 0.02);
+    ASSERT_GT(opaque.diffuse, 0.3);
+    for (double a : {0.0, 0.25, 0.6}) {
+        const std::string op = "float inputs:opacity = " + std::to_string(a);
+        const QuadLight t = quadUnderDome(op);
+        EXPECT_NEAR(t.color, opaque.specular + a * opaque.diffuse + (1.0 - a), 0.01) << "transparent " << a;
+        EXPECT_NEAR(t.specular, opaque.specular, 0.004) << "transparent " << a;
+        const QuadLight p = quadUnderDome(op + "\n        token inputs:opacityMode = \"presence\"");
+        EXPECT_NEAR(p.color, a * (opaque.diffuse + opaque.specular) + (1.0 - a), 0.01) << "presence " << a;
+    }
+}

@@ -881,7 +881,7 @@ def Material "Mat" {
         while (!s->step()) {
         }
         for (const auto& a : s->aovs())
-            if (a.name == "diffuse") return static_cast<const float*>(a.pixels)[(3 * 8 + 4) * 4];
+            if (a.name == "diffuse") return static_cast<const float*>(a.pixels)[(3 * 8 + 4) * a.components];
         return -1.0f;
     };
     const std::string st = R"(texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "vertex"))";

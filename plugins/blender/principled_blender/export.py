@@ -1827,6 +1827,10 @@ class SceneExport:
         b.add_material(path)
         for k, v in inputs.items():
             b.set_material_input(path, k, v)
+        if "opacity" in links or float(inputs.get("opacity", 1.0)) < 1.0:
+            # Blender's Alpha (and a Transparent BSDF mix) removes the whole surface, specular
+            # included: UsdPreviewSurface's "presence" mode, not its "transparent" fallback.
+            b.set_attribute_string(path + "/Surface", "token", "inputs:opacityMode", "presence")
         for k, (file, channel, strength, wrap) in links.items():
             b.set_material_texture(path, k, file, channel)
             tex = f"{path}/{k}Texture"

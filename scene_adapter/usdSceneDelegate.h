@@ -140,6 +140,8 @@ private:
     bool visitInstance(const usd::Prim& prim, const glm::dmat4& world, bool visible,
                        hd::RenderIndex* index);
     hd::Value shapeOrInstancerValue(const Entry& e, const hd::Token& key) const;
+    /// A PointInstancer's positions at the current time (velocities and accelerations applied).
+    hd::Value instancerPositions(const usd::Prim& prim) const;
     void growInstancedBounds(const hd::Path& id, const Entry& e,
                              const std::function<void(const glm::dmat4&, const glm::dvec3&)>& grow) const;
 

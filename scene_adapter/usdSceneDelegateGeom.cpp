@@ -40,6 +40,25 @@ std::vector<int> intArray(const Value& v) {
     return {};
 }
 
+// An int64[] attribute as the parser's doubles (exact to 2^53; an int conversion of larger
+// ids was undefined), or empty.
+std::vector<double> idArray(const usd::Prim& prim, const char* name, double time) {
+    const usd::Attribute* a = prim.attribute(name);
+    if (!a || !a->hasValue()) return {};
+    const usd::Value v = a->get(time);
+    const std::vector<double>* n = v.numbers();
+    return n ? *n : std::vector<double>{};
+}
+
+// The time sample of `a` at or before `time` (the first one before them all); nullopt without
+// samples.
+std::optional<double> lowerSample(const usd::Attribute& a, double time) {
+    const auto& samples = a.timeSamples();
+    if (samples.empty()) return std::nullopt;
+    auto it = samples.upper_bound(time);
+    return it == samples.begin() ? it->first : std::prev(it)->first;
+}
+
 }  // namespace
 
 bool UsdSceneDelegate::prepareShape(const usd::Prim& prim, Entry* e) {
@@ -80,7 +99,7 @@ Value UsdSceneDelegate::shapeOrInstancerValue(const Entry& e, const Token& key) 
         return {};
     }
     if (e.type == instancerType()) {
-        if (key == tokens::instanceTranslations()) return attributeValue(*e.prim, "positions");
+        if (key == tokens::instanceTranslations()) return instancerPositions(*e.prim);
         if (key == tokens::instanceRotations()) return attributeValue(*e.prim, "orientations");
         if (key == tokens::instanceScales()) return attributeValue(*e.prim, "scales");
     }
@@ -105,6 +124,35 @@ std::vector<std::pair<Path, std::vector<int>>> UsdSceneDelegate::getMaterialSubs
     return out;
 }
 
+Value UsdSceneDelegate::instancerPositions(const usd::Prim& prim) const {
+    // UsdGeomPointInstancer: when velocities (and accelerations) have a sample at the
+    // positions' sample at or before the time, the positions move on from that sample,
+    // p + v dt + a dt^2 / 2 with dt in seconds (a particle cache sampled once per frame, rendered
+    // between its frames); otherwise they interpolate like any attribute.
+    Value interpolated = attributeValue(prim, "positions");
+    const usd::Attribute* pa = prim.attribute("positions");
+    const usd::Attribute* va = prim.attribute("velocities");
+    if (!pa || !va) return interpolated;
+    const std::optional<double> s = lowerSample(*pa, _time);
+    if (!s || lowerSample(*va, _time) != s) return interpolated;
+    const Value pv = toHdValue(pa->get(*s)), vv = toHdValue(va->get(*s));
+    auto* p = getIf<std::vector<glm::vec3>>(pv);
+    auto* v = getIf<std::vector<glm::vec3>>(vv);
+    if (!p || !v || v->size() != p->size()) return interpolated;
+    const double tcps = _stage.timeCodesPerSecond();
+    const float dt = float((_time - *s) / (tcps > 0.0 ? tcps : 24.0));
+    std::vector<glm::vec3> out(*p);
+    for (size_t i = 0; i < out.size(); ++i) out[i] += (*v)[i] * dt;
+    if (const usd::Attribute* aa = prim.attribute("accelerations"); aa && lowerSample(*aa, _time) == s) {
+        const Value av = toHdValue(aa->get(*s));
+        if (auto* a = getIf<std::vector<glm::vec3>>(av); a && a->size() == out.size())
+            for (size_t i = 0; i < out.size(); ++i) out[i] += (*a)[i] * (0.5f * dt * dt);
+    }
+    for (const glm::vec3& q : out)
+        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) return interpolated;
+    return Value(std::move(out));
+}
+
 Path UsdSceneDelegate::getInstancerId(const Path& id) const {
     const Entry* e = entry(id);
     return e ? e->instancer : Path();
@@ -122,14 +170,17 @@ const UsdSceneDelegate::InstancerCache& UsdSceneDelegate::instancerCache(const P
     auto byPrototype = std::make_shared<std::vector<std::vector<int>>>();
     if (inst.prim && !inst.instanceXforms) {
         std::vector<int> protoIndices = intArray(attributeValue(*inst.prim, "protoIndices"));
-        std::vector<int> ids = intArray(attributeValue(*inst.prim, "ids"));
-        std::vector<int> invisible = intArray(attributeValue(*inst.prim, "invisibleIds"));
-        std::unordered_set<int> hidden(invisible.begin(), invisible.end());
+        const std::vector<double> ids = idArray(*inst.prim, "ids", _time);
+        // Hidden: invisibleIds (an attribute) and inactiveIds (an int64 list-op metadata).
+        std::vector<double> off = idArray(*inst.prim, "invisibleIds", _time);
+        if (const usd::Value* inactive = inst.prim->metadata("inactiveIds"))
+            if (const std::vector<double>* n = inactive->numbers()) off.insert(off.end(), n->begin(), n->end());
+        std::unordered_set<double> hidden(off.begin(), off.end());
         const bool useIds = ids.size() == protoIndices.size();  // ids, when authored, name the instances
         for (size_t i = 0; i < protoIndices.size(); ++i) {
             const int p = protoIndices[i];
             if (p < 0 || p > 1000000) continue;  // no prototype has that index
-            if (!hidden.empty() && hidden.count(useIds ? ids[i] : int(i))) continue;
+            if (!hidden.empty() && hidden.count(useIds ? ids[i] : double(i))) continue;
             if (size_t(p) >= byPrototype->size()) byPrototype->resize(size_t(p) + 1);
             (*byPrototype)[size_t(p)].push_back(int(i));
         }

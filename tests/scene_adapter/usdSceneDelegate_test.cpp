@@ -164,6 +164,49 @@ def Xform "World" {
     EXPECT_TRUE(hd::isEmpty(p.scene->getIndexedPrimvar(inherits, hd::Token("ramp"), &idx)));
 }
 
+TEST(UsdSceneDelegate, PointInstancerVelocitiesAndHiddenIds) {
+    // Positions move on from their sample by velocities (and accelerations) sampled at the same
+    // time, dt in seconds (24 time codes per second); velocities sampled elsewhere are ignored
+    // (interpolation). inactiveIds (metadata) and invisibleIds hide instances by id, ids beyond
+    // 32 bits included.
+    const std::string scene = R"(#usda 1.0
+( timeCodesPerSecond = 24 )
+def PointInstancer "PI" ( prepend inactiveIds = [8589934592] ) {
+    rel prototypes = [</PI/Ball>]
+    int[] protoIndices = [0, 0, 0]
+    int64[] ids = [4294967296, 4294967297, 8589934592]
+    int64[] invisibleIds = [4294967297]
+    point3f[] positions.timeSamples = { 0: [(0, 0, 0), (1, 0, 0), (2, 0, 0)], 24: [(0, 5, 0), (1, 5, 0), (2, 5, 0)] }
+    vector3f[] velocities.timeSamples = { 0: [(0, 2, 0), (0, 2, 0), (0, 2, 0)] }
+    vector3f[] accelerations.timeSamples = { 0: [(4, 0, 0), (4, 0, 0), (4, 0, 0)] }
+    def Sphere "Ball" { }
+}
+def PointInstancer "Late" {
+    rel prototypes = [</Late/Ball>]
+    int[] protoIndices = [0]
+    point3f[] positions.timeSamples = { 0: [(0, 0, 0)], 24: [(0, 4, 0)] }
+    vector3f[] velocities.timeSamples = { 6: [(0, 100, 0)] }
+    def Sphere "Ball" { }
+}
+)";
+    auto stage = usd::Stage::openString(scene, "pi.usda");
+    embree::EmbreeRenderDelegate rd;
+    hd::RenderIndex index(&rd);
+    adapter::AdapterOptions o;
+    o.time = 12.0;  // 0.5 s after the sample at 0
+    adapter::UsdSceneDelegate sd(*stage, o);
+    sd.populate(&index);
+    const auto pi = sd.getInstancerArrays(hd::Path("/PI"));
+    ASSERT_TRUE(pi->translations.has_value());
+    ASSERT_EQ(pi->translations->size(), 3u);
+    EXPECT_NEAR((*pi->translations)[0].y, 1.0f, 1e-5f);  // 2 * 0.5, not the interpolated 2.5
+    EXPECT_NEAR((*pi->translations)[0].x, 0.5f, 1e-5f);  // 4 * 0.5^2 / 2
+    EXPECT_EQ(sd.getInstanceIndices(hd::Path("/PI"), hd::Path("/PI/Ball")), (std::vector<int>{0}));
+    const auto late = sd.getInstancerArrays(hd::Path("/Late"));
+    ASSERT_TRUE(late->translations.has_value());
+    EXPECT_NEAR((*late->translations)[0].y, 2.0f, 1e-5f);  // interpolated
+}
+
 TEST(UsdSceneDelegate, InheritedBindingAndNetworkThroughInterfaceInputs) {
     Populated p(kScene);
     EXPECT_EQ(p.scene->getMaterialId(hd::Path("/World/Tri")), hd::Path("/World/Looks/Red"));

@@ -13,6 +13,7 @@
 #include "delegate/hd/tokens.h"
 #include "scene_adapter/implicitShapes.h"
 #include "scene_adapter/primvars.h"
+#include "scene_adapter/purpose.h"
 #include "scene_adapter/usda/stage.h"
 #include "scene_adapter/valueConvert.h"
 #include "scene_adapter/xformOps.h"
@@ -92,9 +93,12 @@ void UsdSceneDelegate::populate(RenderIndex* index) {
 
 void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorld,
                              bool parentVisible, RenderIndex* index) {
-    if (!prim.isActive() || prim.isAbstract()) return;
-    std::string purpose = tokenAttr(prim, "purpose", _time, "default");
-    if (purpose == "guide" || purpose == "proxy") return;  // render purpose only
+    // UsdPrimDefaultPredicate: active, defined, not abstract (an `over` whose prim nothing
+    // defines, say a renamed upstream prim, is not traversed, nor what it holds).
+    if (!prim.isActive() || prim.isAbstract() || !prim.isDefined()) return;
+    // Render purpose only; a descendant that authors its own purpose keeps it (UsdGeomImageable
+    // ComputePurposeInfo), so the subtree of a guide is still walked.
+    const bool drawn = renderPurpose(prim, _time);
 
     std::string warning;
     LocalTransform local = computeLocalTransform(prim, _time, &warning);
@@ -103,6 +107,10 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     bool visible = parentVisible && tokenAttr(prim, "visibility", _time, "inherited") != "invisible";
 
     const std::string& type = prim.typeName();
+    if (!drawn) {
+        for (const usd::Prim* child : prim.children()) visit(*child, world, visible, index);
+        return;
+    }
     // Instanceable prims with the same prototype share its BLAS (usdSceneDelegateGeom.cpp).
     if (prim.isInstance() && prim.isDefined() && visitInstance(prim, world, visible, index)) return;
     Path id(prim.path());

@@ -13,6 +13,7 @@
 #include "delegate/hd/tokens.h"
 #include "scene_adapter/implicitShapes.h"
 #include "scene_adapter/primvars.h"
+#include "scene_adapter/purpose.h"
 #include "scene_adapter/usdSceneDelegate.h"
 #include "scene_adapter/usda/stage.h"
 #include "scene_adapter/valueConvert.h"
@@ -296,8 +297,6 @@ void UsdSceneDelegate::visitPrototype(const usd::Prim& prim, const Path& id, con
                                       bool parentVisible, const Path& instancer, int protoIndex,
                                       RenderIndex* index) {
     if (!prim.isActive() || prim.isAbstract()) return;
-    std::string purpose = tokenOf(prim, "purpose", _time, "default");
-    if (purpose == "guide" || purpose == "proxy") return;
     const std::string& type = prim.typeName();
     if (type == "Material") {
         visit(prim, glm::dmat4(1.0), true, index);
@@ -315,7 +314,7 @@ void UsdSceneDelegate::visitPrototype(const usd::Prim& prim, const Path& id, con
     }
     bool shape = isImplicitShape(type);
     if ((type == "Mesh" || type == "Sphere" || type == "Points" || type == "BasisCurves" || shape) &&
-        prim.isDefined()) {
+        prim.isDefined() && renderPurpose(prim, _time)) {
         Entry e;
         e.prim = &prim;
         e.type = type == "Sphere"        ? tokens::sphere()

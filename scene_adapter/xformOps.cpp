@@ -21,12 +21,30 @@ glm::dmat4 rotateAxis(int axis, double degrees) {
 
 bool startsWith(const std::string& s, const std::string& p) { return s.rfind(p, 0) == 0; }
 
+// Prim types that are not UsdGeomXformable (untyped prims, Scope, shading and render
+// description, UsdSkel data): USD ignores ops authored on them. Types not known here (custom
+// schemas) are taken to be Xformable.
+bool notXformable(const std::string& type) {
+    static const char* const kTypes[] = {"",          "Scope",         "Material",      "Shader",
+                                         "NodeGraph", "GeomSubset",    "RenderSettings", "RenderProduct",
+                                         "RenderVar", "RenderPass",    "SkelAnimation", "BlendShape"};
+    for (const char* t : kTypes)
+        if (type == t) return true;
+    return false;
+}
+
 }  // namespace
 
 LocalTransform computeLocalTransform(const usd::Prim& prim, double time, std::string* warning) {
     LocalTransform out;
     const usd::Attribute* orderAttr = prim.attribute("xformOpOrder");
     if (!orderAttr) return out;
+    if (notXformable(prim.typeName())) {
+        if (warning && warning->empty() && orderAttr->hasValue())
+            *warning = (prim.typeName().empty() ? std::string("an untyped prim") : "a " + prim.typeName()) +
+                       " is not Xformable: its xformOps are ignored (make it an Xform to move its children)";
+        return out;
+    }
     usd::Value orderValue = orderAttr->get(time);
     const std::vector<std::string>* order = orderValue.strings();
     if (!order) return out;

@@ -22,7 +22,8 @@ struct LocalTransform {
 /// rotateXYZ/XZY/YXZ/YZX/ZXY/ZYX (degrees), orient (quaternion), transform (matrix4d), each
 /// with an optional ":suffix" and the "!invert!" prefix; "!resetXformStack!" first. Problems
 /// (missing op attribute, wrong value shape, singular inverse) go to *warning and the op is
-/// skipped.
+/// skipped. Prims that are not UsdGeomXformable (untyped, Scope, Material, ...) have the
+/// identity, with a warning when they author xformOpOrder.
 LocalTransform computeLocalTransform(const usd::Prim& prim, double time, std::string* warning);
 
 }  // namespace principled::adapter

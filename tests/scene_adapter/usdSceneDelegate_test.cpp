@@ -106,6 +106,44 @@ TEST(UsdSceneDelegate, PopulatesRenderablePrimsAndSkipsGuides) {
     EXPECT_EQ(p.scene->getMeshTopology(hd::Path("/World/Box")).faceVertexCounts.size(), 6u);
 }
 
+TEST(UsdSceneDelegate, TraversalFollowsDefinitionPurposeAndXformability) {
+    // A def under an `over` nothing defines is not drawn (UsdPrimDefaultPredicate); a child
+    // that authors purpose "render" under a guide is drawn (its own opinion wins), one that
+    // authors nothing is not; a Scope's and an untyped prim's xformOps are ignored, with a
+    // warning, while an Xform's apply.
+    Populated p(R"(#usda 1.0
+over "Renamed" { def Sphere "Ball" { } }
+def Xform "Guides" ( ) {
+    uniform token purpose = "guide"
+    def Sphere "Inherits" { }
+    def Sphere "Render" { uniform token purpose = "render" }
+}
+def Scope "Group" {
+    double3 xformOp:translate = (5, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def Sphere "InScope" { }
+}
+def "Untyped" {
+    double3 xformOp:translate = (0, 5, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def Xform "Moved" {
+        double3 xformOp:translate = (0, 0, 2)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+        def Sphere "Ball" { }
+    }
+}
+)");
+    EXPECT_EQ(p.index.rprim(hd::Path("/Renamed/Ball")), nullptr);
+    EXPECT_EQ(p.index.rprim(hd::Path("/Guides/Inherits")), nullptr);
+    EXPECT_NE(p.index.rprim(hd::Path("/Guides/Render")), nullptr);
+    ASSERT_NE(p.index.rprim(hd::Path("/Group/InScope")), nullptr);
+    EXPECT_EQ(p.scene->getTransform(hd::Path("/Group/InScope"))[3], glm::dvec4(0, 0, 0, 1));
+    EXPECT_EQ(p.scene->getTransform(hd::Path("/Untyped/Moved/Ball"))[3], glm::dvec4(0, 0, 2, 1));
+    int notXformable = 0;
+    for (const auto& w : p.scene->warnings()) notXformable += w.find("is not Xformable") != std::string::npos;
+    EXPECT_EQ(notXformable, 2);
+}
+
 TEST(UsdSceneDelegate, TransformsTopologyAndPrimvars) {
     Populated p(kScene);
     hd::Path tri("/World/Tri");

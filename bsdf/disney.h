@@ -20,7 +20,7 @@ inline LobeSet buildDisney(const MaterialParams& p, const Options& o) {
     // Divided as a full 4-lane vector: left to itself the compiler packs the three divisions
     // with an undefined fourth lane (a denormal there costs a microcode assist, ~40 ns).
     glm::vec3 tint = lum > 0.0f ? glm::vec3(glm::vec4(base, lum) / lum) : glm::vec3(1.0f);
-    glm::vec3 cspec0 = glm::mix(0.08f * std::clamp(p.specular, 0.0f, 1.0f) *
+    glm::vec3 cspec0 = glm::mix(0.08f * std::clamp(p.specular, 0.0f, kMaxSpecular) *
                                     glm::mix(glm::vec3(1.0f), tint, std::clamp(p.specularTint, 0.0f, 1.0f)),
                                 base, metallic);
     if (p.specularWorkflow) cspec0 = glm::clamp(p.specularColor, 0.0f, 1.0f);
@@ -48,7 +48,7 @@ inline LobeSet buildDisney(const MaterialParams& p, const Options& o) {
         // Cycles 3.4's Principled v1: the index of the Disney specular F0 = 0.08 specular,
         // eta = 2 / (1 - sqrt(F0)) - 1, inverting F0 = ((eta - 1) / (eta + 1))^2 (Walter et al.
         // 2007, eq. 22 at cos = 1); the specular workflow uses the material's ior.
-        float f0d = 0.08f * std::clamp(p.specular, 0.0f, 1.0f);
+        float f0d = 0.08f * std::clamp(p.specular, 0.0f, kMaxSpecular);
         float eta = p.specularWorkflow ? std::max(p.ior, 1.0f) : 2.0f / (1.0f - std::sqrt(f0d)) - 1.0f;
         s.specular.fModel = SpecularFresnel::DielectricBlend;
         s.specular.eta = eta;

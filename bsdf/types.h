@@ -21,6 +21,11 @@ inline constexpr LobeMask lobeBit(Lobe l) { return 1u << static_cast<unsigned>(l
 
 /// Material parameters in Disney naming (Burley 2012, "Physically-Based Shading at Disney",
 /// section 5.1), plus the 2015 transmission extension. Colours are linear.
+/// The largest `specular` the models take: F0 = 0.08 * specular up to 0.5 (an index of
+/// refraction of 5.8). Burley's [0, 1] covers indices up to 1.8; UsdPreviewSurface's ior goes
+/// beyond (diamond 2.42: F0 0.17, specular 2.15).
+inline constexpr float kMaxSpecular = 6.25f;
+
 struct MaterialParams {
     glm::vec3 baseColor{0.82f, 0.67f, 0.16f};
     float subsurface = 0.0f;

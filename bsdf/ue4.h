@@ -20,7 +20,7 @@ inline LobeSet buildUe4(const MaterialParams& p, const Options& o) {
 
     glm::vec2 alpha = disneyAlpha(r, 0.0f);
     s.specular.dist = {alpha.x, alpha.y};
-    s.specular.f0 = glm::mix(glm::vec3(0.08f * std::clamp(p.specular, 0.0f, 1.0f)), base, metallic);
+    s.specular.f0 = glm::mix(glm::vec3(0.08f * std::clamp(p.specular, 0.0f, kMaxSpecular)), base, metallic);
     if (p.specularWorkflow) s.specular.f0 = glm::clamp(p.specularColor, 0.0f, 1.0f);
     s.specular.weight = 1.0f;
     s.specular.gModel = SpecularG::SchlickSmith;

@@ -49,7 +49,7 @@ float specularFromIor(float ior) {
     if (!std::isfinite(ior) || ior <= 0.0f) return 0.5f;
     // Mitsuba 3 principled BSDF: the inverse of eta = 2/(1-sqrt(0.08 specular)) - 1.
     float r = (ior - 1.0f) / (ior + 1.0f);
-    return clamp01(r * r / 0.08f);
+    return std::clamp(r * r / 0.08f, 0.0f, bsdf::kMaxSpecular);  // F0 = 0.08 specular
 }
 
 ShadedMaterial mapPreviewSurface(const PreviewSurfaceParams& in) {
@@ -87,7 +87,7 @@ ShadedMaterial mapPreviewSurface(const PreviewSurfaceParams& in) {
     p.metallic = clamp01(p.metallic);
     p.roughness = clamp01(p.roughness);
     p.subsurface = clamp01(p.subsurface);
-    p.specular = clamp01(p.specular);
+    p.specular = std::isfinite(p.specular) ? std::clamp(p.specular, 0.0f, bsdf::kMaxSpecular) : 0.0f;
     p.specularTint = clamp01(p.specularTint);
     p.anisotropic = clamp01(p.anisotropic);
     p.sheen = clamp01(p.sheen);

@@ -38,7 +38,8 @@ struct PreviewSurfaceParams {
 ShadedMaterial mapPreviewSurface(const PreviewSurfaceParams& in);
 
 /// Disney "specular" from an index of refraction: ((ior-1)/(ior+1))^2 / 0.08, clamped to
-/// [0,1]; 0.5 for a non-positive or non-finite ior.
+/// [0, bsdf::kMaxSpecular] (Burley's [0, 1] ends at ior 1.8); 0.5 for a non-positive or
+/// non-finite ior.
 float specularFromIor(float ior);
 
 }  // namespace principled::shading

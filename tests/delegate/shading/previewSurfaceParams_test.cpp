@@ -118,6 +118,8 @@ TEST(PreviewSurfaceParams, NothingNonFiniteLeaves) {
 TEST(PreviewSurfaceParams, SpecularFromIor) {
     EXPECT_NEAR(specularFromIor(1.5f), 0.5f, 1e-6f);
     EXPECT_FLOAT_EQ(specularFromIor(1.0f), 0.0f);
-    EXPECT_FLOAT_EQ(specularFromIor(3.0f), 1.0f);  // clamps above ior ~1.79
+    EXPECT_NEAR(specularFromIor(3.0f), 3.125f, 1e-5f);         // F0 0.25: beyond Burley's [0, 1]
+    EXPECT_NEAR(0.08f * specularFromIor(2.42f), 0.1724f, 1e-4f);  // diamond
+    EXPECT_FLOAT_EQ(specularFromIor(100.0f), principled::bsdf::kMaxSpecular);
     EXPECT_FLOAT_EQ(specularFromIor(-1.0f), 0.5f);
 }

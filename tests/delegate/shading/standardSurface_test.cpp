@@ -66,11 +66,13 @@ TEST(StandardSurface, SpecularFromIorAndWeight) {
     // A grey specular_color scales the strength by its luminance.
     s.specularColor = glm::vec3(0.5f);
     EXPECT_NEAR(shade(s).params.specular, 0.25f * f0 / 0.08f, 1e-5f);
-    // Very high IORs clamp at Disney specular 1.
+    // High IORs keep their F0 (ior 4: 0.36) up to bsdf::kMaxSpecular (F0 0.5).
     s.specularIor = 4.0f;
     s.specular = 1.0f;
     s.specularColor = glm::vec3(1.0f);
-    EXPECT_FLOAT_EQ(shade(s).params.specular, 1.0f);
+    EXPECT_NEAR(0.08f * shade(s).params.specular, 0.36f, 1e-5f);
+    s.specularIor = 50.0f;
+    EXPECT_FLOAT_EQ(shade(s).params.specular, principled::bsdf::kMaxSpecular);
 }
 
 TEST(StandardSurface, RoughCoatsClampAtTheRoughestClearcoat) {

@@ -23,7 +23,6 @@ void Camera::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* 
         _vOffset = param("verticalApertureOffset", 0.0f);
         _fStop = param("fStop", 0.0f);
         _focusDistance = param("focusDistance", 0.0f);
-        _metersPerUnit = param("metersPerUnit", 0.01f);
         // Not UsdGeomCamera attributes: principled's own, for polygonal bokeh (Blender's blades).
         setAperture(int(std::lround(std::clamp(param("principled:apertureBlades", 0.0f), 0.0f, 64.0f))),
                     param("principled:apertureRotation", 0.0f));
@@ -65,10 +64,8 @@ void Camera::set(const glm::dmat4& xform, float focalLength, float hAperture, fl
 float Camera::lensRadius() const {
     if (_projection != Projection::Perspective) return 0.0f;
     if (!(_fStop > 0.0f) || !(_focusDistance > 0.0f) || !std::isfinite(_focusDistance)) return 0.0f;
-    if (!(_metersPerUnit > 0.0f) || !std::isfinite(_metersPerUnit)) return 0.0f;
-    // _focalLength is the authored value / 10 (scene units on a centimetre stage, i.e. mm / 10);
-    // in millimetres that is 10 _focalLength, in scene units 10 _focalLength * 1e-3 / metersPerUnit.
-    float r = (_focalLength * 0.01f / _metersPerUnit) / (2.0f * _fStop);
+    // _focalLength is the authored value / 10: scene units (UsdGeomCamera, "Units").
+    float r = _focalLength / (2.0f * _fStop);
     if (!(r > 0.0f)) return 0.0f;
     // A near-zero fStop: keep the lens within 1000 focus distances (finite ray origins).
     return std::min(r, 1000.0f * _focusDistance);

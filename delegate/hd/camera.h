@@ -32,12 +32,12 @@ public:
     /// UsdGeomCamera fStop (0 = pinhole, the schema fallback) and focusDistance (scene units).
     float fStop() const { return _fStop; }
     float focusDistance() const { return _focusDistance; }
-    /// Thin-lens aperture radius in scene units: f / (2 fStop) (the f-number N = f / D), with
-    /// the focal length f read as millimetres (the schema's "tenths of a scene unit" on its
-    /// fallback centimetre stage; Blender and other DCCs author millimetres on metre stages) and
-    /// converted with the stage's metersPerUnit. 0 (a pinhole) when fStop <= 0, focusDistance
-    /// <= 0 (the schema fallback would put the focus plane at the lens), orthographic, or any
-    /// value is not finite.
+    /// Thin-lens aperture radius in scene units: f / (2 fStop) (the f-number N = f / D), the
+    /// focal length f in scene units as the schema defines it (tenths of a scene unit as
+    /// authored: millimetres on a centimetre stage; Blender writes lens / 100 on a metre stage,
+    /// and reads it back the same way). 0 (a pinhole) when fStop <= 0, focusDistance <= 0 (the
+    /// schema fallback would put the focus plane at the lens), orthographic, or any value is not
+    /// finite.
     float lensRadius() const;
     /// A point of the aperture (the unit disk, or with `principled:apertureBlades` n >= 3 the
     /// regular n-gon inscribed in it, turned by `principled:apertureRotation` degrees: polygonal
@@ -70,10 +70,9 @@ public:
     void set(const glm::dmat4& xform, float focalLength, float hAperture, float vAperture,
              Projection projection = Projection::Perspective);
     /// Sets the depth-of-field parameters directly (fStop 0 turns it off).
-    void setDepthOfField(float fStop, float focusDistance, float metersPerUnit = 0.01f) {
+    void setDepthOfField(float fStop, float focusDistance) {
         _fStop = fStop;
         _focusDistance = focusDistance;
-        _metersPerUnit = metersPerUnit;
     }
     /// Sets the aperture shape directly: blades < 3 is round; rotation in degrees.
     void setAperture(int blades, float rotationDegrees);
@@ -95,7 +94,6 @@ private:
     glm::vec2 _clipping{1.0f, 1e6f};
     float _fStop = 0.0f;
     float _focusDistance = 0.0f;
-    float _metersPerUnit = 0.01f;  ///< the stage's unit (UsdGeom fallback: centimetres)
     float _exposureScale = 1.0f;
 };
 

@@ -271,14 +271,14 @@ TEST(UsdSceneDelegate, CameraLengthsAreTenthsOfASceneUnit) {
 
 TEST(UsdSceneDelegate, DepthOfFieldInputsAndTheStageUnitReachTheCamera) {
     // fStop is a ratio and focusDistance is in scene units: neither is scaled like the lens
-    // lengths. The stage's metersPerUnit (fallback 0.01) converts the focal length's millimetres.
+    // lengths, which are tenths of a scene unit (on this metre stage 0.5 is 50 mm).
     const char* text = R"(#usda 1.0
 (
     metersPerUnit = 1
 )
 def Camera "Cam"
 {
-    float focalLength = 50
+    float focalLength = 0.5
     float fStop = 2.8
     float focusDistance = 4.5
 }
@@ -291,7 +291,7 @@ def Camera "Cam"
     EXPECT_FLOAT_EQ(*hd::getFloat(Populated(kScene).scene->getCameraParamValue(
                         hd::Path("/World/Cam"), hd::Token("metersPerUnit"))),
                     0.01f);  // not authored: the UsdGeom fallback
-    // Synced into the camera sprim: 50 mm / (2 x 2.8) on a metre stage = 8.93 mm.
+    // Synced into the camera sprim: 0.05 m / (2 x 2.8) = 8.93 mm.
     p.index.sync();
     auto* c = dynamic_cast<hd::Camera*>(p.index.sprim(hd::tokens::camera(), cam));
     ASSERT_TRUE(c);

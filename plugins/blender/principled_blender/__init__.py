@@ -268,8 +268,10 @@ class PrincipledRenderEngine(bpy.types.RenderEngine):
             hap, vap = sensor, sensor * h / w
         else:
             vap, hap = sensor, sensor * w / h
-        params = {"focalLength": float(space.lens), "horizontalAperture": hap,
-                  "verticalAperture": vap, "clippingRange": (space.clip_start, space.clip_end),
+        # Tenths of a metre, as export.camera_params writes lengths (only their ratio matters
+        # here: no lens).
+        params = {"focalLength": float(space.lens) * 0.01, "horizontalAperture": hap * 0.01,
+                  "verticalAperture": vap * 0.01, "clippingRange": (space.clip_start, space.clip_end),
                   "projection": "perspective", "fStop": 0.0, "focusDistance": 1.0}  # no lens
         if rv3d.view_perspective == "ORTHO":
             params["projection"] = "orthographic"

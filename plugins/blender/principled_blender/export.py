@@ -1551,10 +1551,14 @@ def camera_params(cam_data, width, height, matrix_world=None):
                  verticalApertureOffset=cam_data.shift_y * s * 10.0)
         return p
     fitted = hap if fit == "HORIZONTAL" else vap
-    p.update(projection="perspective", focalLength=float(cam_data.lens),
-             horizontalAperture=float(hap), verticalAperture=float(vap),
-             horizontalApertureOffset=float(cam_data.shift_x * fitted),
-             verticalApertureOffset=float(cam_data.shift_y * fitted))
+    # UsdGeomCamera lengths are tenths of a scene unit: on this metre stage 1 mm is 0.01 (as
+    # Blender's own USD export writes them). The field of view only needs the ratios; the
+    # depth of field's aperture radius (focalLength / 10 / (2 fStop)) needs the unit.
+    mm = 0.01
+    p.update(projection="perspective", focalLength=float(cam_data.lens) * mm,
+             horizontalAperture=float(hap) * mm, verticalAperture=float(vap) * mm,
+             horizontalApertureOffset=float(cam_data.shift_x * fitted) * mm,
+             verticalApertureOffset=float(cam_data.shift_y * fitted) * mm)
     p.update(depth_of_field(cam_data, matrix_world))
     return p
 
@@ -1572,7 +1576,8 @@ def film_exposure_stops(scene):
 
 def depth_of_field(cam_data, matrix_world=None):
     """Blender's depth of field -> UsdGeomCamera fStop and focusDistance (scene units). The lens
-    is mm on a metre stage, so the delegate's aperture radius lens * 1e-3 / (2 fStop) is Cycles'.
+    is written in tenths of a metre (camera_params), so the delegate's aperture radius
+    focalLength / 10 / (2 fStop) = lens * 1e-3 / (2 fStop) metres is Cycles'.
     Blades (3 or more: a regular polygon inscribed in that circle, as Cycles) and their rotation
     go to principled:apertureBlades / principled:apertureRotation (degrees); the anamorphic
     ratio is not converted. A focus object's distance is measured along the view axis, as Cycles

@@ -24,6 +24,14 @@ namespace {
 constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInf = 1e30f;
 constexpr int kMaxPassThrough = 64;  // transparent layers a path may cross
+constexpr int kMaxCulledLayers = 4096;  // single-sided back faces a camera ray may pass
+
+// Whether camera rays pass the back of this geometry (UsdGeomGprim doubleSided = 0); points
+// and curves are closed tubes and spheres, seen from outside only.
+bool culledFromBehind(const GeometryRecord& rec) {
+    return !rec.doubleSided &&
+           (rec.kind == GeometryRecord::Kind::Triangles || rec.kind == GeometryRecord::Kind::Sphere);
+}
 
 struct Frame {
     glm::vec3 t, b, n;
@@ -161,7 +169,19 @@ bool intersect(const SceneSnapshot& scene, const Ray& ray, Hit* hit) {
     }
     glm::vec3 ng = normalToWorld * ngObj;
     float lg = glm::length(ng);
-    if (!(lg > 0.0f) || !std::isfinite(lg)) return false;  // degenerate triangle
+    if (!(lg > 0.0f) || !std::isfinite(lg)) {
+        // The unnormalised cross product over- or underflows on triangles with edges beyond
+        // ~4e9 units (a ground plane) or below ~1e-19: redone in double; only a triangle of
+        // zero area (or a non-finite one) is missed.
+        if (rec.kind != GeometryRecord::Kind::Triangles) return false;
+        const glm::uvec3& t = rec.triangles[rh.hit.primID];
+        const glm::dvec3 p0(rec.points[t.x]), p1(rec.points[t.y]), p2(rec.points[t.z]);
+        const glm::dvec3 nd = glm::dmat3(normalToWorld) * glm::cross(p1 - p0, p2 - p0);
+        const double l = glm::length(nd);
+        if (!(l > 0.0) || !std::isfinite(l)) return false;
+        ng = glm::vec3(nd / l);
+        lg = 1.0f;
+    }
     ng /= lg;
     glm::vec3 ns = ng;  // the same arithmetic on the same vector when not smooth
     if (smooth) {
@@ -537,6 +557,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     // origin is no longer the vertex whose light sampling the MIS weights must match.
     bool passedThrough = false;
     int passThrough = 0;
+    int culled = 0;  // single-sided back faces the camera ray passed
     // Caustic split (delegate/causticScene.h). Of a path x1..xk that ends on a caustic light,
     // light tracing (x1 connected to the camera) and photon merging (x2 on, when photons are
     // given) take the lobe labelings "x_m through a lobe that is not sharp, x_m+1..x_k through
@@ -636,10 +657,10 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
 
         const GeometryRecord& rec = *hit.record;
         // UsdGeomGprim doubleSided = 0: camera rays do not see the back of a single-sided mesh
-        // (as Storm and usdrecord cull it); light transport still uses both sides.
-        if (depth == 0 && hit.backface && !rec.doubleSided &&
-            rec.kind == GeometryRecord::Kind::Triangles && passThrough < kMaxPassThrough) {
-            ++passThrough;
+        // or sphere (as Storm and usdrecord cull it); light transport still uses both sides.
+        // Culled faces have their own budget (dense single-sided cards seen from behind).
+        if (depth == 0 && hit.backface && culledFromBehind(rec) && culled < kMaxCulledLayers) {
+            ++culled;
             ray.origin = offsetOrigin(hit, ray.direction);
             --depth;
             continue;
@@ -961,7 +982,7 @@ uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sample
             const Hit seen = seenAlong(hit, -cc.toCamera);
             const GeometryRecord& rec = *hit.record;
             // Camera rays do not see the back of a single-sided mesh (trace(), depth 0).
-            const bool culled = seen.backface && !rec.doubleSided && rec.kind == GeometryRecord::Kind::Triangles;
+            const bool culled = seen.backface && culledFromBehind(rec);
             const ShadingFrame sf = shadingFrame(seen, mat, cc.toCamera, _settings.bumpShadowing);
             const glm::vec3 wiLocal = sf.frame.toLocal(toLight);
             const bool transmit = wiLocal.z * sf.woLocal.z < 0.0f;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <cstdio>
@@ -239,11 +240,18 @@ RTCGeometry Mesh::buildGeometry(SceneDelegate* delegate, EmbreeRenderParam* para
         param->warn(id(), "mesh not rendered: it has no points");
         return nullptr;
     }
-    for (const glm::vec3& p : *points)
+    bool beyond = false;
+    for (const glm::vec3& p : *points) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
             param->warn(id(), "mesh not rendered: points contain NaN or Inf");
             return nullptr;
         }
+        // Embree's range (FLT_LARGE): faces with such points are never hit.
+        beyond = beyond || std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > 1.8e18f;
+    }
+    if (beyond)
+        param->warn(id(), "points beyond 1.8e18 units from the origin (outside the ray tracer's range): "
+                          "the faces that use them are not drawn");
     MeshTopology topo = delegate->getMeshTopology(id());
     // GeometryPrim syncs the transform before the geometry, so adaptive dicing sees it.
     int level = chooseLevel(delegate, topo, delegate->getSubdivTags(id()), *points, param, granted);

@@ -142,7 +142,10 @@ std::vector<glm::vec3> smoothCornerNormals(const std::vector<glm::vec3>& points,
 std::optional<glm::vec3> constantDisplayColor(const SceneDelegate* delegate, const Path& id) {
     Value v = delegate->get(id, tokens::displayColor());
     std::optional<glm::vec3> c;
-    if (auto* a = getIf<std::vector<glm::vec3>>(v); a && !a->empty())
+    // One value: the constant colour. More are per-element values, which the material reads at
+    // each hit (or, when they are invalid and ignored, nobody: their first is no colour of the
+    // whole prim).
+    if (auto* a = getIf<std::vector<glm::vec3>>(v); a && a->size() == 1)
         c = (*a)[0];
     else
         c = getVec3(v);

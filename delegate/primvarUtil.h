@@ -47,7 +47,7 @@ std::vector<glm::vec3> authoredCornerNormals(const hd::SceneDelegate* delegate, 
 std::vector<glm::vec3> smoothCornerNormals(const std::vector<glm::vec3>& points,
                                            const std::vector<glm::uvec3>& triangles);
 
-/// primvars:displayColor when it is constant (or its first value otherwise).
+/// primvars:displayColor when it holds one value (a constant colour); nullopt otherwise.
 std::optional<glm::vec3> constantDisplayColor(const hd::SceneDelegate* delegate,
                                               const hd::Path& id);
 

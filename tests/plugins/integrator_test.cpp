@@ -661,3 +661,76 @@ def DistantLight "L" {
     }
     EXPECT_LT(std::sqrt(se / (64 * 36 * 4)), 0.01);
 }
+
+TEST(Integrator, HugeAndFarTrianglesAreHitOrReported) {
+    // A ground quad 2e10 units across (its cross product overflows float) is hit like a small
+    // one; points beyond the ray tracer's range (1.8e18) are reported, not silently dropped.
+    auto render = [](double half, std::vector<std::string>* warnings) {
+        char usda[1024];
+        std::snprintf(usda, sizeof usda, R"(#usda 1.0
+def Camera "Cam" {
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def Mesh "Ground" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(%g, %g, 0), (%g, %g, 0), (%g, %g, 0), (%g, %g, 0)]
+}
+)",
+                      -half, -half, half, -half, half, half, -half, half);
+        host::SessionOptions o;
+        o.width = o.height = 4;
+        o.samplesPerPixel = 1;
+        auto s = host::RenderSession::openString(usda, "ground.usda", o);
+        while (!s->step()) {
+        }
+        *warnings = s->takeWarnings();
+        double alpha = 0;
+        for (int i = 0; i < 16; ++i) alpha += s->color()[4 * i + 3];
+        return alpha / 16.0;
+    };
+    std::vector<std::string> w;
+    for (double half : {1e3, 1e10, 1e15}) {
+        EXPECT_EQ(render(half, &w), 1.0) << half;
+        EXPECT_TRUE(w.empty()) << half;
+    }
+    render(1e19, &w);
+    bool reported = false;
+    for (const auto& m : w) reported |= m.find("beyond 1.8e18") != std::string::npos;
+    EXPECT_TRUE(reported);
+}
+
+TEST(Integrator, CameraRaysPassEverySingleSidedBackFace) {
+    // doubleSided = 0 culls the back of spheres as of meshes, and of any number of stacked
+    // single-sided cards (the 65th used to be drawn: the cull shared the 64-layer budget of
+    // transparent surfaces).
+    auto alpha = [](const std::string& body) {
+        host::SessionOptions o;
+        o.width = o.height = 4;
+        o.samplesPerPixel = 1;
+        auto s = host::RenderSession::openString("#usda 1.0\ndef Camera \"Cam\" {}\ndef DomeLight \"Sky\" { }\n" + body,
+                                                 "cull.usda", o);
+        while (!s->step()) {
+        }
+        double a = 0;
+        for (int i = 0; i < 16; ++i) a += s->color()[4 * i + 3];
+        return a / 16.0;
+    };
+    EXPECT_EQ(alpha("def Sphere \"Shell\" { double radius = 10 }\n"), 0.0);  // seen from inside
+    EXPECT_EQ(alpha("def Sphere \"Shell\" { double radius = 10\n uniform bool doubleSided = 1 }\n"), 1.0);
+    std::string cards;
+    for (int i = 0; i < 70; ++i) {
+        const double z = -1.0 - 0.01 * i;
+        char card[512];
+        // Wound clockwise seen from the camera (+Z looking down -Z): their fronts face away.
+        std::snprintf(card, sizeof card,
+                      "def Mesh \"C%d\" { uniform token subdivisionScheme = \"none\"\n int[] faceVertexCounts = [4]\n"
+                      " int[] faceVertexIndices = [0, 3, 2, 1]\n point3f[] points = [(-5, -5, %g), (5, -5, %g), (5, 5, %g), (-5, 5, %g)] }\n",
+                      i, z, z, z, z);
+        cards += card;
+    }
+    EXPECT_EQ(alpha(cards), 0.0);
+}

@@ -183,6 +183,7 @@ def Xform "World" {
         float[] primvars:ramp = [1, 2, 3] (interpolation = "vertex")
         def Sphere "Inherits" { }
         def Sphere "Own" { color3f[] primvars:displayColor = [(0, 0, 1)] }
+        def Sphere "PerPoint" { color3f[] primvars:displayColor = [(0, 1, 0), (0, 0, 1)] (interpolation = "vertex") }
     }
 }
 )");
@@ -195,6 +196,9 @@ def Xform "World" {
     EXPECT_EQ(names(inherits), (std::set<std::string>{"displayColor", "tint"}));  // ramp: blocked by Group's
     EXPECT_EQ(embree::constantDisplayColor(p.scene.get(), inherits), glm::vec3(1, 0, 0));
     EXPECT_EQ(embree::constantDisplayColor(p.scene.get(), own), glm::vec3(0, 0, 1));
+    // Per-element colours are no constant colour (their first used to colour the whole prim
+    // when they were invalid and ignored).
+    EXPECT_FALSE(embree::constantDisplayColor(p.scene.get(), hd::Path("/World/Group/PerPoint")).has_value());
     std::vector<int> idx;
     hd::Value tint = p.scene->getIndexedPrimvar(inherits, hd::Token("tint"), &idx);
     ASSERT_NE(hd::getIf<std::vector<float>>(tint), nullptr);

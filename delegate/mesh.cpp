@@ -293,10 +293,13 @@ bool Mesh::buildCage(SceneDelegate* delegate, EmbreeRenderParam* param, const Me
     std::vector<glm::vec3>().swap(_record.vertexNormals);
     Triangulation tri;
     std::string error;
-    if (!triangulate(topo, points.size(), &tri, &error)) {
+    if (!triangulate(topo, points.size(), &tri, &error, points.data())) {
         param->warn(id(), "mesh not rendered: " + error);
         return false;
     }
+    if (tri.badHoles > 0)
+        param->warn(id(), std::to_string(tri.badHoles) + " holeIndices entr" + (tri.badHoles == 1 ? "y names" : "ies name") +
+                              " no face (faces are 0 to " + std::to_string(topo.faceVertexCounts.size()) + " - 1); ignored");
     if (tri.skippedFaces > 0)
         param->warn(id(), "skipped " + std::to_string(tri.skippedFaces) + " invalid face(s); " +
                               tri.firstProblem);

@@ -2,12 +2,80 @@
 #include "delegate/triangulate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_set>
 
 namespace principled::embree {
+namespace {
+
+double cross2(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
+
+// The corners (indices into `ring`, in face order) of a concave face as ear-clipped triangles;
+// empty when the face is convex (the caller fans it). The face's plane is its Newell normal
+// (Newell 1972, as in Sutherland et al. 1974); in a frame around it the face winds
+// counter-clockwise, so a corner turning clockwise is reflex.
+std::vector<glm::ivec3> earClip(const std::vector<glm::dvec3>& ring) {
+    const int n = int(ring.size());
+    glm::dvec3 normal(0.0);
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec3 &a = ring[size_t(i)], &b = ring[size_t((i + 1) % n)];
+        normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+    }
+    const double len = glm::length(normal);
+    if (!(len > 0.0) || !std::isfinite(len)) return {};
+    normal /= len;
+    const glm::dvec3 t = glm::normalize(std::abs(normal.x) > 0.9 ? glm::cross(normal, glm::dvec3(0, 1, 0))
+                                                                  : glm::cross(normal, glm::dvec3(1, 0, 0)));
+    const glm::dvec3 b = glm::cross(normal, t);
+    std::vector<glm::dvec2> p(ring.size());
+    for (int i = 0; i < n; ++i) p[size_t(i)] = {glm::dot(ring[size_t(i)], t), glm::dot(ring[size_t(i)], b)};
+    // Scale-relative tolerance for "turns" and "inside" (collinear corners are not reflex).
+    double extent = 0.0;
+    for (const auto& q : p) extent = std::max({extent, std::abs(q.x - p[0].x), std::abs(q.y - p[0].y)});
+    const double eps = 1e-12 * extent * extent;
+    auto turn = [&](int a, int c, int d) {
+        return cross2(p[size_t(c)] - p[size_t(a)], p[size_t(d)] - p[size_t(c)]);
+    };
+    bool convex = true;
+    for (int i = 0; i < n && convex; ++i) convex = turn((i + n - 1) % n, i, (i + 1) % n) >= -eps;
+    if (convex) return {};
+
+    std::vector<int> left(ring.size());
+    for (int i = 0; i < n; ++i) left[size_t(i)] = i;
+    std::vector<glm::ivec3> out;
+    auto inside = [&](const glm::dvec2& q, int a, int c, int d) {
+        // Strictly inside or on an edge of the counter-clockwise triangle (a, c, d).
+        const glm::dvec2 &A = p[size_t(a)], &C = p[size_t(c)], &D = p[size_t(d)];
+        return cross2(C - A, q - A) >= -eps && cross2(D - C, q - C) >= -eps && cross2(A - D, q - D) >= -eps;
+    };
+    while (left.size() > 3) {
+        const int m = int(left.size());
+        bool clipped = false;
+        for (int k = 0; k < m && !clipped; ++k) {
+            const int a = left[size_t((k + m - 1) % m)], c = left[size_t(k)], d = left[size_t((k + 1) % m)];
+            if (turn(a, c, d) <= eps) continue;  // reflex or flat: not an ear
+            bool empty = true;
+            for (int j = 0; j < m && empty; ++j) {
+                const int v = left[size_t(j)];
+                if (v == a || v == c || v == d) continue;
+                if (p[size_t(v)] == p[size_t(a)] || p[size_t(v)] == p[size_t(c)] || p[size_t(v)] == p[size_t(d)]) continue;
+                empty = !inside(p[size_t(v)], a, c, d);
+            }
+            if (!empty) continue;
+            out.emplace_back(a, c, d);
+            left.erase(left.begin() + k);
+            clipped = true;
+        }
+        if (!clipped) break;  // self-intersecting: fan what is left
+    }
+    for (size_t k = 1; k + 1 < left.size(); ++k) out.emplace_back(left[0], left[k], left[k + 1]);
+    return out;
+}
+
+}  // namespace
 
 bool triangulate(const hd::MeshTopology& topo, size_t pointCount, Triangulation* out,
-                 std::string* error) {
+                 std::string* error, const glm::vec3* points) {
     *out = Triangulation();
     size_t total = 0;
     for (int c : topo.faceVertexCounts) {
@@ -22,7 +90,14 @@ bool triangulate(const hd::MeshTopology& topo, size_t pointCount, Triangulation*
                  std::to_string(topo.faceVertexIndices.size()) + " entries";
         return false;
     }
-    std::unordered_set<int> holes(topo.holeIndices.begin(), topo.holeIndices.end());
+    std::unordered_set<int> holes;
+    for (int h : topo.holeIndices) {
+        if (h >= 0 && size_t(h) < topo.faceVertexCounts.size())
+            holes.insert(h);
+        else
+            ++out->badHoles;
+    }
+    std::vector<glm::dvec3> ring;
     bool flip = topo.orientation == hd::Token("leftHanded");
     size_t base = 0;
     const auto& idx = topo.faceVertexIndices;
@@ -47,13 +122,24 @@ bool triangulate(const hd::MeshTopology& topo, size_t pointCount, Triangulation*
             skip("references a point index outside [0, " + std::to_string(pointCount) + ")");
             continue;
         }
-        for (int k = 1; k + 1 < n; ++k) {
-            unsigned c0 = static_cast<unsigned>(start), c1 = static_cast<unsigned>(start + k),
-                     c2 = static_cast<unsigned>(start + k + 1);
+        auto emit = [&](int a, int b, int c) {  // corners of the face, in its order
+            unsigned c0 = static_cast<unsigned>(start + size_t(a)), c1 = static_cast<unsigned>(start + size_t(b)),
+                     c2 = static_cast<unsigned>(start + size_t(c));
             if (flip) std::swap(c1, c2);
             out->corners.emplace_back(c0, c1, c2);
             out->triangles.emplace_back(idx[c0], idx[c1], idx[c2]);
             out->triangleFace.push_back(static_cast<int>(f));
+        };
+        std::vector<glm::ivec3> ears;
+        if (points && n > 3) {
+            ring.resize(size_t(n));
+            for (int k = 0; k < n; ++k) ring[size_t(k)] = glm::dvec3(points[idx[start + size_t(k)]]);
+            ears = earClip(ring);
+        }
+        if (!ears.empty()) {
+            for (const glm::ivec3& e : ears) emit(e.x, e.y, e.z);
+        } else {
+            for (int k = 1; k + 1 < n; ++k) emit(0, k, k + 1);
         }
     }
     return true;

@@ -40,8 +40,9 @@ float oneMinusCosMax(float r, float d2) {
 glm::vec3 sampleCone(const glm::vec3& n, float omc, const glm::vec2& u) {
     glm::vec3 t, b;
     basis(n, &t, &b);
-    const float c = 1.0f - u.x * omc;
-    const float s = std::sqrt(std::max(0.0f, 1.0f - c * c)), phi = 2.0f * kPi * u.y;
+    const float om = u.x * omc;  // 1 - cos as its own number (precise near the axis)
+    const float c = 1.0f - om;
+    const float s = std::sqrt(std::max(0.0f, om * (2.0f - om))), phi = 2.0f * kPi * u.y;
     return glm::normalize(s * std::cos(phi) * t + s * std::sin(phi) * b + c * n);
 }
 
@@ -229,7 +230,7 @@ CausticScene::CausticScene(const SceneSnapshot& scene, const bsdf::Options& opti
         }
         float power;
         if (l.kind == LightRecord::Kind::Distant)
-            power = (l.cosHalfAngle < 1.0f ? luminance(l.radiance) * 2.0f * kPi * (1.0f - l.cosHalfAngle)
+            power = (l.cosHalfAngle < 1.0f ? luminance(l.radiance) * 2.0f * kPi * l.oneMinusCosHalfAngle
                                            : luminance(l.irradiance)) * sum;
         else
             power = luminance(l.radiance) * l.area * kPi * 0.25f * sum;  // cosine-weighted share
@@ -302,7 +303,7 @@ bool CausticScene::sampleEmission(const SceneSnapshot& scene, float uLight, floa
         float pdfDir = 1.0f;
         if (l.cosHalfAngle < 1.0f) {
             // A sun of finite size: a direction uniform in its cone carries its radiance.
-            const float omc = 1.0f - l.cosHalfAngle;
+            const float omc = l.oneMinusCosHalfAngle;
             d = sampleCone(l.direction, omc, uDir);
             Le = l.radiance;
             pdfDir = 1.0f / (2.0f * kPi * omc);

@@ -126,6 +126,10 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
         if (scalar("enableColorTemperature", 0.0f) > 0.5f)
             color *= blackbodyColor(scalar("colorTemperature", 6500.0f));
         float intensity = scalar("intensity", _type == tokens::distantLight() ? 50000.0f : 1.0f);
+        if (intensity < 0.0f) param->warn(id(), "negative intensity " + std::to_string(intensity) + "; the light emits nothing");
+        for (const char* length : {"radius", "width", "height", "length", "angle"})
+            if (scalar(length, 0.0f) < 0.0f)
+                param->warn(id(), std::string(length) + " is negative (" + std::to_string(scalar(length, 0.0f)) + "); read as 0");
         float exposure = scalar("exposure", 0.0f);
         bool normalize = scalar("normalize", 0.0f) > 0.5f;
         glm::vec3 scaled = finiteNonNegative(color * intensity * std::exp2(exposure));
@@ -149,12 +153,15 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
             float angle = std::clamp(scalar("angle", 0.53f), 0.0f, 180.0f);
             float half = 0.5f * angle * kPi / 180.0f;
             _record.cosHalfAngle = std::cos(half);
+            const float sq = std::sin(0.5f * half);
+            _record.oneMinusCosHalfAngle = 2.0f * sq * sq;
             float s = std::sin(half);
             // The disc of angular diameter `angle` delivers E = L * pi * sin^2(angle/2) head-on
             // (solid angle of a cone, projected); a zero angle is a delta light with E = L.
             float solid = kPi * s * s;
             if (angle <= 0.0f || solid <= 1e-12f) {
                 _record.cosHalfAngle = 1.0f;
+                _record.oneMinusCosHalfAngle = 0.0f;
                 _record.irradiance = scaled;
                 _record.radiance = scaled;
             } else if (normalize) {
@@ -198,8 +205,11 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
             if (_type == tokens::sphereLight()) {
                 _record.kind = LightRecord::Kind::Sphere;
                 float r = std::max(0.0f, scalar("radius", 0.5f));
-                float s = std::max({glm::length(vector(xf, 1, 0, 0)), glm::length(vector(xf, 0, 1, 0)),
-                                    glm::length(vector(xf, 0, 0, 1))});
+                const float sx = glm::length(vector(xf, 1, 0, 0)), sy = glm::length(vector(xf, 0, 1, 0)),
+                            sz = glm::length(vector(xf, 0, 0, 1));
+                float s = std::max({sx, sy, sz});
+                if (r > 0.0f && std::min({sx, sy, sz}) < 0.999f * s)
+                    param->warn(id(), "non-uniform scale: the sphere light is drawn as a sphere of the largest scaled radius, not an ellipsoid");
                 _record.radius = std::max(r * s, 1e-6f);
                 _record.area = 4.0f * kPi * _record.radius * _record.radius;
                 // UsdLux treatAsPoint, and a zero radius: a point light with the sphere's power,
@@ -244,7 +254,10 @@ void Light::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits* b
                 _record.kind = LightRecord::Kind::Cylinder;
                 float len = std::max(0.0f, scalar("length", 1.0f)), r = std::max(0.0f, scalar("radius", 0.5f));
                 _record.axisU = vector(xf, 0.5 * len, 0, 0);
-                float s = std::max(glm::length(vector(xf, 0, 1, 0)), glm::length(vector(xf, 0, 0, 1)));
+                const float sy = glm::length(vector(xf, 0, 1, 0)), sz = glm::length(vector(xf, 0, 0, 1));
+                float s = std::max(sy, sz);
+                if (r > 0.0f && std::min(sy, sz) < 0.999f * s)
+                    param->warn(id(), "non-uniform scale across the axis: the cylinder light is drawn round, of the largest scaled radius");
                 _record.radius = std::max(r * s, 1e-6f);
                 _record.area = 2.0f * kPi * _record.radius * 2.0f * glm::length(_record.axisU);
             }

@@ -216,11 +216,13 @@ bool sampleUnshaped(const LightRecord& l, const glm::vec3& p, const glm::vec3& n
             // Uniform in the disc's cone: pdf = 1 / (2 pi (1 - cos)).
             glm::vec3 t, b, n = -l.direction;
             basis(n, &t, &b);
-            float c = 1.0f - u.x * (1.0f - l.cosHalfAngle);
-            float s = std::sqrt(std::max(0.0f, 1.0f - c * c)), phi = 2.0f * kPi * u.y;
+            // 1 - cos as its own number: near 1 the cosine itself keeps few digits.
+            const float om = u.x * l.oneMinusCosHalfAngle;
+            float c = 1.0f - om;
+            float s = std::sqrt(std::max(0.0f, om * (2.0f - om))), phi = 2.0f * kPi * u.y;
             out->wi = s * std::cos(phi) * t + s * std::sin(phi) * b + c * n;
             out->Li = l.radiance;
-            out->pdf = 1.0f / (2.0f * kPi * (1.0f - l.cosHalfAngle));
+            out->pdf = 1.0f / (2.0f * kPi * l.oneMinusCosHalfAngle);
             return true;
         }
         case LightRecord::Kind::Dome: {
@@ -551,7 +553,7 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& origin, const gl
     if (l.kind == LightRecord::Kind::Distant && l.cosHalfAngle < 1.0f &&
         glm::dot(d, -l.direction) >= l.cosHalfAngle) {
         *Le = l.radiance;
-        if (pdf) *pdf = 1.0f / (2.0f * kPi * (1.0f - l.cosHalfAngle));
+        if (pdf) *pdf = 1.0f / (2.0f * kPi * l.oneMinusCosHalfAngle);
         return true;
     }
     return false;

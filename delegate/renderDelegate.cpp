@@ -165,8 +165,12 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
     bool lightTable = c.all || c.lights;
     if (lightTable) {
         std::vector<LightSource*> lights;
-        for (LightSource* l : _param->lights())
+        _anyAuthoredLight = false;
+        for (LightSource* l : _param->lights()) {
+            // A light switched off (invisible) is still the scene's lighting: no default dome.
+            _anyAuthoredLight = _anyAuthoredLight || !l->record().portal;
             if (l->enabled()) lights.push_back(l);
+        }
         std::sort(lights.begin(), lights.end(), [](auto* a, auto* b) { return a->lightId() < b->lightId(); });
         _sceneLights.clear();
         std::vector<Portal> portals;
@@ -205,7 +209,7 @@ void EmbreeRenderDelegate::commitResources(ChangeTracker*) {
         _snapshot.usingDefaultLight = false;
         // Emissive geometry lights the scene (even when none of it could be made a light); a
         // textured emitter black wherever it was probed does not.
-        if (_sceneLights.empty() && !_anyEmitter && intSetting("defaultLighting", 1) != 0) {
+        if (!_anyAuthoredLight && !_anyEmitter && intSetting("defaultLighting", 1) != 0) {
             // A scene without lights would render black; light it like an overcast sky
             // (a white dome of radiance 1) and say so in the stats.
             LightRecord dome;

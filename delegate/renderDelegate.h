@@ -144,6 +144,7 @@ private:
     };
     std::vector<MeshLightGroup> _meshLightGroups;
     bool _anyEmitter = false;  ///< some geometry emits (then no default dome is added)
+    bool _anyAuthoredLight = false;  ///< the scene has a light, visible or not (no default dome)
     std::unordered_map<hd::Path, int> _materialIndex;  ///< path -> index in _snapshot.materials
     std::vector<float> _lightPower;         ///< per light, without the R^2 of distant/dome
     std::vector<char> _lightPowerScales;    ///< 1: multiply by R^2

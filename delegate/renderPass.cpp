@@ -61,7 +61,7 @@ Ray cameraRay(const Camera& cam, const glm::vec4& window, int width, int height,
     r.direction = glm::vec3(d / len);
     // The clipping range is along -z in camera space; d has z = -1, so t scales with |d|.
     glm::vec2 clip = cam.clippingRange();
-    r.tnear = cam.projection() == Camera::Projection::Orthographic ? 0.0f : float(clip.x * len);
+    r.tnear = float(clip.x * len);  // orthographic too (len 1): its near plane clips as Storm's
     r.tfar = float(clip.y * len);
     if (!(r.tnear >= 0.0f) || !std::isfinite(r.tnear)) r.tnear = 0.0f;
     if (!(r.tfar > r.tnear) || !std::isfinite(r.tfar)) r.tfar = 1e30f;

@@ -734,3 +734,34 @@ TEST(Integrator, CameraRaysPassEverySingleSidedBackFace) {
     }
     EXPECT_EQ(alpha(cards), 0.0);
 }
+
+TEST(Integrator, OrthographicCamerasClipAtTheirNearPlane) {
+    auto alpha = [](double nearClip) {
+        char usda[1024];
+        std::snprintf(usda, sizeof usda, R"(#usda 1.0
+def Camera "Cam" {
+    token projection = "orthographic"
+    float2 clippingRange = (%g, 1000)
+    double3 xformOp:translate = (0, 0, 20)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def Mesh "Wall" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-50, -50, 0), (50, -50, 0), (50, 50, 0), (-50, 50, 0)]
+}
+)",
+                      nearClip);
+        host::SessionOptions o;
+        o.width = o.height = 4;
+        o.samplesPerPixel = 1;
+        auto s = host::RenderSession::openString(usda, "ortho.usda", o);
+        while (!s->step()) {
+        }
+        return s->color()[3];
+    };
+    EXPECT_EQ(alpha(15.0), 1.0f);
+    EXPECT_EQ(alpha(25.0), 0.0f);  // the wall, 20 units away, is nearer than the near plane
+}

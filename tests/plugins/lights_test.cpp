@@ -983,3 +983,41 @@ def Xform "Cards"
     const double expected = 0.5 * 10.0 * 1.0 / (4.0 + 1.0);
     EXPECT_NEAR(render(scene, 256), expected, 0.03 * expected);
 }
+
+TEST(Lights, ASunOfHalfADegreeDeliversItsFullIrradianceAndInvisibleLightsStayOff) {
+    // The fallback distant light (angle 0.53 degrees, intensity 50000): E = L pi sin^2(0.265
+    // degrees) on a plane facing it; a Lambert plane of albedo 0.5 shows 0.5 E / pi. 1 - cos of
+    // the half angle in float lost 0.25 % of it.
+    const double half = 0.5 * 0.53 * 3.14159265358979 / 180.0;
+    const double E = 50000.0 * 3.14159265358979 * std::sin(half) * std::sin(half);
+    const double lit = render(test::planeScene(0.5, R"(
+def DistantLight "Sun" { float xformOp:rotateX = -90
+    uniform token[] xformOpOrder = ["xformOp:rotateX"] }
+)"), 16);
+    EXPECT_NEAR(lit, 0.5 * E / 3.14159265358979, 2e-4 * lit);
+    // A scene whose only light is switched off is dark: no default dome stands in for it.
+    const double off = render(test::planeScene(0.5, R"(
+def DistantLight "Sun" { token visibility = "invisible" }
+)"), 4);
+    EXPECT_EQ(off, 0.0);
+}
+
+TEST(Lights, InvalidLightValuesAreReported) {
+    host::SessionOptions o;
+    o.width = o.height = 2;
+    o.samplesPerPixel = 1;
+    auto s = host::RenderSession::openString(R"(#usda 1.0
+def SphereLight "Neg" { float inputs:intensity = -3
+    float inputs:radius = -1 }
+def SphereLight "Squashed" { float inputs:radius = 0.5
+    float3 xformOp:scale = (2, 1, 1)
+    uniform token[] xformOpOrder = ["xformOp:scale"] }
+)",
+                                             "bad.usda", o);
+    s->step();
+    std::string all;
+    for (const auto& w : s->takeWarnings()) all += w + "\n";
+    EXPECT_NE(all.find("/Neg: negative intensity"), std::string::npos) << all;
+    EXPECT_NE(all.find("radius is negative"), std::string::npos) << all;
+    EXPECT_NE(all.find("/Squashed: non-uniform scale"), std::string::npos) << all;
+}

@@ -315,7 +315,14 @@ std::vector<std::string> RenderSession::takeWarnings() {
     const auto& adapterWarnings = _sceneDelegate->warnings();
     for (; _adapterWarningsTaken < adapterWarnings.size(); ++_adapterWarningsTaken)
         out.push_back(adapterWarnings[_adapterWarningsTaken]);
-    for (auto& w : _delegate->takeWarnings()) out.push_back(std::move(w));
+    // The delegate names prims by path ("/World/Lamp: ..."); the stage knows where each was
+    // authored, so the warning also says file:line:col.
+    for (auto& w : _delegate->takeWarnings()) {
+        const size_t colon = w.find(": ");
+        const usd::Prim* p = (colon != std::string::npos && !w.empty() && w[0] == '/') ? _stage->prim(w.substr(0, colon)) : nullptr;
+        const std::string where = p ? p->location().str() : std::string();
+        out.push_back(where.empty() ? std::move(w) : where + ": " + w);
+    }
     const auto& stageWarnings = _stage->warnings();
     for (; _stageWarningsTaken < stageWarnings.size(); ++_stageWarningsTaken)
         out.push_back(stageWarnings[_stageWarningsTaken].where.str() + ": " +

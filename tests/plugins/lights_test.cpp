@@ -1018,6 +1018,7 @@ def SphereLight "Squashed" { float inputs:radius = 0.5
     std::string all;
     for (const auto& w : s->takeWarnings()) all += w + "\n";
     EXPECT_NE(all.find("/Neg: negative intensity"), std::string::npos) << all;
+    EXPECT_NE(all.find("bad.usda:2:"), std::string::npos) << "the delegate's warnings say where: " << all;
     EXPECT_NE(all.find("radius is negative"), std::string::npos) << all;
     EXPECT_NE(all.find("/Squashed: non-uniform scale"), std::string::npos) << all;
 }

@@ -312,9 +312,11 @@ bool Mesh::buildCage(SceneDelegate* delegate, EmbreeRenderParam* param, const Me
     // A subdivision surface drawn as its cage is shaded smooth, from its own shape: authored
     // normals are for polygons (UsdGeomMesh: a subdivided mesh defines its own), as at any
     // refined level. Polygons ("none") keep theirs or stay faceted.
-    if (topo.scheme == Token("none"))
-        _record.cornerNormals = authoredCornerNormals(delegate, id(), layout);
-    else
+    if (topo.scheme == Token("none")) {
+        std::string problem;
+        _record.cornerNormals = authoredCornerNormals(delegate, id(), layout, &problem);
+        if (!problem.empty()) param->warn(id(), problem);
+    } else
         _record.cornerNormals = smoothCornerNormals(_record.points, _record.triangles);
     _record.primvars.clear();
     for (Interpolation interp : kInterpolations)
@@ -401,8 +403,10 @@ bool Mesh::buildSubdivided(SceneDelegate* delegate, EmbreeRenderParam* param,
         std::string error;
         _subdiv = subdiv::SubdivTopology::create(topo, tags, points.size(), opts, &error);
         if (!_subdiv) {
-            param->warn(id(), "mesh not rendered: " + error);
-            return false;
+            // A cage OpenSubdiv cannot take (a face of fewer than 3 vertices, a bad index): the
+            // polygons are drawn instead, their bad faces skipped (as a polygon mesh would be).
+            param->warn(id(), "not subdivided: " + error + "; drawn as its polygons");
+            return buildCage(delegate, param, topo, points);
         }
         for (const auto& w : _subdiv->warnings()) param->warn(id(), w);
     }

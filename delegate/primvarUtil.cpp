@@ -108,15 +108,30 @@ std::optional<Interpolation> primvarInterpolation(const SceneDelegate* delegate,
 }
 
 std::vector<glm::vec3> authoredCornerNormals(const SceneDelegate* delegate, const Path& id,
-                                             const CornerLayout& layout) {
+                                             const CornerLayout& layout, std::string* problem) {
     auto interp = primvarInterpolation(delegate, id, tokens::normals());
     if (!interp) return {};
     std::vector<int> indices;
     Value v = delegate->getIndexedPrimvar(id, tokens::normals(), &indices);
     std::vector<float> flat, corners;
     int components = 0;
-    if (!flattenFloats(v, &flat, &components) || components != 3) return {};
-    if (!expandToCorners(flat, 3, indices, *interp, layout, &corners)) return {};
+    if (!flattenFloats(v, &flat, &components) || components != 3) {
+        if (problem) *problem = "normals are not 3-component vectors; ignored (faceted shading)";
+        return {};
+    }
+    if (!expandToCorners(flat, 3, indices, *interp, layout, &corners)) {
+        if (problem) {
+            const size_t values = indices.empty() ? flat.size() / 3 : indices.size();
+            const size_t want = *interp == Interpolation::Vertex || *interp == Interpolation::Varying ? layout.pointCount
+                                : *interp == Interpolation::Uniform                                  ? layout.faceCount
+                                : *interp == Interpolation::FaceVarying                              ? layout.faceVertexCount
+                                                                                                     : 1;
+            *problem = "normals have " + std::to_string(values) + (indices.empty() ? " values" : " indices") +
+                       " where their interpolation needs " + std::to_string(want) +
+                       (indices.empty() ? "" : " (or an index is out of range)") + "; ignored (faceted shading)";
+        }
+        return {};
+    }
     std::vector<glm::vec3> out(corners.size() / 3);
     for (size_t i = 0; i < out.size(); ++i)
         out[i] = safeNormalize({corners[3 * i], corners[3 * i + 1], corners[3 * i + 2]});

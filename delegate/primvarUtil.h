@@ -39,9 +39,11 @@ bool expandToCorners(const std::vector<float>& values, int components, const std
                      hd::Interpolation interp, const CornerLayout& layout, std::vector<float>* out);
 
 /// Authored normals (the "normals" primvar in any interpolation), three per triangle,
-/// normalised; empty when none are authored or they do not fit.
+/// normalised; empty when none are authored or they do not fit (then *problem, when given,
+/// says why: not three components, or the wrong number of values or indices for their
+/// interpolation).
 std::vector<glm::vec3> authoredCornerNormals(const hd::SceneDelegate* delegate, const hd::Path& id,
-                                             const CornerLayout& layout);
+                                             const CornerLayout& layout, std::string* problem = nullptr);
 
 /// Area-weighted vertex normals, three per triangle.
 std::vector<glm::vec3> smoothCornerNormals(const std::vector<glm::vec3>& points,

@@ -765,3 +765,38 @@ def Mesh "Wall" {
     EXPECT_EQ(alpha(15.0), 1.0f);
     EXPECT_EQ(alpha(25.0), 0.0f);  // the wall, 20 units away, is nearer than the near plane
 }
+
+TEST(Integrator, BadMeshDataIsReportedAndTheRestDrawn) {
+    // A subdivision cage with a 2-vertex face is drawn as its polygons (its good quad covers
+    // the view) instead of not at all; normals of the wrong count are reported, not silently
+    // dropped.
+    auto run = [](const std::string& mesh, std::string* warnings) {
+        host::SessionOptions o;
+        o.width = o.height = 4;
+        o.samplesPerPixel = 1;
+        auto s = host::RenderSession::openString("#usda 1.0\ndef Camera \"Cam\" {\n double3 xformOp:translate = (0, 0, 5)\n"
+                                                 " uniform token[] xformOpOrder = [\"xformOp:translate\"] }\n"
+                                                 "def DomeLight \"Sky\" { }\n" + mesh,
+                                                 "bad.usda", o);
+        while (!s->step()) {
+        }
+        for (const auto& w : s->takeWarnings()) *warnings += w + "\n";
+        return s->color()[4 * 5 + 3];  // alpha of pixel (1, 1)
+    };
+    std::string w;
+    EXPECT_EQ(run(R"(def Mesh "Cage" {
+    int[] faceVertexCounts = [2, 4]
+    int[] faceVertexIndices = [0, 1, 0, 1, 2, 3]
+    point3f[] points = [(-9, -9, 0), (9, -9, 0), (9, 9, 0), (-9, 9, 0)]
+})", &w), 1.0f) << w;
+    EXPECT_NE(w.find("drawn as its polygons"), std::string::npos) << w;
+    w.clear();
+    run(R"(def Mesh "Poly" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-9, -9, 0), (9, -9, 0), (9, 9, 0), (-9, 9, 0)]
+    normal3f[] normals = [(0, 0, 1), (0, 0, 1), (0, 0, 1)] (interpolation = "vertex")
+})", &w);
+    EXPECT_NE(w.find("normals have 3 values where their interpolation needs 4"), std::string::npos) << w;
+}

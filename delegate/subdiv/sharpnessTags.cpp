@@ -1,15 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/subdiv/sharpnessTags.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace principled::subdiv {
 
 namespace {
 
-bool validSharpness(float s) {
-    return std::isfinite(s) && s >= 0.0f;
-}
+// OpenSubdiv's infinitely sharp (Sdc::Crease::SHARPNESS_INFINITE): larger values, +inf
+// included, mean the same; negative ones are smooth (0). NaN has no meaning.
+constexpr float kInfinitelySharp = 10.0f;
+bool usableSharpness(float s) { return !std::isnan(s); }
+float sharpness(float s) { return std::clamp(s, 0.0f, kInfinitelySharp); }
 
 void splitCreases(const hd::SubdivTags& tags, size_t pointCount, SharpnessTags* out,
                   std::vector<std::string>* warnings) {
@@ -42,23 +46,27 @@ void splitCreases(const hd::SubdivTags& tags, size_t pointCount, SharpnessTags* 
                             " (per edge); creases ignored");
         return;
     }
-    size_t start = 0, edge = 0;
+    size_t start = 0, edge = 0, bad = 0;
+    std::string first;
     for (size_t c = 0; c < len.size(); ++c) {
         for (int k = 0; k + 1 < len[c]; ++k, ++edge) {
             int a = idx[start + k], b = idx[start + k + 1];
             float s = perCrease ? sharp[c] : sharp[edge];
-            if (a < 0 || b < 0 || size_t(a) >= pointCount || size_t(b) >= pointCount || a == b ||
-                !validSharpness(s)) {
-                warnings->push_back("crease " + std::to_string(c) +
-                                    " has a bad edge or sharpness; that edge is ignored");
+            const bool pointsOk = a >= 0 && b >= 0 && size_t(a) < pointCount && size_t(b) < pointCount && a != b;
+            if (!pointsOk || !usableSharpness(s)) {
+                if (bad++ == 0)
+                    first = "crease " + std::to_string(c) + " edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                            ")" + (pointsOk ? " has sharpness NaN" : " names a point outside [0, " + std::to_string(pointCount) + ") or twice the same");
                 continue;
             }
             out->edgeVertices.push_back(a);
             out->edgeVertices.push_back(b);
-            out->edgeSharpness.push_back(s);
+            out->edgeSharpness.push_back(sharpness(s));
         }
         start += size_t(len[c]);
     }
+    if (bad > 0)
+        warnings->push_back(std::to_string(bad) + " crease edge(s) ignored; the first: " + first);
 }
 
 void corners(const hd::SubdivTags& tags, size_t pointCount, SharpnessTags* out,
@@ -69,17 +77,21 @@ void corners(const hd::SubdivTags& tags, size_t pointCount, SharpnessTags* out,
                 "cornerIndices and cornerSharpnesses differ in size; corners ignored");
         return;
     }
+    size_t bad = 0;
+    std::string first;
     for (size_t i = 0; i < tags.cornerIndices.size(); ++i) {
         int v = tags.cornerIndices[i];
         float s = tags.cornerSharpnesses[i];
-        if (v < 0 || size_t(v) >= pointCount || !validSharpness(s)) {
-            warnings->push_back("corner " + std::to_string(i) +
-                                " is out of range or has a bad sharpness; ignored");
+        if (v < 0 || size_t(v) >= pointCount || !usableSharpness(s)) {
+            if (bad++ == 0)
+                first = "corner " + std::to_string(i) + " (point " + std::to_string(v) + ")" +
+                        (usableSharpness(s) ? " is outside [0, " + std::to_string(pointCount) + ")" : " has sharpness NaN");
             continue;
         }
         out->cornerVertices.push_back(v);
-        out->cornerSharpness.push_back(s);
+        out->cornerSharpness.push_back(sharpness(s));
     }
+    if (bad > 0) warnings->push_back(std::to_string(bad) + " corner(s) ignored; the first: " + first);
 }
 
 }  // namespace

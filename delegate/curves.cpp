@@ -96,6 +96,13 @@ RTCGeometry BasisCurves::rebuildGeometry(SceneDelegate* delegate, EmbreeRenderPa
     else if (!widths.empty() && widths.size() == varyingTotal) wmode = WidthMode::Varying;
     else if (!widths.empty())
         param->warn(id(), "widths has " + std::to_string(widths.size()) + " values, which fits no interpolation; using 1");
+    if (wmode != WidthMode::Default) {
+        size_t bad = 0;
+        for (float w : widths) bad += !(std::isfinite(w) && w > 0.0f);
+        if (bad > 0)
+            param->warn(id(), std::to_string(bad) + " of " + std::to_string(widths.size()) +
+                                  " widths are not positive (or not finite): the curves are invisible there");
+    }
 
     _record.kind = GeometryRecord::Kind::Curves;
     _record.points.clear();

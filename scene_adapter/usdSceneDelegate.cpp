@@ -145,6 +145,7 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
         }
         if (hdType == tokens::mesh() && type == "Mesh") {
             checkExtent(prim);
+            checkSubsets(prim);
             std::vector<std::string> skinWarnings;
             if (auto posed = skinMesh(_stage, prim, _time, &skinWarnings, &_skeletonPoses)) {
                 e.world = posed->world;  // UsdSkel: the skeleton's space, not the mesh's own
@@ -175,6 +176,28 @@ std::string UsdSceneDelegate::subsetBindings(const usd::Prim& mesh) const {
     for (const usd::Prim* child : mesh.children())
         if (child->typeName() == "GeomSubset") key += child->name() + "=" + _bindings.resolve(*child) + ";";
     return key;
+}
+
+void UsdSceneDelegate::checkSubsets(const usd::Prim& mesh) {
+    const usd::Attribute* counts = mesh.attribute("faceVertexCounts");
+    if (!counts || !counts->hasValue()) return;
+    const usd::Value cv = counts->get(_time);
+    const size_t faces = cv.numbers() ? cv.numbers()->size() : 0;
+    for (const usd::Prim* child : mesh.children()) {
+        if (child->typeName() != "GeomSubset" || !child->isActive()) continue;
+        const usd::Attribute* idx = child->attribute("indices");
+        if (!idx || !idx->hasValue()) continue;
+        const usd::Value iv = idx->get(_time);
+        if (!iv.numbers()) continue;
+        size_t outside = 0;
+        double first = 0;
+        for (double f : *iv.numbers())
+            if (!(f >= 0.0 && f < double(faces)) && outside++ == 0) first = f;
+        if (outside > 0)
+            warn(idx->location().str() + ": " + child->path(),
+                 "GeomSubset indices name " + std::to_string(outside) + " face(s) outside the mesh's [0, " +
+                     std::to_string(faces) + ") (the first: " + std::to_string(static_cast<long long>(first)) + "); ignored");
+    }
 }
 
 void UsdSceneDelegate::checkExtent(const usd::Prim& prim) {

@@ -195,6 +195,8 @@ private:
     std::string subsetBindings(const usd::Prim& mesh) const;
     void warn(const std::string& where, const std::string& message);
     void checkExtent(const usd::Prim& prim);
+    /// Warns about GeomSubset face indices outside the mesh (they are ignored).
+    void checkSubsets(const usd::Prim& mesh);
 
     const usd::Stage& _stage;
     AdapterOptions _options;

@@ -800,3 +800,22 @@ TEST(Integrator, BadMeshDataIsReportedAndTheRestDrawn) {
 })", &w);
     EXPECT_NE(w.find("normals have 3 values where their interpolation needs 4"), std::string::npos) << w;
 }
+
+TEST(Integrator, CurvesWithoutAPositiveWidthAreReported) {
+    host::SessionOptions o;
+    o.width = o.height = 2;
+    o.samplesPerPixel = 1;
+    auto s = host::RenderSession::openString(R"(#usda 1.0
+def BasisCurves "C" {
+    uniform token type = "linear"
+    int[] curveVertexCounts = [2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0)]
+    float[] widths = [-0.3] (interpolation = "constant")
+}
+)",
+                                             "curves.usda", o);
+    s->step();
+    std::string all;
+    for (const auto& w : s->takeWarnings()) all += w + "\n";
+    EXPECT_NE(all.find("/C: 1 of 1 widths are not positive"), std::string::npos) << all;
+}

@@ -144,6 +144,24 @@ def "Untyped" {
     EXPECT_EQ(notXformable, 2);
 }
 
+TEST(UsdSceneDelegate, SubsetFacesOutsideTheMeshAreReported) {
+    Populated p(R"(#usda 1.0
+def Mesh "M" {
+    int[] faceVertexCounts = [3, 3]
+    int[] faceVertexIndices = [0, 1, 2, 0, 2, 3]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+    def GeomSubset "Sub" {
+        uniform token elementType = "face"
+        uniform token familyName = "materialBind"
+        int[] indices = [1, 7, -3]
+    }
+}
+)");
+    std::string all;
+    for (const auto& w : p.scene->warnings()) all += w + "\n";
+    EXPECT_NE(all.find("/M/Sub: GeomSubset indices name 2 face(s) outside the mesh's [0, 2) (the first: 7)"), std::string::npos) << all;
+}
+
 TEST(UsdSceneDelegate, TransformsTopologyAndPrimvars) {
     Populated p(kScene);
     hd::Path tri("/World/Tri");

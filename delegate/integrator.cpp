@@ -381,7 +381,7 @@ void materialAt(const SceneSnapshot& scene, const std::vector<std::optional<bsdf
                 const Hit& hit, const SurfacePoint& context, HitMaterial* out) {
     const GeometryRecord& rec = *hit.record;
     out->index = rec.materialFor(hit.triangle);
-    if (out->index >= 0 && out->index < int(scene.materials.size())) {
+    if (out->index >= 0 && out->index < int(scene.materials.size()) && scene.materials[size_t(out->index)].hasSurface) {
         const MaterialRecord& m = scene.materials[size_t(out->index)];
         if (m.program) {
             out->mat = &out->store.emplace(m.program->evaluate(context));

@@ -21,6 +21,7 @@ void Material::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits
         _record.program = program->isConstant() ? nullptr : program;
         _record.mayBePartlyPresent = program->mayBePartlyPresent();
         _record.mayEmit = program->mayEmit();
+        _record.hasSurface = program->hasSurface();
         for (const auto& n : notes) param->warn(id(), n);
         param->materialChanged(this);  // its record, in place (a new material: its table too)
     }

@@ -27,6 +27,8 @@ struct MaterialRecord {
     std::shared_ptr<const shading::MaterialProgram> program;  ///< non-null when textured
     bool mayBePartlyPresent = false;  ///< opacity < 1 somewhere: shadow rays must evaluate it
     bool mayEmit = false;  ///< constant emission != 0, or emissiveColor textured (MaterialProgram::mayEmit)
+    /// False without a surface shader this renderer reads: its geometry uses displayColor.
+    bool hasSurface = true;
 };
 
 /// One primvar of a mesh: by default three values per triangle (one per corner); or one value

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "plugins/renderSession.h"
 
+#include <regex>
+
 #include <algorithm>
 #include <set>
 #include <cerrno>
@@ -319,7 +321,12 @@ std::vector<std::string> RenderSession::takeWarnings() {
     // authored, so the warning also says file:line:col.
     for (auto& w : _delegate->takeWarnings()) {
         const size_t colon = w.find(": ");
-        const usd::Prim* p = (colon != std::string::npos && !w.empty() && w[0] == '/') ? _stage->prim(w.substr(0, colon)) : nullptr;
+        // (Messages that already say where, "file:line:col: ...", after the path keep theirs.)
+        static const std::regex kLocated(R"(^[^ ]+:[0-9]+:[0-9]+: )");
+        const bool located = colon != std::string::npos && std::regex_search(w.substr(colon + 2), kLocated);
+        const usd::Prim* p = (colon != std::string::npos && !located && !w.empty() && w[0] == '/')
+                                 ? _stage->prim(w.substr(0, colon))
+                                 : nullptr;
         const std::string where = p ? p->location().str() : std::string();
         out.push_back(where.empty() ? std::move(w) : where + ": " + w);
     }

@@ -474,7 +474,12 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
         if (!sh) continue;
         MaterialNode node;
         node.path = Path(path);
-        node.identifier = Token(tokenAttr(*sh, "info:id", _time, ""));
+        // UsdShadeShader: info:id names the shader only when implementationSource is "id" (its
+        // fallback); a sourceAsset or sourceCode shader (MDL, OSL, GLSL) is none this renderer
+        // knows, whatever stale id it carries.
+        const std::string source = tokenAttr(*sh, "info:implementationSource", _time, "id");
+        node.identifier = Token(source == "id" ? tokenAttr(*sh, "info:id", _time, "")
+                                               : "info:implementationSource " + source);
         node.where = sh->location().str();
         for (const usd::Attribute* a : sh->attributes()) {
             if (a->name().rfind("inputs:", 0) != 0) continue;

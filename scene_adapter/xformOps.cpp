@@ -75,6 +75,10 @@ LocalTransform computeLocalTransform(const usd::Prim& prim, double time, std::st
         }
         if (!attr->timeSamples().empty()) out.timeVarying = true;
         usd::Value v = attr->get(time);
+        if (v.isNone()) {
+            warn("xformOp '" + name + "' is blocked (None) at this time; op skipped");
+            continue;
+        }
         // The op type is the second namespace element: xformOp:<type>[:suffix].
         std::string type = name.substr(name.find(':') + 1);
         type = type.substr(0, type.find(':'));

@@ -455,7 +455,8 @@ MaterialProgram MaterialProgram::compile(const MaterialNetwork& network, Texture
     prog._cache = &cache;
     const MaterialNode* surface = network.node(network.surfaceTerminal);
     if (!surface) {
-        notes->push_back("no surface shader; using UsdPreviewSurface defaults");
+        notes->push_back("no surface shader; the geometry bound to it keeps its displayColor");
+        prog._hasSurface = false;
         return prog;
     }
     Token id = usdIdentifier(surface->identifier);
@@ -464,10 +465,11 @@ MaterialProgram MaterialProgram::compile(const MaterialNetwork& network, Texture
     } else if (isStandardSurface(id)) {
         Compiler(network, cache, notes, prog).compileStandardSurface(*surface);
     } else {
+        prog._hasSurface = false;
         notes->push_back((surface->where.empty() ? "" : surface->where + ": ") +
                          surface->path.str() + ": surface shader '" + surface->identifier.str() +
-                         "' is not UsdPreviewSurface or Standard Surface; using the "
-                         "UsdPreviewSurface defaults");
+                         "' is not UsdPreviewSurface or Standard Surface; the geometry bound to "
+                         "it keeps its displayColor");
         return prog;
     }
     prog._constant = mapPreviewSurface(prog._base);

@@ -46,6 +46,10 @@ class MaterialProgram {
     static MaterialProgram compile(const hd::MaterialNetwork& network, TextureCache& cache,
                                    std::vector<std::string>* notes);
 
+    /// False when the network has no surface shader this renderer reads (none, or MDL/OSL
+    /// only): geometry bound to it is shaded as if unbound, with its displayColor (as Storm does).
+    bool hasSurface() const { return _hasSurface; }
+
     /// True when no input depends on the shading point: evaluate() returns a stored result.
     bool isConstant() const { return _ops.empty(); }
 
@@ -148,6 +152,7 @@ class MaterialProgram {
     PreviewSurfaceParams _base;  ///< constant inputs; bindings overwrite the rest
     ShadedMaterial _constant;
     const TextureCache* _cache = nullptr;
+    bool _hasSurface = true;
 };
 
 }  // namespace principled::shading

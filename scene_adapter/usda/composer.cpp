@@ -130,6 +130,8 @@ void Composer::addToStack(LayerStack& stack, const Layer* layer, LayerOffset off
     stack.layers.push_back(layer);
     stack.offsets.push_back(offset);
     chain.push_back(layer);
+    if (const Value* r = layer->field("relocates"))
+        warn(r->location(), "relocates are not applied (prims stay where their specs put them)");
     for (const SubLayer& sub : layer->subLayers) {
         if (sub.resolvedPath.empty()) {
             warn(sub.location, "sublayer @" + sub.assetPath + "@ not found (relative to " +
@@ -667,6 +669,8 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
         }
     for (const SpecRef& s : specs)
         for (const auto& [key, value] : s.spec->metadata) composeField(prim._metadata, key, value);
+    if (const Value* r = prim.metadata("relocates"))
+        warn(r->location(), "relocates are not applied (prims stay where their specs put them)");
     if (const Value* active = prim.metadata("active"))
         if (auto b = active->getBool()) prim._active = *b;
     if (prim._parent && !prim._parent->isActive()) prim._active = false;

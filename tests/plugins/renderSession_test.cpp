@@ -401,6 +401,43 @@ def Sphere "Ball" (prepend apiSchemas = ["MaterialBindingAPI"])
 
 }  // namespace
 
+TEST(RenderSession, AMaterialWithoutAReadableSurfaceLeavesTheDisplayColour) {
+    // An MDL-only material (its shader a sourceAsset, with a stale info:id) is nothing this
+    // renderer reads: the prim keeps its displayColor (red), as Storm shows it, rather than the
+    // UsdPreviewSurface grey.
+    const std::string usda = R"(#usda 1.0
+def Camera "Cam" {
+    double3 xformOp:translate = (0, 0, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def Sphere "Ball" (prepend apiSchemas = ["MaterialBindingAPI"]) {
+    color3f[] primvars:displayColor = [(0.8, 0.05, 0.05)]
+    rel material:binding = </Mdl>
+}
+def Material "Mdl" {
+    token outputs:mdl:surface.connect = </Mdl/S.outputs:out>
+    def Shader "S" {
+        uniform token info:implementationSource = "sourceAsset"
+        uniform asset info:mdl:sourceAsset = @OmniPBR.mdl@
+        uniform token info:id = "UsdPreviewSurface"
+        token outputs:out
+    }
+}
+)";
+    host::SessionOptions o;
+    o.width = o.height = 8;
+    o.samplesPerPixel = 4;
+    auto s = host::RenderSession::openString(usda, "mdl.usda", o);
+    while (!s->step()) {
+    }
+    const float* c = s->color() + (4 * 8 + 4) * 4;
+    EXPECT_GT(c[0], 4.0f * c[1]) << c[0] << " " << c[1];
+    std::string all;
+    for (const auto& w : s->takeWarnings()) all += w + "\n";
+    EXPECT_NE(all.find("keeps its displayColor"), std::string::npos) << all;
+}
+
 TEST(RenderSession, MaterialXStandardSurfaceRendersItsBaseColor) {
     auto [red, green] = redAndGreenOfBall(R"(def Material "Look"
 {

@@ -78,3 +78,27 @@ TEST(XformOps, MissingOpIsReportedAndSkipped) {
     EXPECT_NE(w.find("xformOp:translate"), std::string::npos);
     expectNear(apply(t.matrix, {1, 2, 3}), {1, 2, 3});
 }
+
+TEST(XformOps, AnOpBlockedByNoneIsSkippedAndSaysSo) {
+    std::string w;
+    auto t = eval(R"(double3 xformOp:translate = None
+        double3 xformOp:scale = (2, 2, 2)
+        uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:scale"])",
+                  &w);
+    expectNear(apply(t.matrix, {1, 0, 0}), {2, 0, 0});
+    EXPECT_NE(w.find("names 'xformOp:translate', which has no value"), std::string::npos) << w;  // a default None
+}
+
+TEST(XformOps, AnOpBlockedAtTheTimeByASampledNoneSaysSo) {
+    static auto stage = usd::Stage::openString(R"(#usda 1.0
+def Xform "X" {
+    double3 xformOp:translate.timeSamples = { 0: (1, 0, 0), 10: None }
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)",
+                                               "t.usda");
+    std::string w;
+    auto t = adapter::computeLocalTransform(*stage->prim("/X"), 12.0, &w);
+    expectNear(apply(t.matrix, {0, 0, 0}), {0, 0, 0});
+    EXPECT_NE(w.find("is blocked (None) at this time"), std::string::npos) << w;
+}

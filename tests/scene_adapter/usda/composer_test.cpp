@@ -187,6 +187,16 @@ def "Set" ( references = @set.usda@ ) { over "Inner" { over "Body" { double size
     EXPECT_EQ(stage->prim("/First")->instanceKey(), stage->prim("/Second")->instanceKey());
 }
 
+TEST(Composer, RelocatesAreReportedAsNotApplied) {
+    auto stage = Stage::openString(R"(#usda 1.0
+( relocates = { </A/B>: </A/C> } )
+def "A" { def "B" { } }
+)",
+                                   "reloc.usda");
+    EXPECT_TRUE(hasWarning(*stage, "reloc.usda:2:")) << allWarnings(*stage);
+    EXPECT_TRUE(hasWarning(*stage, "relocates are not applied")) << allWarnings(*stage);
+}
+
 TEST(Composer, SubLayerStrengthAndOffsets) {
     test::TempDir dir("sub");
     dir.write("weak.usda", R"(#usda 1.0

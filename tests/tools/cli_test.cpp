@@ -291,3 +291,27 @@ TEST(Cli, BsdfPlotWritesAReadablePng) {
     EXPECT_NE(bad.status, 0);
     EXPECT_NE(bad.output.find("cannot write '/nonexistent/dir/plot.png'"), std::string::npos) << bad.output;
 }
+
+TEST(Cli, EachFramesOwnWarningsAreReportedOnceWithItsTime) {
+    // Frame 10's mesh references a point its points no longer have: that warning belongs to
+    // frame 10 (it was dropped: only frame 0's warnings were printed); the stage's warnings,
+    // which every frame's session repeats, are printed once.
+    fs::path f = tempDir() / "frames.usda";
+    std::ofstream(f) << R"(#usda 1.0
+def Mesh "M" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [3, 3]
+    int[] faceVertexIndices = [0, 1, 2, 2, 1, 4]
+    point3f[] points.timeSamples = { 0: [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (2, 1, 0)],
+                                     10: [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)] }
+    float3[] extent = [(0, 0, 0), (0.1, 0.1, 0.1)]
+}
+)";
+    Result r = run("render " + f.string() + " -o " + (tempDir() / "frames.####.exr").string() +
+                   " --res 8x8 --spp 1 --frames 0:10:5");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("outside [0, 4) (time 10)"), std::string::npos) << r.output;
+    size_t extentWarnings = 0;
+    for (size_t at = 0; (at = r.output.find("extent", at)) != std::string::npos; ++at) ++extentWarnings;
+    EXPECT_EQ(extentWarnings, 1u) << r.output;
+}

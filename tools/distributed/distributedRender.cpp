@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -198,6 +199,7 @@ private:
     std::string _scene, _sceneText, _hash;
     std::vector<std::string> _outputs;
     bool _split, _quiet;
+    std::set<std::string> _reportedWarnings;  ///< printed already (later frames repeat the stage's)
     Options _opt;
     ProgressBar _bar;
     bool _checked = false;
@@ -356,9 +358,17 @@ void Job::run() {
         o.time = time;
         std::string settings = canonicalSettings(o);
         checkSameEverywhere(canonicalSettings(_base));
-        if (rank == 0 && f == 0) {
-            for (const auto& w : session->takeWarnings())
-                if (!_quiet) std::fprintf(stderr, "principled: warning: %s\n", w.c_str());
+        // Each frame's warnings, once: a later frame (its own session) repeats the stage's, and
+        // adds its own (animated topology, say), tagged with its time. A frame split across
+        // ranks reports from rank 0 only.
+        if (wholeFrames || rank == 0) {
+            for (const auto& w : session->takeWarnings()) {
+                if (!_reportedWarnings.insert(w).second || _quiet) continue;
+                if (animated)
+                    std::fprintf(stderr, "principled: warning: %s (time %g)\n", w.c_str(), time);
+                else
+                    std::fprintf(stderr, "principled: warning: %s\n", w.c_str());
+            }
         }
         render(*session, first, end, checkpointPath(time, wholeFrames), settings);
         if (wholeFrames) {

@@ -111,6 +111,18 @@ double Parser::parseNumber(const ValueType& type) {
     if (t.kind != TokenKind::Number && t.kind != TokenKind::Identifier)
         fail(type.isInteger() ? "an integer" : isBool ? "a bool" : "a number");
     double v = parseScalarNumber(t, type.isInteger(), type.isUnsigned(), isBool);
+    // The declared type's range (USD rejects an int of 2^32 rather than wrapping it).
+    double lo = 0.0, hi = 0.0;
+    const char* range = nullptr;
+    switch (type.scalar) {
+        case ScalarType::UChar: lo = 0.0, hi = 255.0, range = "an integer in [0, 255] (uchar)"; break;
+        case ScalarType::Int: lo = -2147483648.0, hi = 2147483647.0, range = "an integer in [-2^31, 2^31 - 1] (int)"; break;
+        case ScalarType::UInt: lo = 0.0, hi = 4294967295.0, range = "an integer in [0, 2^32 - 1] (uint)"; break;
+        case ScalarType::Int64: lo = -9223372036854775808.0, hi = 9223372036854775807.0, range = "an integer in [-2^63, 2^63 - 1] (int64)"; break;
+        case ScalarType::UInt64: lo = 0.0, hi = 18446744073709551615.0, range = "an integer in [0, 2^64 - 1] (uint64)"; break;
+        default: break;
+    }
+    if (range && !(v >= lo && v <= hi)) _lex.fail(t, range);
     next();
     return v;
 }

@@ -607,3 +607,19 @@ TEST(Parser, LargeArray) {
 
 }  // namespace
 }  // namespace principled::usd
+
+namespace principled::usd {
+
+TEST(Parser, IntegersOutsideTheirDeclaredTypeAreErrors) {
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"A\" { int[] c = [4, 4294967300] }\n"),
+              "t.usda:2:25: expected an integer in [-2^31, 2^31 - 1] (int), found '4294967300'");
+    EXPECT_NE(errorOf("#usda 1.0\ndef \"A\" { uchar c = 256 }\n").find("(uchar)"), std::string::npos);
+    EXPECT_NE(errorOf("#usda 1.0\ndef \"A\" { uint c = -1 }\n").find("unsigned"), std::string::npos);
+    EXPECT_NE(errorOf("#usda 1.0\ndef \"A\" { int64 c = 1e300 }\n").find("(int64)"), std::string::npos);
+    // In range: kept exactly.
+    auto layer = parseLayer("#usda 1.0\ndef \"A\" { int64 c = 4294967297\n int d = -2147483648 }\n", "t.usda", "/tmp");
+    EXPECT_EQ(layer->prim("/A")->attribute("c")->defaultValue->getInt(), 4294967297);
+    EXPECT_EQ(layer->prim("/A")->attribute("d")->defaultValue->getInt(), -2147483648LL);
+}
+
+}  // namespace principled::usd

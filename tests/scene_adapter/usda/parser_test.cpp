@@ -622,4 +622,14 @@ TEST(Parser, IntegersOutsideTheirDeclaredTypeAreErrors) {
     EXPECT_EQ(layer->prim("/A")->attribute("d")->defaultValue->getInt(), -2147483648LL);
 }
 
+TEST(Parser, APropertyGivenTwoValuesInOneSpecIsAnError) {
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"A\" {\n int[] n = [4]\n int[] n = [3]\n}\n"),
+              "t.usda:4:8: expected a property given one value ('n' already has one, declared at 3:2), found 'n'");
+    // A value, its time samples and its connection are one property's parts.
+    auto layer = parseLayer("#usda 1.0\ndef \"A\" {\n double x = 1\n double x.timeSamples = { 0: 2 }\n"
+                            " double x.connect = </B.y>\n}\n",
+                            "t.usda", "/tmp");
+    EXPECT_TRUE(layer->prim("/A")->attribute("x")->hasTimeSamples);
+}
+
 }  // namespace principled::usd

@@ -550,8 +550,11 @@ bool environmentRadiance(const LightRecord& l, const glm::vec3& origin, const gl
         if (pdf) *pdf = domeMixturePdf(l, origin, d, ng, misCompensation);
         return true;
     }
+    // Inside the sun's cone: 1 - cos(angle to its axis) = |d + direction|^2 / 2 for unit vectors,
+    // compared with 1 - cos(half angle) itself (the cosines agree to only ~1e-7 near 1).
+    const glm::vec3 off = d + l.direction;
     if (l.kind == LightRecord::Kind::Distant && l.cosHalfAngle < 1.0f &&
-        glm::dot(d, -l.direction) >= l.cosHalfAngle) {
+        0.5f * glm::dot(off, off) <= l.oneMinusCosHalfAngle) {
         *Le = l.radiance;
         if (pdf) *pdf = 1.0f / (2.0f * kPi * l.oneMinusCosHalfAngle);
         return true;

@@ -54,6 +54,13 @@ const std::set<std::string>& ignoredTypes() {
     return t;
 }
 
+// Whether the prim authors a value for the attribute (a declaration without one is as if the
+// attribute were not there: it hides no inherited primvar, UsdGeomPrimvarsAPI).
+bool hasValue(const usd::Prim& p, const std::string& name) {
+    const usd::Attribute* a = p.attribute(name);
+    return a && a->hasValue();
+}
+
 // "/Mat/Shader.outputs:rgb" -> ("/Mat/Shader", "outputs:rgb").
 std::pair<std::string, std::string> splitProperty(const std::string& path) {
     size_t slash = path.rfind('/');
@@ -344,7 +351,7 @@ Value UsdSceneDelegate::get(const Path& id, const Token& key) const {
     Value v = attributeValue(*p, "primvars:" + k);
     if (isEmpty(v)) v = attributeValue(*p, k);
     // Display colour and opacity an ancestor authors (other primvars: getIndexedPrimvar).
-    if (isEmpty(v) && (key == tokens::displayColor() || k == "displayOpacity") && !p->attribute("primvars:" + k))
+    if (isEmpty(v) && (key == tokens::displayColor() || k == "displayOpacity") && !hasValue(*p, "primvars:" + k))
         if (const InheritedPrimvar i = inheritedPrimvar(*p, "primvars:" + k); i.attribute) v = toHdValue(i.attribute->get(_time));
     return v;
 }
@@ -360,7 +367,7 @@ Value UsdSceneDelegate::getIndexedPrimvar(const Path& id, const Token& key,
         if (auto* a = getIf<std::vector<int>>(idx)) *indices = *a;
     }
     Value v = get(id, key);
-    if (isEmpty(v) && !p->attribute(name))
+    if (isEmpty(v) && !hasValue(*p, name))
         if (const InheritedPrimvar i = inheritedPrimvar(*p, name); i.attribute) {
             // Inherited from an ancestor (constant, so an index array selects its one value).
             v = toHdValue(i.attribute->get(_time));
@@ -397,7 +404,7 @@ std::vector<PrimvarDescriptor> UsdSceneDelegate::getPrimvarDescriptors(const Pat
     // Constant primvars inherited from ancestors, unless the prim authors one of that name.
     if (interp == Interpolation::Constant)
         for (const InheritedPrimvar& i : inheritablePrimvars(p->parent())) {
-            if (p->attribute(i.attribute->name())) continue;
+            if (hasValue(*p, i.attribute->name())) continue;
             PrimvarDescriptor d;
             d.name = Token(stripNamespace(i.attribute->name(), "primvars:"));
             d.interpolation = Interpolation::Constant;

@@ -799,11 +799,21 @@ void Composer::composeChildren(Prim& parent, Node* parentIndex,
         std::vector<std::string> childNames;
         composePrim(*prim, *index, used, childNames);
         if (prim->isInstance()) {
-            // Scenegraph instancing: an instance's descendants come from its arcs alone; what
-            // its own layer stacks say about them is ignored (so instances of one prototype
-            // agree, whichever of them is drawn as the prototype).
-            for (Node* n : existing) n->inert = true;
-            childNames = childNamesOf(gatherSpecs(strengthOrder(*index)));
+            // A prim tagged instanceable is an instance only when an arc of its own (not its
+            // ancestors') brings in what instances share (Pcp_PrimIndexIsInstanceable); else it
+            // is an ordinary prim.
+            const std::unordered_set<const Node*> before(existing.begin(), existing.end());
+            bool direct = false;
+            for (const Node* n : strengthOrder(*index)) direct = direct || !before.count(n);
+            if (!direct) {
+                prim->_instanceKey.clear();
+            } else {
+                // Scenegraph instancing: an instance's descendants come from its arcs alone;
+                // what its own layer stacks say about them is ignored (so instances of one
+                // prototype agree, whichever of them is drawn as the prototype).
+                for (Node* n : existing) n->inert = true;
+                childNames = childNamesOf(gatherSpecs(strengthOrder(*index)));
+            }
         }
         Prim* raw = prim.get();
         parent._children.push_back(raw);

@@ -202,6 +202,7 @@ def Xform "World" {
         def Sphere "Inherits" { }
         def Sphere "Own" { color3f[] primvars:displayColor = [(0, 0, 1)] }
         def Sphere "PerPoint" { color3f[] primvars:displayColor = [(0, 1, 0), (0, 0, 1)] (interpolation = "vertex") }
+        def Sphere "Declared" { color3f[] primvars:displayColor }
     }
 }
 )");
@@ -217,6 +218,8 @@ def Xform "World" {
     // Per-element colours are no constant colour (their first used to colour the whole prim
     // when they were invalid and ignored).
     EXPECT_FALSE(embree::constantDisplayColor(p.scene.get(), hd::Path("/World/Group/PerPoint")).has_value());
+    // Declared without a value: as if not there (it hides nothing).
+    EXPECT_EQ(embree::constantDisplayColor(p.scene.get(), hd::Path("/World/Group/Declared")), glm::vec3(1, 0, 0));
     std::vector<int> idx;
     hd::Value tint = p.scene->getIndexedPrimvar(inherits, hd::Token("tint"), &idx);
     ASSERT_NE(hd::getIf<std::vector<float>>(tint), nullptr);

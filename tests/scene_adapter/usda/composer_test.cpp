@@ -187,6 +187,25 @@ def "Set" ( references = @set.usda@ ) { over "Inner" { over "Body" { double size
     EXPECT_EQ(stage->prim("/First")->instanceKey(), stage->prim("/Second")->instanceKey());
 }
 
+TEST(Composer, AnInstanceablePrimWithoutAnArcOfItsOwnIsAnOrdinaryPrim) {
+    // Nothing instanceable is brought in (no direct arc), so it is not an instance and its
+    // children are composed as usual (they vanished when its local opinions were set aside).
+    test::TempDir dir("noarc");
+    dir.write("asset.usda", R"(#usda 1.0
+( defaultPrim = "Asset" )
+def "Asset" { def "Inner" ( instanceable = true ) { def "Leaf" { double size = 2 } } }
+)");
+    std::string root = dir.write("root.usda", R"(#usda 1.0
+def "Local" ( instanceable = true ) { def "Child" { double size = 1 } }
+def "Ref" ( references = @asset.usda@ ) { }
+)");
+    auto stage = Stage::open(root);
+    EXPECT_FALSE(stage->prim("/Local")->isInstance());
+    EXPECT_EQ(number(*stage, "/Local/Child", "size"), 1.0);
+    EXPECT_FALSE(stage->prim("/Ref/Inner")->isInstance());
+    EXPECT_EQ(number(*stage, "/Ref/Inner/Leaf", "size"), 2.0);
+}
+
 TEST(Composer, RelocatesAreReportedAsNotApplied) {
     auto stage = Stage::openString(R"(#usda 1.0
 ( relocates = { </A/B>: </A/C> } )

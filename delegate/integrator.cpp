@@ -301,14 +301,24 @@ Frame tangentFrame(const Hit& hit, const glm::vec3& n, const shading::NormalMapU
 struct Crossing {
     bool pass = false;
     float weight = 1.0f;
+    /// The camera ray's alpha (coverage) when it is shaded here: 1 in presence mode (it is
+    /// shaded with probability a); a / (1 - q) in transparent mode, so that its expectation is
+    /// a plus 1 - a of what lies behind (passing multiplies the alpha weight by `weight`).
+    float alpha = 1.0f;
 };
 Crossing crossPartlyPresent(const shading::ShadedMaterial& mat, Sampler& sampler) {
     const float a = mat.presence();
     if (mat.keepsSpecular()) {
-        const float q = (1.0f - a) / (2.0f - a);
-        return sampler.next1D() < q ? Crossing{true, (1.0f - a) / q} : Crossing{false, 1.0f / (1.0f - q)};
+        // Passing is picked in proportion to what it carries (1 - a) against an estimate of
+        // what the surface reflects (a of its diffuse, plus the specular: about 0.08 for a
+        // dielectric, up to 1 for a metal), at most 0.95: at a = 0 a sheet of glass passes
+        // 93 % of the paths with weight 1.08 (stacked cards stay cheap), not half with weight 2.
+        const float specular = 0.08f + 0.92f * std::clamp(mat.params.metallic, 0.0f, 1.0f);
+        const float q = std::min(0.95f, (1.0f - a) / (1.0f + specular));
+        if (sampler.next1D() < q) return {true, (1.0f - a) / q, 1.0f};
+        return {false, 1.0f / (1.0f - q), a / (1.0f - q)};
     }
-    if (a <= 0.0f || sampler.next1D() >= a) return {true, 1.0f};
+    if (a <= 0.0f || sampler.next1D() >= a) return {true, 1.0f, 1.0f};
     return {};
 }
 
@@ -577,6 +587,39 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
     bool prevVertex = false;  // the ray left a surface (not the camera)
     uint64_t prevLightLinks = 0;  // GeometryRecord::lightLinks of that surface
 
+    // Continues the ray beyond a surface it passes (culled, or not present): from just behind
+    // it, with what is left of its range (a camera ray's clipping range was measured from the
+    // camera: kept as it was, the near distance skipped whatever lay just behind the surface).
+    auto passOn = [&](const Hit& at) {
+        ray.origin = offsetOrigin(at, ray.direction);
+        ray.tfar = std::max(0.0f, ray.tfar - at.t);
+        ray.tnear = 0.0f;
+    };
+
+    float alphaWeight = 1.0f;  // the camera ray's coverage factor from transparent surfaces passed
+    float shadeAlpha = 1.0f;   // the coverage of the surface it is shaded at
+    // The geometric AOVs of the first surface the camera sees (a transparent-mode surface is
+    // seen whether the ray passes it or not); distances from the camera, not from a surface
+    // the ray passed.
+    auto recordFirstHit = [&](const Hit& at, const shading::ShadedMaterial& m, int materialIndex,
+                              const SurfacePoint& context) {
+        FirstHit& f = out.first;
+        f.hit = true;
+        f.t = glm::dot(at.p - cameraRay.origin, cameraRay.direction);
+        f.position = at.p;
+        f.normal = at.ns;
+        f.albedo = m.params.baseColor;
+        f.primId = at.record->primId;
+        f.instanceId = at.instance ? at.instance->instanceIndex : 0;
+        f.elementId = at.element;
+        f.materialId = materialIndex;
+        for (size_t i = 0; i < std::min<size_t>(_settings.aovPrimvars.size(), f.primvars.size()); ++i) {
+            float v[3] = {0.0f, 0.0f, 0.0f};
+            context.primvar(_settings.aovPrimvars[i], 3, v);
+            f.primvars[i] = glm::vec3(v[0], v[1], v[2]);
+        }
+    };
+
     for (int depth = 0;; ++depth) {
         Hit hit;
         ++out.rays;
@@ -661,7 +704,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         // Culled faces have their own budget (dense single-sided cards seen from behind).
         if (depth == 0 && hit.backface && culledFromBehind(rec) && culled < kMaxCulledLayers) {
             ++culled;
-            ray.origin = offsetOrigin(hit, ray.direction);
+            passOn(hit);
             --depth;
             continue;
         }
@@ -672,12 +715,17 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         const int materialIndex = hm.index;
         // Partial presence (opacity, cutouts): a stochastic choice to pass through.
         float emissionScale = 1.0f;
+        shadeAlpha = 1.0f;
         if (mat->presence() < 1.0f && passThrough < kMaxPassThrough) {
             const Crossing crossing = crossPartlyPresent(*mat, sampler);
             beta *= crossing.weight;
             if (crossing.pass) {
+                if (depth == 0) {
+                    alphaWeight *= crossing.weight;
+                    if (mat->keepsSpecular() && !out.first.hit) recordFirstHit(hit, *mat, materialIndex, context);
+                }
                 ++passThrough;
-                ray.origin = offsetOrigin(hit, ray.direction);
+                passOn(hit);
                 passedThrough = passedThrough || depth > 0;  // camera rays need no MIS origin
                 --depth;  // not a bounce
                 continue;
@@ -685,6 +733,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             // A transparent-mode surface emits as much as it is present (as light sampling,
             // texturedEmission, counts it).
             if (mat->keepsSpecular()) emissionScale = mat->presence();
+            shadeAlpha = crossing.alpha;
         }
         if (mat->emission != glm::vec3(0.0f)) {
             // Emissive geometry that NEE samples (a mesh light) is MIS-weighted like any light.
@@ -707,22 +756,8 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             credit(c);
         }
         if (depth == 0) {
-            out.alpha = 1.0f;
-            FirstHit& f = out.first;
-            f.hit = true;
-            f.t = glm::dot(hit.p - ray.origin, ray.direction);
-            f.position = hit.p;
-            f.normal = hit.ns;
-            f.albedo = mat->params.baseColor;
-            f.primId = rec.primId;
-            f.instanceId = hit.instance ? hit.instance->instanceIndex : 0;
-            f.elementId = hit.element;
-            f.materialId = materialIndex;
-            for (size_t i = 0; i < std::min<size_t>(_settings.aovPrimvars.size(), f.primvars.size()); ++i) {
-                float v[3] = {0.0f, 0.0f, 0.0f};
-                context.primvar(_settings.aovPrimvars[i], 3, v);
-                f.primvars[i] = glm::vec3(v[0], v[1], v[2]);
-            }
+            out.alpha = alphaWeight * shadeAlpha;
+            if (!out.first.hit) recordFirstHit(hit, *mat, materialIndex, context);
         }
 
         glm::vec3 wo = -ray.direction;

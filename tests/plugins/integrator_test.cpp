@@ -736,8 +736,8 @@ TEST(Integrator, CameraRaysPassEverySingleSidedBackFace) {
 }
 
 TEST(Integrator, OrthographicCamerasClipAtTheirNearPlane) {
-    auto alpha = [](double nearClip) {
-        char usda[1024];
+    auto alpha = [](double nearClip, const std::string& extra = "") {
+        char usda[4096];
         std::snprintf(usda, sizeof usda, R"(#usda 1.0
 def Camera "Cam" {
     token projection = "orthographic"
@@ -752,8 +752,8 @@ def Mesh "Wall" {
     int[] faceVertexIndices = [0, 1, 2, 3]
     point3f[] points = [(-50, -50, 0), (50, -50, 0), (50, 50, 0), (-50, 50, 0)]
 }
-)",
-                      nearClip);
+%s)",
+                      nearClip, extra.c_str());
         host::SessionOptions o;
         o.width = o.height = 4;
         o.samplesPerPixel = 1;
@@ -764,6 +764,27 @@ def Mesh "Wall" {
     };
     EXPECT_EQ(alpha(15.0), 1.0f);
     EXPECT_EQ(alpha(25.0), 0.0f);  // the wall, 20 units away, is nearer than the near plane
+    // A card the ray passes (opacity 0, presence mode) half a unit in front of the wall: the ray
+    // goes on from the card with the rest of its range, so the wall behind it is still seen
+    // (the camera's near distance, 15, measured again from the card skipped it).
+    EXPECT_EQ(alpha(15.0, R"(def Mesh "Card" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(-50, -50, 0.5), (50, -50, 0.5), (50, 50, 0.5), (-50, 50, 0.5)]
+    rel material:binding = </Gone>
+}
+def Material "Gone" {
+    token outputs:surface.connect = </Gone/S.outputs:surface>
+    def Shader "S" {
+        uniform token info:id = "UsdPreviewSurface"
+        float inputs:opacity = 0
+        token inputs:opacityMode = "presence"
+        token outputs:surface
+    }
+}
+)"),
+              1.0f);
 }
 
 TEST(Integrator, BadMeshDataIsReportedAndTheRestDrawn) {

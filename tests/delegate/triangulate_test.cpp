@@ -142,3 +142,25 @@ TEST(Triangulate, HoleIndicesThatNameNoFaceAreCounted) {
     EXPECT_EQ(out.badHoles, 2);
     EXPECT_TRUE(out.triangles.empty());
 }
+
+TEST(Triangulate, DartsAndSelfTouchingRingsStayInsideTheirFace) {
+    std::string err;
+    embree::Triangulation out;
+    hd::MeshTopology t;
+    // A dart whose reflex corner is 1: the fan's diagonal (0, 2) would lie outside.
+    std::vector<glm::vec3> dart = {{0, 0, 0}, {2, 1, 0}, {4, 0, 0}, {2, 3, 0}};
+    t.faceVertexCounts = {4};
+    t.faceVertexIndices = {0, 1, 2, 3};
+    ASSERT_TRUE(embree::triangulate(t, dart.size(), &out, &err, dart.data()));
+    EXPECT_NEAR(areas(out, dart).first, 4.0, 1e-5);
+    EXPECT_NEAR(areas(out, dart).second, 4.0, 1e-5);
+    // Two unit squares touching at (1, 1), one ring passing that point twice: every triangle
+    // inside (areas sum to 2, not 3 with one outside and one inverted).
+    std::vector<glm::vec3> bow = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}, {1, 1, 0}, {0, 1, 0}};
+    t.faceVertexCounts = {8};
+    t.faceVertexIndices = {0, 1, 2, 3, 4, 5, 6, 7};
+    ASSERT_TRUE(embree::triangulate(t, bow.size(), &out, &err, bow.data()));
+    EXPECT_NEAR(areas(out, bow).first, 2.0, 1e-5);
+    EXPECT_FALSE(covers(out, bow, {0.5f, 1.5f}));
+    EXPECT_FALSE(covers(out, bow, {1.5f, 0.5f}));
+}

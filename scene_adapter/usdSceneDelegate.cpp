@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -166,7 +167,10 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
                                        : index->insertSprim(hdType, this, id));
         if (inserted) {
             _entries[id] = e;
-            if (hdType == tokens::camera()) _cameras.push_back(id);
+            if (hdType == tokens::camera()) {
+                _cameras.push_back(id);
+                checkLens(prim);
+            }
         }
     }
     for (const usd::Prim* child : prim.children()) visit(*child, world, visible, index);
@@ -183,6 +187,26 @@ std::string UsdSceneDelegate::subsetBindings(const usd::Prim& mesh) const {
     for (const usd::Prim* child : mesh.children())
         if (child->typeName() == "GeomSubset") key += child->name() + "=" + _bindings.resolve(*child) + ";";
     return key;
+}
+
+void UsdSceneDelegate::checkLens(const usd::Prim& camera) {
+    // Lens lengths are tenths of a scene unit: on a metre stage 50 mm is 0.5. A focal length
+    // that makes a lens over a metre long was most likely written in millimetres; with depth of
+    // field on, its aperture would be that much too large.
+    const usd::Attribute* f = camera.attribute("focalLength");
+    const usd::Attribute* n = camera.attribute("fStop");
+    if (!f || !f->hasValue() || !n || !n->hasValue()) return;
+    const double focal = f->get(_time).getDouble().value_or(0.0), fStop = n->get(_time).getDouble().value_or(0.0);
+    const double mpu = _stage.metersPerUnit();
+    const double metres = focal * 0.1 * mpu;
+    if (fStop > 0.0 && metres > 1.0 && std::isfinite(metres)) {
+        char text[320];
+        std::snprintf(text, sizeof text,
+                      "focalLength %g is a %g m lens on this stage (tenths of a scene unit, metersPerUnit %g): "
+                      "depth of field follows it; %g would be %g mm",
+                      focal, metres, mpu, focal / (100.0 * mpu), focal);
+        warn(f->location().str() + ": " + camera.path(), text);
+    }
 }
 
 void UsdSceneDelegate::checkSubsets(const usd::Prim& mesh) {

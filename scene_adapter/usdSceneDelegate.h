@@ -195,6 +195,9 @@ private:
     std::string subsetBindings(const usd::Prim& mesh) const;
     void warn(const std::string& where, const std::string& message);
     void checkExtent(const usd::Prim& prim);
+    /// Warns when a camera with depth of field has a focal length over a metre long (likely
+    /// authored in millimetres on a stage that is not in centimetres).
+    void checkLens(const usd::Prim& camera);
     /// Warns about GeomSubset face indices outside the mesh (they are ignored).
     void checkSubsets(const usd::Prim& mesh);
 

@@ -144,6 +144,25 @@ def "Untyped" {
     EXPECT_EQ(notXformable, 2);
 }
 
+TEST(UsdSceneDelegate, AMetreLongLensWithDepthOfFieldIsReported) {
+    Populated mm(R"(#usda 1.0
+( metersPerUnit = 1 )
+def Camera "C" { float focalLength = 50
+    float fStop = 2.8
+    float focusDistance = 3 }
+)");
+    std::string all;
+    for (const auto& w : mm.scene->warnings()) all += w + "\n";
+    EXPECT_NE(all.find("focalLength 50 is a 5 m lens"), std::string::npos) << all;
+    Populated tenths(R"(#usda 1.0
+( metersPerUnit = 1 )
+def Camera "C" { float focalLength = 0.5
+    float fStop = 2.8
+    float focusDistance = 3 }
+)");
+    for (const auto& w : tenths.scene->warnings()) EXPECT_EQ(w.find("lens"), std::string::npos) << w;
+}
+
 TEST(UsdSceneDelegate, SubsetFacesOutsideTheMeshAreReported) {
     Populated p(R"(#usda 1.0
 def Mesh "M" {

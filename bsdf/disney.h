@@ -58,8 +58,10 @@ inline LobeSet buildDisney(const MaterialParams& p, const Options& o) {
     s.specular.delta = r < o.deltaRoughness;
     if (keepLobe(o, Lobe::Specular, s.specular.weight)) s.mask |= lobeBit(Lobe::Specular);
 
-    // Burley 2012, §5.6: clearcoat alpha = mix(0.1, 0.001, clearcoatGloss), weight 0.25 clearcoat.
-    s.clearcoat.dist.alpha = glm::mix(0.1f, 0.001f, std::clamp(p.clearcoatGloss, 0.0f, 1.0f));
+    // Burley 2012, §5.6: clearcoat alpha = mix(0.1, 0.001, clearcoatGloss), weight 0.25 clearcoat;
+    // or the alpha given directly (a roughness beyond Disney's range).
+    s.clearcoat.dist.alpha = p.clearcoatAlpha >= 0.0f ? std::clamp(p.clearcoatAlpha, 0.001f, 1.0f)
+                                                      : glm::mix(0.1f, 0.001f, std::clamp(p.clearcoatGloss, 0.0f, 1.0f));
     s.clearcoat.weight = 0.25f * std::clamp(p.clearcoat, 0.0f, 1.0f);
     if (keepLobe(o, Lobe::Clearcoat, s.clearcoat.weight)) s.mask |= lobeBit(Lobe::Clearcoat);
 

@@ -38,6 +38,9 @@ struct MaterialParams {
     float sheenTint = 0.5f;
     float clearcoat = 0.0f;
     float clearcoatGloss = 1.0f;
+    /// The clearcoat's GTR1 alpha itself, when >= 0 (UsdPreviewSurface clearcoatRoughness r:
+    /// r^2, as GGX roughness reads, up to 1); < 0: from clearcoatGloss (Disney's 0.1 to 0.001).
+    float clearcoatAlpha = -1.0f;
     float specTrans = 0.0f;  ///< Burley 2015 specular transmission weight.
     float ior = 1.5f;        ///< Used by transmission.
     bool thin = false;       ///< Thin-surface transmission (no refraction of the path).

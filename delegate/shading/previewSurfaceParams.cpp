@@ -62,8 +62,15 @@ ShadedMaterial mapPreviewSurface(const PreviewSurfaceParams& in) {
     p.specular = specularFromIor(in.ior);
     p.clearcoat = in.clearcoat;
     p.thin = in.thin;
-    // Common convention (reference/hydra.md §4.4): gloss = 1 - roughness.
-    p.clearcoatGloss = 1.0f - clamp01(in.clearcoatRoughness);
+    // clearcoatRoughness is a GGX roughness (Storm's preview surface; Blender imports it as the
+    // Principled BSDF's Clearcoat Roughness, alpha = r^2 in Cycles): the coat's alpha is r^2,
+    // over the whole range (Disney's gloss reaches only alpha 0.1; 1 - r as gloss kept a
+    // roughness-1 coat sharp). The gloss stays the nearest Disney value, for diagnostics.
+    {
+        const float r = clamp01(in.clearcoatRoughness);
+        p.clearcoatAlpha = std::max(r * r, 0.001f);
+        p.clearcoatGloss = clamp01((0.1f - r * r) / 0.099f);
+    }
     if (in.useSpecularWorkflow) {
         // Specular workflow: F0 = specularColor, F90 = 1, no metal. For a BSDF without an
         // explicit F0: strength from the brightest channel, tint from its chroma.
@@ -82,6 +89,7 @@ ShadedMaterial mapPreviewSurface(const PreviewSurfaceParams& in) {
     apply(in.anisotropic, &p.anisotropic);
     apply(in.sheen, &p.sheen);
     apply(in.sheenTint, &p.sheenTint);
+    if (in.clearcoatGloss && std::isfinite(*in.clearcoatGloss)) p.clearcoatAlpha = -1.0f;  // Disney's own input wins
     apply(in.clearcoatGloss, &p.clearcoatGloss);
     apply(in.specTrans, &p.specTrans);
     p.metallic = clamp01(p.metallic);

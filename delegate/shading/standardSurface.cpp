@@ -106,13 +106,9 @@ PreviewSurfaceParams mapStandardSurface(const StandardSurfaceParams& s) {
     p.sheenTint = 0.0f;
     // Standard Surface §Coat: coat weight -> Disney clearcoat (both IOR 1.5 GGX layers).
     p.clearcoat = s.coat;
-    // Standard Surface §Coat: a GGX coat of alpha = coat_roughness^2; Disney's clearcoat has
-    // alpha = mix(0.1, 0.001, gloss) (Burley 2012, "Physically-Based Shading at Disney", §B.2),
-    // so gloss = (0.1 - r^2) / 0.099, clamped (r > 0.316 is as rough as the clearcoat gets).
-    // mapPreviewSurface() takes gloss = 1 - clearcoatRoughness.
-    const float r2 = s.coatRoughness * s.coatRoughness;
-    const float gloss = std::clamp((0.1f - r2) / 0.099f, 0.0f, 1.0f);
-    p.clearcoatRoughness = std::isfinite(gloss) ? 1.0f - gloss : 0.0f;
+    // Standard Surface §Coat: a GGX coat of alpha = coat_roughness^2, which is how
+    // mapPreviewSurface() reads clearcoatRoughness (MaterialParams::clearcoatAlpha).
+    p.clearcoatRoughness = std::isfinite(s.coatRoughness) ? std::clamp(s.coatRoughness, 0.0f, 1.0f) : 0.0f;
     // Standard Surface §Emission: emitted radiance = emission * emission_color.
     p.emissiveColor = s.emission * s.emissionColor;
     // Standard Surface §Opacity: a colour; the principled model has one presence value (mean).

@@ -45,5 +45,21 @@ TEST(Clearcoat, ReciprocityAndChi2) {
     }
 }
 
+TEST(Clearcoat, RoughCoatsBeyondDisneysRangeSampleAndIntegrateCorrectly) {
+    // UsdPreviewSurface clearcoatRoughness up to 1 gives GTR1 alphas up to 1 (Disney's gloss
+    // stopped at 0.1): still a distribution its sampling matches, with the coat's albedo at
+    // normal incidence bounded by the Fresnel 0.04 of its 0.25 weight.
+    for (float alpha : {0.25f, 0.6f, 0.999f, 1.0f}) {
+        Clearcoat c;
+        c.dist.alpha = alpha;
+        c.weight = 0.25f;
+        auto r = test::lobeChi2(c, 45.0f, 2);
+        EXPECT_TRUE(r.passed) << alpha << " " << r.message;
+        const double albedo = test::lobeAlbedoSampled(c, test::muDirection(1.0f));
+        EXPECT_GT(albedo, 0.0);
+        EXPECT_LT(albedo, 0.25 * 0.05) << alpha;
+    }
+}
+
 }  // namespace
 }  // namespace principled::bsdf

@@ -177,7 +177,7 @@ TEST_F(MaterialProgramTest, ConstantNetworkIsEvaluatedOnce) {
     EXPECT_FLOAT_EQ(m.params.baseColor.z, 1.0f);
     EXPECT_FLOAT_EQ(m.params.metallic, 1.0f);
     EXPECT_FLOAT_EQ(m.params.roughness, 0.0f);
-    EXPECT_NEAR(m.params.clearcoatGloss, 0.7f, 1e-6f);
+    EXPECT_NEAR(m.params.clearcoatAlpha, 0.09f, 1e-6f);  // clearcoatRoughness 0.3: GGX alpha 0.3^2
     EXPECT_FLOAT_EQ(m.params.sheen, 0.7f);
     EXPECT_TRUE(notes.empty());
 }
@@ -614,8 +614,9 @@ TEST_F(MaterialProgramTest, StandardSurfaceConstantsMapOntoDisney) {
     EXPECT_FLOAT_EQ(m.params.metallic, 1.0f);
     EXPECT_FLOAT_EQ(m.params.roughness, 0.3f);
     EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);        // specular 1, IOR 1.5
-    // coat_roughness 0.1: the GGX alpha 0.01 in Disney's clearcoat range, (0.1 - 0.01) / 0.099.
-    EXPECT_NEAR(m.params.clearcoatGloss, 0.09f / 0.099f, 1e-6f);
+    // coat_roughness 0.1: the GGX alpha 0.01, as the coat's alpha.
+    EXPECT_NEAR(m.params.clearcoatAlpha, 0.01f, 1e-6f);
+    EXPECT_NEAR(m.params.clearcoatGloss, 0.09f / 0.099f, 1e-5f);
     ASSERT_EQ(notes.size(), 1u);
     EXPECT_NE(notes[0].find("inputs not used: coat_color"), std::string::npos) << notes[0];
 }

@@ -13,7 +13,9 @@ TEST(PreviewSurfaceParams, FallbacksFollowTheSpec) {
     EXPECT_FLOAT_EQ(m.params.roughness, 0.5f);
     EXPECT_FLOAT_EQ(m.params.metallic, 0.0f);
     EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);  // ior 1.5 -> F0 0.04 -> specular 0.5
-    EXPECT_NEAR(m.params.clearcoatGloss, 0.99f, 1e-6f);
+    // clearcoatRoughness 0.01: GGX alpha 1e-4, held at GTR1's 0.001 (Disney gloss 1).
+    EXPECT_FLOAT_EQ(m.params.clearcoatAlpha, 0.001f);
+    EXPECT_NEAR(m.params.clearcoatGloss, 1.0f, 1e-6f);
     EXPECT_FLOAT_EQ(m.opacity, 1.0f);
     EXPECT_FLOAT_EQ(m.opacityThreshold, 0.0f);
     EXPECT_FALSE(m.hasNormalMap);
@@ -35,7 +37,8 @@ TEST(PreviewSurfaceParams, MapsAndClampsLikeTheConstantMapping) {
     EXPECT_FLOAT_EQ(m.params.metallic, 1.0f);
     EXPECT_FLOAT_EQ(m.params.roughness, 0.0f);
     EXPECT_FLOAT_EQ(m.params.specular, 0.0f);
-    EXPECT_NEAR(m.params.clearcoatGloss, 0.7f, 1e-6f);
+    EXPECT_NEAR(m.params.clearcoatAlpha, 0.09f, 1e-6f);  // 0.3^2
+    EXPECT_NEAR(m.params.clearcoatGloss, 0.01f / 0.099f, 1e-6f);
     EXPECT_FLOAT_EQ(m.params.sheen, 0.7f);
     EXPECT_EQ(m.emission, glm::vec3(1, 0, 0));
 }

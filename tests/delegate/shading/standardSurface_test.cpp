@@ -26,7 +26,7 @@ TEST(StandardSurface, DefaultsAreVersion101AndGiveAGreyDielectric) {
     EXPECT_FLOAT_EQ(m.params.metallic, 0.0f);
     EXPECT_FLOAT_EQ(m.params.roughness, 0.2f);
     EXPECT_NEAR(m.params.specular, 0.5f, 1e-6f);        // IOR 1.5: F0 0.04 = 0.08 * 0.5
-    EXPECT_NEAR(m.params.clearcoatGloss, 0.09f / 0.099f, 1e-6f);  // coat_roughness 0.1: alpha 0.01
+    EXPECT_NEAR(m.params.clearcoatAlpha, 0.01f, 1e-6f);  // coat_roughness 0.1: alpha 0.01
     EXPECT_FLOAT_EQ(m.params.sheen, 0.0f);
     EXPECT_FLOAT_EQ(m.params.sheenTint, 0.0f);
     EXPECT_FLOAT_EQ(m.params.specularTint, 0.0f);
@@ -75,10 +75,11 @@ TEST(StandardSurface, SpecularFromIorAndWeight) {
     EXPECT_FLOAT_EQ(shade(s).params.specular, principled::bsdf::kMaxSpecular);
 }
 
-TEST(StandardSurface, RoughCoatsClampAtTheRoughestClearcoat) {
+TEST(StandardSurface, RoughCoatsKeepTheirRoughness) {
     StandardSurfaceParams s;
     s.coat = 1.0f;
-    s.coatRoughness = 0.6f;  // alpha 0.36, beyond the clearcoat's 0.1
+    s.coatRoughness = 0.6f;  // alpha 0.36, beyond Disney's gloss range (0.1), given directly
+    EXPECT_NEAR(shade(s).params.clearcoatAlpha, 0.36f, 1e-6f);
     EXPECT_NEAR(shade(s).params.clearcoatGloss, 0.0f, 1e-6f);
 }
 
@@ -95,8 +96,8 @@ TEST(StandardSurface, LayersEmissionOpacityAndThinWalls) {
     ASSERT_TRUE(s.set("thin_walled", glm::vec4(1.0f), 1));
     ShadedMaterial m = shade(s);
     EXPECT_FLOAT_EQ(m.params.clearcoat, 0.7f);
-    // GGX alpha 0.25^2 = 0.0625 = mix(0.1, 0.001, gloss) (Burley 2012, §B.2).
-    EXPECT_NEAR(m.params.clearcoatGloss, (0.1f - 0.0625f) / 0.099f, 1e-6f);
+    // GGX alpha 0.25^2 = 0.0625, the coat's alpha.
+    EXPECT_NEAR(m.params.clearcoatAlpha, 0.0625f, 1e-6f);
     EXPECT_FLOAT_EQ(m.params.sheen, 0.5f);
     EXPECT_FLOAT_EQ(m.params.specTrans, 0.9f);
     EXPECT_FLOAT_EQ(m.params.subsurface, 0.4f);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "delegate/sceneData.h"
@@ -20,7 +21,7 @@ public:
 
     bool primvar(const hd::Token& name, int components, float* out) const override {
         const PrimvarChannel* ch = _record.primvar(name);
-        if (!ch) return false;
+        if (!ch) return geometryPrimvar(name, components, out);
         int n = std::min(components, ch->components);
         for (int c = 0; c < components; ++c) out[c] = 0.0f;
         if (ch->constant || ch->perPrimitive) {
@@ -37,6 +38,35 @@ public:
     }
 
 private:
+    /// "points" and "normals" read by a primvar reader: the object-space position and the
+    /// interpolated (else geometric) normal of a triangle mesh at the point, as Hydra serves
+    /// them to materials.
+    bool geometryPrimvar(const hd::Token& name, int components, float* out) const {
+        static const hd::Token kPoints("points"), kNormals("normals");
+        if (_record.kind != GeometryRecord::Kind::Triangles || _triangle >= _record.triangles.size()) return false;
+        const bool points = name == kPoints;
+        if (!points && name != kNormals) return false;
+        const glm::uvec3& t = _record.triangles[_triangle];
+        const float w0 = 1.0f - _u - _v;
+        glm::vec3 v;
+        if (points) {
+            v = w0 * _record.points[t.x] + _u * _record.points[t.y] + _v * _record.points[t.z];
+        } else if (!_record.cornerNormals.empty()) {
+            const glm::vec3* n = &_record.cornerNormals[3 * size_t(_triangle)];
+            v = w0 * n[0] + _u * n[1] + _v * n[2];
+        } else if (!_record.vertexNormals.empty()) {
+            v = w0 * _record.vertexNormals[t.x] + _u * _record.vertexNormals[t.y] + _v * _record.vertexNormals[t.z];
+        } else {
+            v = glm::cross(_record.points[t.y] - _record.points[t.x], _record.points[t.z] - _record.points[t.x]);
+        }
+        if (!points) {
+            const float l = glm::length(v);
+            v = l > 0.0f && std::isfinite(l) ? v / l : glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+        for (int c = 0; c < components; ++c) out[c] = c < 3 ? v[c] : 0.0f;
+        return true;
+    }
+
     const GeometryRecord& _record;
     unsigned _triangle;
     float _u, _v;

@@ -840,3 +840,57 @@ def BasisCurves "C" {
     for (const auto& w : s->takeWarnings()) all += w + "\n";
     EXPECT_NE(all.find("/C: 1 of 1 widths are not positive"), std::string::npos) << all;
 }
+
+TEST(Integrator, PrimvarReadersSeeTheGeometrysPointsAndNormals) {
+    // UsdPrimvarReader_float3 of "normals" and "points" (as Hydra serves them to materials):
+    // the quad's normal (0, 0, 1) and its object-space position as colours.
+    auto albedo = [](const std::string& varname) {
+        const std::string usda = R"(#usda 1.0
+def Camera "Cam" {
+    double3 xformOp:translate = (0.5, 0.5, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def Mesh "Quad" {
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+    rel material:binding = </M>
+}
+def Material "M" {
+    token outputs:surface.connect = </M/S.outputs:surface>
+    def Shader "S" {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor.connect = </M/R.outputs:result>
+        token outputs:surface
+    }
+    def Shader "R" {
+        uniform token info:id = "UsdPrimvarReader_float3"
+        string inputs:varname = ")" + varname + R"("
+        float3 outputs:result
+    }
+}
+)";
+        host::SessionOptions o;
+        o.width = o.height = 8;
+        o.samplesPerPixel = 1;
+        o.aovs = {"albedo"};
+        auto s = host::RenderSession::openString(usda, "pv.usda", o);
+        while (!s->step()) {
+        }
+        for (const auto& a : s->aovs())
+            if (a.name == "albedo") {
+                const float* p = static_cast<const float*>(a.pixels) + (4 * 8 + 4) * a.components;
+                return glm::vec3(p[0], p[1], p[2]);
+            }
+        return glm::vec3(-1.0f);
+    };
+    const glm::vec3 n = albedo("normals");
+    EXPECT_NEAR(n.z, 1.0f, 1e-5f);
+    EXPECT_NEAR(n.x, 0.0f, 1e-5f);
+    const glm::vec3 p = albedo("points");  // the centre pixel sees the quad near (0.5, 0.5, 0)
+    EXPECT_NEAR(p.x, 0.5f, 0.2f);  // (pixel (4, 4) is half a pixel off the centre)
+    EXPECT_NEAR(p.y, 0.5f, 0.2f);
+    EXPECT_NEAR(p.z, 0.0f, 1e-5f);
+}

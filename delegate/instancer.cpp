@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "delegate/instancer.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/quaternion.hpp>
@@ -9,6 +10,7 @@
 
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
+#include "delegate/primvarUtil.h"
 #include "delegate/transformCheck.h"
 
 namespace principled::embree {
@@ -61,6 +63,39 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
         s = nullptr;
     }
     glm::mat4 instancer(delegate->getTransform(instancerId));
+    // Per-instance primvars of the instancer (UsdGeomPointInstancer: vertex, varying or
+    // uniform interpolation, one value per instance), for the prototypes' materials.
+    auto primvars = std::make_shared<std::vector<PrimvarChannel>>();
+    for (Interpolation interp : {Interpolation::Vertex, Interpolation::Varying, Interpolation::Uniform, Interpolation::Instance})
+        for (const auto& d : delegate->getPrimvarDescriptors(instancerId, interp)) {
+            std::vector<int> idx;
+            std::vector<float> flat;
+            int components = 0;
+            if (!flattenFloats(delegate->getIndexedPrimvar(instancerId, d.name, &idx), &flat, &components) ||
+                components <= 0 || components > 4)
+                continue;
+            PrimvarChannel ch;
+            ch.name = d.name;
+            ch.components = components;
+            ch.perPrimitive = true;
+            const size_t values = flat.size() / size_t(components);
+            const size_t n = idx.empty() ? values : idx.size();
+            if (n != count) {
+                warnings->push_back("primvar '" + d.name.str() + "' of the instancer has " + std::to_string(n) +
+                                    " values for " + std::to_string(count) + " instances; ignored");
+                continue;
+            }
+            ch.data.resize(count * size_t(components));
+            bool ok = true;
+            for (size_t i = 0; i < count && ok; ++i) {
+                const size_t v = idx.empty() ? i : size_t(idx[i]);
+                ok = idx.empty() || (idx[i] >= 0 && v < values);
+                if (ok) std::copy_n(&flat[v * size_t(components)], components, &ch.data[i * size_t(components)]);
+            }
+            if (ok) primvars->push_back(std::move(ch));
+        }
+    const std::shared_ptr<const std::vector<PrimvarChannel>> shared =
+        primvars->empty() ? nullptr : std::shared_ptr<const std::vector<PrimvarChannel>>(std::move(primvars));
     std::vector<InstanceRecord> out;
     out.reserve(indices.size());
     size_t outOfRange = 0, unusable = 0;
@@ -71,6 +106,7 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
         }
         InstanceRecord rec;
         rec.instanceIndex = i;
+        rec.primvars = shared;
         glm::mat4 local = x ? glm::mat4((*x)[size_t(i)]) * prototypeTransform : prototypeTransform;
         rec.objectToWorld = instanceTransform(instancer, t ? (*t)[size_t(i)] : glm::vec3(0.0f),
                                               r ? (*r)[size_t(i)] : glm::vec4(1, 0, 0, 0),

@@ -330,7 +330,7 @@ float presenceAt(const SceneSnapshot& scene, const Hit& hit) {
     const MaterialRecord& m = scene.materials[mi];
     if (!m.mayBePartlyPresent) return 1.0f;
     if (!m.program) return m.constant.presence();
-    SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v);
+    SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v, hit.instance);
     return m.program->presence(context);
 }
 
@@ -708,7 +708,7 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
             --depth;
             continue;
         }
-        SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v);
+        SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v, hit.instance);
         HitMaterial hm;
         materialAt(_scene, _constantBsdfs, hit, context, &hm);
         const shading::ShadedMaterial* mat = hm.mat;
@@ -983,7 +983,7 @@ uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sample
         Hit hit;
         ++rays;
         if (!intersect(_scene, ray, &hit)) break;
-        SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v);
+        SurfacePoint context(*hit.record, hit.triangle, hit.u, hit.v, hit.instance);
         HitMaterial hm;
         materialAt(_scene, _constantBsdfs, hit, context, &hm);
         const shading::ShadedMaterial& mat = *hm.mat;

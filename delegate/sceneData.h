@@ -123,6 +123,10 @@ struct InstanceRecord {
     glm::mat4 objectToWorld{1.0f};  ///< instancer * translate * rotate * scale * prototype
     glm::mat3 normalToWorld{1.0f};  ///< inverse transpose of objectToWorld's 3x3 (set at sync)
     int instanceIndex = -1;         ///< index into the instancer's arrays (instanceId AOV)
+    /// The instancer's per-instance primvars (one value per instance, at instanceIndex; shared
+    /// by every instance of the instancer), which the prototype's materials read where the
+    /// prototype has no varying primvar of that name (a scatter's per-point colour). May be null.
+    std::shared_ptr<const std::vector<PrimvarChannel>> primvars;
 };
 
 /// A light as the integrator samples it.

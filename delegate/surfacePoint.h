@@ -15,12 +15,18 @@ namespace principled::embree {
 
 class SurfacePoint final : public shading::ShadingContext {
 public:
-    /// Triangle (or Embree primitive) `triangle` of `record`; u, v weight its corners 1 and 2.
-    SurfacePoint(const GeometryRecord& record, unsigned triangle, float u, float v)
-        : _record(record), _triangle(triangle), _u(u), _v(v) {}
+    /// Triangle (or Embree primitive) `triangle` of `record`; u, v weight its corners 1 and 2;
+    /// `instance`: the PointInstancer placement hit (its per-instance primvars), if any.
+    SurfacePoint(const GeometryRecord& record, unsigned triangle, float u, float v,
+                 const InstanceRecord* instance = nullptr)
+        : _record(record), _triangle(triangle), _u(u), _v(v), _instance(instance) {}
 
+    /// The prototype's own varying primvar of that name, else the instance's value (one per
+    /// instance, from the instancer), else the prototype's constant one, else the geometry's
+    /// points or normals.
     bool primvar(const hd::Token& name, int components, float* out) const override {
         const PrimvarChannel* ch = _record.primvar(name);
+        if ((!ch || ch->constant) && instancePrimvar(name, components, out)) return true;
         if (!ch) return geometryPrimvar(name, components, out);
         int n = std::min(components, ch->components);
         for (int c = 0; c < components; ++c) out[c] = 0.0f;
@@ -38,6 +44,18 @@ public:
     }
 
 private:
+    bool instancePrimvar(const hd::Token& name, int components, float* out) const {
+        if (!_instance || !_instance->primvars || _instance->instanceIndex < 0) return false;
+        for (const PrimvarChannel& ch : *_instance->primvars) {
+            if (ch.name != name) continue;
+            const size_t at = size_t(_instance->instanceIndex) * size_t(ch.components);
+            if (at + size_t(ch.components) > ch.data.size()) return false;
+            for (int c = 0; c < components; ++c) out[c] = c < ch.components ? ch.data[at + size_t(c)] : 0.0f;
+            return true;
+        }
+        return false;
+    }
+
     /// "points" and "normals" read by a primvar reader: the object-space position and the
     /// interpolated (else geometric) normal of a triangle mesh at the point, as Hydra serves
     /// them to materials.
@@ -70,6 +88,7 @@ private:
     const GeometryRecord& _record;
     unsigned _triangle;
     float _u, _v;
+    const InstanceRecord* _instance = nullptr;
 };
 
 }  // namespace principled::embree

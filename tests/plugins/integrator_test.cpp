@@ -894,3 +894,73 @@ def Material "M" {
     EXPECT_NEAR(p.y, 0.5f, 0.2f);
     EXPECT_NEAR(p.z, 0.0f, 1e-5f);
 }
+
+TEST(Integrator, PointInstancerPrimvarsReachThePrototypesMaterials) {
+    // A per-instance "tint" on the instancer (vertex interpolation: one per instance) read by
+    // the prototype's material: the left instance red, the right blue (the reader's fallback
+    // grey before). Without a material, a per-instance displayColor colours each instance.
+    auto albedoAt = [](const std::string& usda, int x) {
+        host::SessionOptions o;
+        o.width = 16;
+        o.height = 8;
+        o.samplesPerPixel = 1;
+        o.aovs = {"albedo"};
+        auto s = host::RenderSession::openString(usda, "pi.usda", o);
+        while (!s->step()) {
+        }
+        for (const auto& a : s->aovs())
+            if (a.name == "albedo") {
+                const float* p = static_cast<const float*>(a.pixels) + (4 * 16 + x) * a.components;
+                return glm::vec3(p[0], p[1], p[2]);
+            }
+        return glm::vec3(-1.0f);
+    };
+    auto scene = [](const std::string& primvar, const std::string& binding, const std::string& material) {
+        return R"(#usda 1.0
+def Camera "Cam" {
+    token projection = "orthographic"
+    float horizontalAperture = 40
+    float verticalAperture = 20
+    double3 xformOp:translate = (2, 1, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def PointInstancer "PI" {
+    rel prototypes = [</PI/Protos/Q>]
+    int[] protoIndices = [0, 0]
+    point3f[] positions = [(0, 0, 0), (2, 0, 0)]
+    )" + primvar + R"(
+    def Scope "Protos" {
+        def Mesh "Q" {
+            uniform token subdivisionScheme = "none"
+            int[] faceVertexCounts = [4]
+            int[] faceVertexIndices = [0, 1, 2, 3]
+            point3f[] points = [(0, -1, 0), (2, -1, 0), (2, 3, 0), (0, 3, 0)]
+            )" + binding + R"(
+        }
+    }
+}
+)" + material;
+    };
+    const std::string mat = R"(def Material "Mat" {
+    token outputs:surface.connect = </Mat/PS.outputs:surface>
+    def Shader "PS" {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor.connect = </Mat/R.outputs:result>
+        token outputs:surface
+    }
+    def Shader "R" {
+        uniform token info:id = "UsdPrimvarReader_float3"
+        string inputs:varname = "tint"
+        float3 inputs:fallback = (0.5, 0.5, 0.5)
+        float3 outputs:result
+    }
+}
+)";
+    const std::string tint = R"(color3f[] primvars:tint = [(1, 0, 0), (0, 0, 1)] (interpolation = "vertex"))";
+    const std::string usda = scene(tint, "rel material:binding = </Mat>", mat);
+    EXPECT_EQ(albedoAt(usda, 5), glm::vec3(1, 0, 0));
+    EXPECT_EQ(albedoAt(usda, 10), glm::vec3(0, 0, 1));
+    const std::string dc = R"(color3f[] primvars:displayColor = [(1, 0, 0), (0, 0, 1)] (interpolation = "vertex"))";
+    EXPECT_EQ(albedoAt(scene(dc, "", ""), 10), glm::vec3(0, 0, 1));
+}

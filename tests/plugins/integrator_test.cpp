@@ -11,6 +11,7 @@
 #include "delegate/hd/renderIndex.h"
 #include "delegate/renderPass.h"
 #include "plugins/renderSession.h"
+#include "tests/support/sessionRender.h"
 
 using namespace principled;
 
@@ -662,45 +663,33 @@ def DistantLight "L" {
     EXPECT_LT(std::sqrt(se / (64 * 36 * 4)), 0.01);
 }
 
+namespace {
+
+// A camera at (x, y, z) looking down -Z under a white dome (the new tests' common set-up).
+std::string cameraAndDome(const std::string& position = "(0, 0, 5)", const std::string& cameraExtra = "") {
+    return "#usda 1.0\ndef Camera \"Cam\" {\n    " + cameraExtra + "\n    double3 xformOp:translate = " + position +
+           "\n    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\ndef DomeLight \"Sky\" { }\n";
+}
+
+std::string square(double half, double z = 0.0) {
+    char c[256];
+    std::snprintf(c, sizeof c, "(%g, %g, %g), (%g, %g, %g), (%g, %g, %g), (%g, %g, %g)", -half, -half, z, half, -half, z,
+                  half, half, z, -half, half, z);
+    return c;
+}
+
+}  // namespace
+
 TEST(Integrator, HugeAndFarTrianglesAreHitOrReported) {
     // A ground quad 2e10 units across (its cross product overflows float) is hit like a small
     // one; points beyond the ray tracer's range (1.8e18) are reported, not silently dropped.
-    auto render = [](double half, std::vector<std::string>* warnings) {
-        char usda[1024];
-        std::snprintf(usda, sizeof usda, R"(#usda 1.0
-def Camera "Cam" {
-    double3 xformOp:translate = (0, 0, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def DomeLight "Sky" { }
-def Mesh "Ground" {
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(%g, %g, 0), (%g, %g, 0), (%g, %g, 0), (%g, %g, 0)]
-}
-)",
-                      -half, -half, half, -half, half, half, -half, half);
-        host::SessionOptions o;
-        o.width = o.height = 4;
-        o.samplesPerPixel = 1;
-        auto s = host::RenderSession::openString(usda, "ground.usda", o);
-        while (!s->step()) {
-        }
-        *warnings = s->takeWarnings();
-        double alpha = 0;
-        for (int i = 0; i < 16; ++i) alpha += s->color()[4 * i + 3];
-        return alpha / 16.0;
-    };
-    std::vector<std::string> w;
     for (double half : {1e3, 1e10, 1e15}) {
-        EXPECT_EQ(render(half, &w), 1.0) << half;
-        EXPECT_TRUE(w.empty()) << half;
+        auto s = test::renderUsda(cameraAndDome() + test::quadMesh("Ground", square(half)), 4, 4, 1);
+        EXPECT_EQ(test::meanAlpha(*s), 1.0) << half;
+        EXPECT_EQ(test::warningsText(*s), "") << half;
     }
-    render(1e19, &w);
-    bool reported = false;
-    for (const auto& m : w) reported |= m.find("beyond 1.8e18") != std::string::npos;
-    EXPECT_TRUE(reported);
+    auto far = test::renderUsda(cameraAndDome() + test::quadMesh("Ground", square(1e19)), 4, 4, 1);
+    EXPECT_NE(test::warningsText(*far).find("beyond 1.8e18"), std::string::npos);
 }
 
 TEST(Integrator, CameraRaysPassEverySingleSidedBackFace) {
@@ -708,72 +697,34 @@ TEST(Integrator, CameraRaysPassEverySingleSidedBackFace) {
     // single-sided cards (the 65th used to be drawn: the cull shared the 64-layer budget of
     // transparent surfaces).
     auto alpha = [](const std::string& body) {
-        host::SessionOptions o;
-        o.width = o.height = 4;
-        o.samplesPerPixel = 1;
-        auto s = host::RenderSession::openString("#usda 1.0\ndef Camera \"Cam\" {}\ndef DomeLight \"Sky\" { }\n" + body,
-                                                 "cull.usda", o);
-        while (!s->step()) {
-        }
-        double a = 0;
-        for (int i = 0; i < 16; ++i) a += s->color()[4 * i + 3];
-        return a / 16.0;
+        return test::meanAlpha(*test::renderUsda("#usda 1.0\ndef Camera \"Cam\" {}\ndef DomeLight \"Sky\" { }\n" + body, 4, 4, 1));
     };
     EXPECT_EQ(alpha("def Sphere \"Shell\" { double radius = 10 }\n"), 0.0);  // seen from inside
     EXPECT_EQ(alpha("def Sphere \"Shell\" { double radius = 10\n uniform bool doubleSided = 1 }\n"), 1.0);
     std::string cards;
     for (int i = 0; i < 70; ++i) {
-        const double z = -1.0 - 0.01 * i;
-        char card[512];
         // Wound clockwise seen from the camera (+Z looking down -Z): their fronts face away.
-        std::snprintf(card, sizeof card,
-                      "def Mesh \"C%d\" { uniform token subdivisionScheme = \"none\"\n int[] faceVertexCounts = [4]\n"
-                      " int[] faceVertexIndices = [0, 3, 2, 1]\n point3f[] points = [(-5, -5, %g), (5, -5, %g), (5, 5, %g), (-5, 5, %g)] }\n",
-                      i, z, z, z, z);
-        cards += card;
+        const double z = -1.0 - 0.01 * i;
+        char corners[256];
+        std::snprintf(corners, sizeof corners, "(-5, -5, %g), (-5, 5, %g), (5, 5, %g), (5, -5, %g)", z, z, z, z);
+        cards += test::quadMesh("C" + std::to_string(i), corners);
     }
     EXPECT_EQ(alpha(cards), 0.0);
 }
 
 TEST(Integrator, OrthographicCamerasClipAtTheirNearPlane) {
     auto alpha = [](double nearClip, const std::string& extra = "") {
-        char usda[4096];
-        std::snprintf(usda, sizeof usda, R"(#usda 1.0
-def Camera "Cam" {
-    token projection = "orthographic"
-    float2 clippingRange = (%g, 1000)
-    double3 xformOp:translate = (0, 0, 20)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def DomeLight "Sky" { }
-def Mesh "Wall" {
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-50, -50, 0), (50, -50, 0), (50, 50, 0), (-50, 50, 0)]
-}
-%s)",
-                      nearClip, extra.c_str());
-        host::SessionOptions o;
-        o.width = o.height = 4;
-        o.samplesPerPixel = 1;
-        auto s = host::RenderSession::openString(usda, "ortho.usda", o);
-        while (!s->step()) {
-        }
-        return s->color()[3];
+        const std::string camera = "token projection = \"orthographic\"\n    float2 clippingRange = (" +
+                                   std::to_string(nearClip) + ", 1000)";
+        return test::renderUsda(cameraAndDome("(0, 0, 20)", camera) + test::quadMesh("Wall", square(50)) + extra, 4, 4, 1)
+            ->color()[3];
     };
     EXPECT_EQ(alpha(15.0), 1.0f);
     EXPECT_EQ(alpha(25.0), 0.0f);  // the wall, 20 units away, is nearer than the near plane
     // A card the ray passes (opacity 0, presence mode) half a unit in front of the wall: the ray
     // goes on from the card with the rest of its range, so the wall behind it is still seen
     // (the camera's near distance, 15, measured again from the card skipped it).
-    EXPECT_EQ(alpha(15.0, R"(def Mesh "Card" {
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-50, -50, 0.5), (50, -50, 0.5), (50, 50, 0.5), (-50, 50, 0.5)]
-    rel material:binding = </Gone>
-}
+    EXPECT_EQ(alpha(15.0, test::quadMesh("Card", square(50, 0.5), "rel material:binding = </Gone>") + R"(
 def Material "Gone" {
     token outputs:surface.connect = </Gone/S.outputs:surface>
     def Shader "S" {
@@ -791,42 +742,25 @@ TEST(Integrator, BadMeshDataIsReportedAndTheRestDrawn) {
     // A subdivision cage with a 2-vertex face is drawn as its polygons (its good quad covers
     // the view) instead of not at all; normals of the wrong count are reported, not silently
     // dropped.
-    auto run = [](const std::string& mesh, std::string* warnings) {
-        host::SessionOptions o;
-        o.width = o.height = 4;
-        o.samplesPerPixel = 1;
-        auto s = host::RenderSession::openString("#usda 1.0\ndef Camera \"Cam\" {\n double3 xformOp:translate = (0, 0, 5)\n"
-                                                 " uniform token[] xformOpOrder = [\"xformOp:translate\"] }\n"
-                                                 "def DomeLight \"Sky\" { }\n" + mesh,
-                                                 "bad.usda", o);
-        while (!s->step()) {
-        }
-        for (const auto& w : s->takeWarnings()) *warnings += w + "\n";
-        return s->color()[4 * 5 + 3];  // alpha of pixel (1, 1)
-    };
-    std::string w;
-    EXPECT_EQ(run(R"(def Mesh "Cage" {
+    auto cage = test::renderUsda(cameraAndDome() + R"(def Mesh "Cage" {
     int[] faceVertexCounts = [2, 4]
     int[] faceVertexIndices = [0, 1, 0, 1, 2, 3]
     point3f[] points = [(-9, -9, 0), (9, -9, 0), (9, 9, 0), (-9, 9, 0)]
-})", &w), 1.0f) << w;
+})",
+                                 4, 4, 1);
+    const std::string w = test::warningsText(*cage);
+    EXPECT_EQ(cage->color()[4 * 5 + 3], 1.0f) << w;
     EXPECT_NE(w.find("drawn as its polygons"), std::string::npos) << w;
-    w.clear();
-    run(R"(def Mesh "Poly" {
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-9, -9, 0), (9, -9, 0), (9, 9, 0), (-9, 9, 0)]
-    normal3f[] normals = [(0, 0, 1), (0, 0, 1), (0, 0, 1)] (interpolation = "vertex")
-})", &w);
-    EXPECT_NE(w.find("normals have 3 values where their interpolation needs 4"), std::string::npos) << w;
+    auto poly = test::renderUsda(
+        cameraAndDome() + test::quadMesh("Poly", square(9),
+                                         R"(normal3f[] normals = [(0, 0, 1), (0, 0, 1), (0, 0, 1)] (interpolation = "vertex"))"),
+        4, 4, 1);
+    const std::string pw = test::warningsText(*poly);
+    EXPECT_NE(pw.find("normals have 3 values where their interpolation needs 4"), std::string::npos) << pw;
 }
 
 TEST(Integrator, CurvesWithoutAPositiveWidthAreReported) {
-    host::SessionOptions o;
-    o.width = o.height = 2;
-    o.samplesPerPixel = 1;
-    auto s = host::RenderSession::openString(R"(#usda 1.0
+    auto s = test::renderUsda(R"(#usda 1.0
 def BasisCurves "C" {
     uniform token type = "linear"
     int[] curveVertexCounts = [2]
@@ -834,10 +768,8 @@ def BasisCurves "C" {
     float[] widths = [-0.3] (interpolation = "constant")
 }
 )",
-                                             "curves.usda", o);
-    s->step();
-    std::string all;
-    for (const auto& w : s->takeWarnings()) all += w + "\n";
+                              2, 2, 1);
+    const std::string all = test::warningsText(*s);
     EXPECT_NE(all.find("/C: 1 of 1 widths are not positive"), std::string::npos) << all;
 }
 
@@ -845,20 +777,9 @@ TEST(Integrator, PrimvarReadersSeeTheGeometrysPointsAndNormals) {
     // UsdPrimvarReader_float3 of "normals" and "points" (as Hydra serves them to materials):
     // the quad's normal (0, 0, 1) and its object-space position as colours.
     auto albedo = [](const std::string& varname) {
-        const std::string usda = R"(#usda 1.0
-def Camera "Cam" {
-    double3 xformOp:translate = (0.5, 0.5, 5)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def DomeLight "Sky" { }
-def Mesh "Quad" {
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
-    rel material:binding = </M>
-}
-def Material "M" {
+        const std::string usda = cameraAndDome("(0.5, 0.5, 5)") +
+                                 test::quadMesh("Quad", "(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)", "rel material:binding = </M>") +
+                                 R"(def Material "M" {
     token outputs:surface.connect = </M/S.outputs:surface>
     def Shader "S" {
         uniform token info:id = "UsdPreviewSurface"
@@ -872,19 +793,7 @@ def Material "M" {
     }
 }
 )";
-        host::SessionOptions o;
-        o.width = o.height = 8;
-        o.samplesPerPixel = 1;
-        o.aovs = {"albedo"};
-        auto s = host::RenderSession::openString(usda, "pv.usda", o);
-        while (!s->step()) {
-        }
-        for (const auto& a : s->aovs())
-            if (a.name == "albedo") {
-                const float* p = static_cast<const float*>(a.pixels) + (4 * 8 + 4) * a.components;
-                return glm::vec3(p[0], p[1], p[2]);
-            }
-        return glm::vec3(-1.0f);
+        return test::aovAt(*test::renderUsda(usda, 8, 8, 1, {"albedo"}), "albedo", 4, 4);
     };
     const glm::vec3 n = albedo("normals");
     EXPECT_NEAR(n.z, 1.0f, 1e-5f);
@@ -900,20 +809,7 @@ TEST(Integrator, PointInstancerPrimvarsReachThePrototypesMaterials) {
     // the prototype's material: the left instance red, the right blue (the reader's fallback
     // grey before). Without a material, a per-instance displayColor colours each instance.
     auto albedoAt = [](const std::string& usda, int x) {
-        host::SessionOptions o;
-        o.width = 16;
-        o.height = 8;
-        o.samplesPerPixel = 1;
-        o.aovs = {"albedo"};
-        auto s = host::RenderSession::openString(usda, "pi.usda", o);
-        while (!s->step()) {
-        }
-        for (const auto& a : s->aovs())
-            if (a.name == "albedo") {
-                const float* p = static_cast<const float*>(a.pixels) + (4 * 16 + x) * a.components;
-                return glm::vec3(p[0], p[1], p[2]);
-            }
-        return glm::vec3(-1.0f);
+        return test::aovAt(*test::renderUsda(usda, 16, 8, 1, {"albedo"}), "albedo", x, 4);
     };
     auto scene = [](const std::string& primvar, const std::string& binding, const std::string& material) {
         return R"(#usda 1.0

@@ -10,6 +10,7 @@
 
 #include "plugins/renderSession.h"
 #include "tests/support/lambertPlaneScene.h"
+#include "tests/support/sessionRender.h"
 
 using namespace principled;
 
@@ -101,8 +102,9 @@ namespace {
 struct QuadLight {
     double color = 0, diffuse = 0, specular = 0, alpha = 0;
 };
-QuadLight quadUnderDome(const std::string& surfaceInputs) {
-    const std::string usda = R"(#usda 1.0
+
+// A camera looking down at the origin from z = 10 (2 x 2 scene units of view) under a white dome.
+const std::string kDomeAndCamera = R"(#usda 1.0
 def Camera "Cam" {
     float horizontalAperture = 2
     float verticalAperture = 2
@@ -110,14 +112,11 @@ def Camera "Cam" {
     uniform token[] xformOpOrder = ["xformOp:translate"]
 }
 def DomeLight "Sky" { }
-def Mesh "Quad" {
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-5, -5, 0), (5, -5, 0), (5, 5, 0), (-5, 5, 0)]
-    rel material:binding = </Mat>
-}
-def Material "Mat" {
+)";
+QuadLight quadUnderDome(const std::string& surfaceInputs) {
+    const std::string usda = kDomeAndCamera + test::quadMesh("Quad", "(-5, -5, 0), (5, -5, 0), (5, 5, 0), (-5, 5, 0)",
+                                                             "rel material:binding = </Mat>") +
+                             R"(def Material "Mat" {
     token outputs:surface.connect = </Mat/S.outputs:surface>
     def Shader "S" {
         uniform token info:id = "UsdPreviewSurface"
@@ -128,25 +127,15 @@ def Material "Mat" {
     }
 }
 )";
-    host::SessionOptions o;
-    o.width = o.height = 4;
-    o.samplesPerPixel = 1024;
-    o.aovs = {"diffuse", "specular"};
-    auto s = host::RenderSession::openString(usda, "quad.usda", o);
-    while (!s->step()) {
-    }
+    auto s = test::renderUsda(usda, 4, 4, 1024, {"diffuse", "specular"});
     QuadLight q;
-    auto mean = [](const float* px, int components) {
-        double sum = 0;
-        for (int i = 0; i < 16; ++i) sum += px[components * i];
-        return sum / 16.0;
-    };
-    q.color = mean(s->color(), 4);
-    q.alpha = mean(s->color() + 3, 4);
-    for (const auto& a : s->aovs()) {
-        if (a.name == "diffuse") q.diffuse = mean(static_cast<const float*>(a.pixels), a.components);
-        if (a.name == "specular") q.specular = mean(static_cast<const float*>(a.pixels), a.components);
-    }
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            q.color += test::aovAt(*s, "color", x, y).x / 16.0;
+            q.diffuse += test::aovAt(*s, "diffuse", x, y).x / 16.0;
+            q.specular += test::aovAt(*s, "specular", x, y).x / 16.0;
+        }
+    q.alpha = test::meanAlpha(*s);
     return q;
 }
 
@@ -179,27 +168,12 @@ TEST(Opacity, StackedTransparentCardsStayQuietAndCoverage) {
     // small. Coverage (alpha) of clear cards is 0.
     std::string cards;
     for (int i = 0; i < 8; ++i) {
-        char card[512];
-        std::snprintf(card, sizeof card, R"(
-def Mesh "C%d" {
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(-5, -5, %d), (5, -5, %d), (5, 5, %d), (-5, 5, %d)]
-    rel material:binding = </Clear>
-})",
-                      i, -i, -i, -i, -i);
-        cards += card;
+        const std::string z = std::to_string(-i);
+        cards += test::quadMesh("C" + std::to_string(i),
+                                "(-5, -5, " + z + "), (5, -5, " + z + "), (5, 5, " + z + "), (-5, 5, " + z + ")",
+                                "rel material:binding = </Clear>");
     }
-    const std::string usda = R"(#usda 1.0
-def Camera "Cam" {
-    float horizontalAperture = 2
-    float verticalAperture = 2
-    double3 xformOp:translate = (0, 0, 10)
-    uniform token[] xformOpOrder = ["xformOp:translate"]
-}
-def DomeLight "Sky" { }
-def Material "Clear" {
+    const std::string usda = kDomeAndCamera + R"(def Material "Clear" {
     token outputs:surface.connect = </Clear/S.outputs:surface>
     def Shader "S" {
         uniform token info:id = "UsdPreviewSurface"
@@ -209,20 +183,14 @@ def Material "Clear" {
     }
 }
 )" + cards;
-    host::SessionOptions o;
-    o.width = o.height = 8;
-    o.samplesPerPixel = 16;
-    o.settings["sampler"] = "independent";
-    auto s = host::RenderSession::openString(usda, "cards.usda", o);
-    while (!s->step()) {
-    }
-    double sum = 0, sq = 0, alpha = 0;
+    auto s = test::renderUsda(usda, 8, 8, 16, {}, {{"sampler", "independent"}});
+    double sum = 0, sq = 0;
     for (int i = 0; i < 64; ++i) {
         const double r = s->color()[4 * i];
-        sum += r, sq += r * r, alpha += s->color()[4 * i + 3];
+        sum += r, sq += r * r;
     }
     const double mean = sum / 64, sd = std::sqrt(std::max(0.0, sq / 64 - mean * mean));
     EXPECT_GT(mean, 1.0);  // the dome plus the cards' reflections
     EXPECT_LT(sd, 0.25) << "mean " << mean;
-    EXPECT_NEAR(alpha / 64, 0.0, 1e-6);
+    EXPECT_NEAR(test::meanAlpha(*s), 0.0, 1e-6);
 }

@@ -15,8 +15,10 @@ void Material::sync(SceneDelegate* delegate, RenderParam* renderParam, DirtyBits
     }
     if (*bits & (SprimDirty::MaterialParams | SprimDirty::Resource | SprimDirty::Params)) {
         std::vector<std::string> notes;
-        auto program = std::make_shared<shading::MaterialProgram>(shading::MaterialProgram::compile(
-            delegate->getMaterialResource(id()), *param->textureCache(), &notes));
+        const hd::MaterialNetwork network = delegate->getMaterialResource(id());
+        notes = network.problems;
+        auto program = std::make_shared<shading::MaterialProgram>(
+            shading::MaterialProgram::compile(network, *param->textureCache(), &notes));
         _record.constant = program->constantResult();
         _record.program = program->isConstant() ? nullptr : program;
         _record.mayBePartlyPresent = program->mayBePartlyPresent();

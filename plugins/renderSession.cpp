@@ -330,6 +330,12 @@ std::vector<std::string> RenderSession::takeWarnings() {
         const std::string where = p ? p->location().str() : std::string();
         out.push_back(where.empty() ? std::move(w) : where + ": " + w);
     }
+    // One line each: a message quoted from a library (an image reader's) may hold newlines.
+    for (std::string& w : out) {
+        while (!w.empty() && (w.back() == '\n' || w.back() == '\r')) w.pop_back();
+        std::replace(w.begin(), w.end(), '\n', ' ');
+        std::replace(w.begin(), w.end(), '\r', ' ');
+    }
     const auto& stageWarnings = _stage->warnings();
     for (; _stageWarningsTaken < stageWarnings.size(); ++_stageWarningsTaken)
         out.push_back(stageWarnings[_stageWarningsTaken].where.str() + ": " +

@@ -481,7 +481,10 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
                 *interfaceColorSpace = cs->getString().value_or("");
             return {"", ""};
         }
-        return {"", ""};  // a connection cycle: treat as unconnected
+        // A connection cycle (or a chain of more than 32 interface inputs): unconnected.
+        net.problems.push_back(target + ": its connection goes round in a cycle through interface inputs; "
+                               "treated as unconnected");
+        return {"", ""};
     };
     std::vector<std::string> stack;
     std::set<std::string> seen;

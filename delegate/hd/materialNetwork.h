@@ -32,6 +32,9 @@ struct MaterialNetwork {
     std::vector<MaterialNode> nodes;  ///< upstream nodes first
     /// The node feeding outputs:surface, else outputs:mtlx:surface (empty if none).
     Path surfaceTerminal;
+    /// What the scene delegate could not follow while gathering the network (a connection
+    /// cycle, say), one line each, "where: what"; the material reports them.
+    std::vector<std::string> problems;
 
     const MaterialNode* node(const Path& p) const {
         for (const auto& n : nodes)

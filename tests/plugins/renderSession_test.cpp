@@ -438,6 +438,31 @@ def Material "Mdl" {
     EXPECT_NE(all.find("keeps its displayColor"), std::string::npos) << all;
 }
 
+TEST(RenderSession, AnInterfaceConnectionCycleIsReported) {
+    host::SessionOptions o;
+    o.width = o.height = 2;
+    o.samplesPerPixel = 1;
+    auto s = host::RenderSession::openString(R"(#usda 1.0
+def Sphere "Ball" (prepend apiSchemas = ["MaterialBindingAPI"]) { rel material:binding = </M> }
+def Material "M" {
+    color3f inputs:a.connect = </M.inputs:b>
+    color3f inputs:b.connect = </M.inputs:a>
+    token outputs:surface.connect = </M/S.outputs:surface>
+    def Shader "S" {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor.connect = </M.inputs:a>
+        token outputs:surface
+    }
+}
+)",
+                                             "cycle.usda", o);
+    s->step();
+    std::string all;
+    for (const auto& w : s->takeWarnings()) all += w + "\n";
+    EXPECT_NE(all.find("goes round in a cycle through interface inputs"), std::string::npos) << all;
+    for (const auto& w : s->takeWarnings()) EXPECT_EQ(w.find('\n'), std::string::npos);
+}
+
 TEST(RenderSession, MaterialXStandardSurfaceRendersItsBaseColor) {
     auto [red, green] = redAndGreenOfBall(R"(def Material "Look"
 {

@@ -39,7 +39,7 @@ Wrap resolveWrap(const std::string& token, bool metadata, Wrap metadataWrap,
     if (token == "repeat") return Wrap::Repeat;
     if (token == "mirror") return Wrap::Mirror;
     if (token != "useMetadata")
-        notes->push_back(node.path.str() + ": " + input + " '" + token +
+        notes->push_back((node.where.empty() ? "" : node.where + ": ") + node.path.str() + ": " + input + " '" + token +
                          "' is not black|clamp|repeat|mirror|useMetadata; using useMetadata");
     return metadata ? metadataWrap : Wrap::Black;
 }
@@ -64,7 +64,7 @@ UvTexture UvTexture::resolve(const MaterialNode& node, TextureCache& cache,
     TextureOpenResult opened = cache.open(file);
     if (opened.firstReport)
         notes->push_back(
-            node.path.str() + ": " + opened.error +
+            (node.where.empty() ? "" : node.where + ": ") + node.path.str() + ": " + opened.error +
             (opened.texture ? "; missing tiles use the fallback" : "; using the fallback"));
     t.texture = opened.texture;
     const Texture* tex = t.texture;
@@ -81,7 +81,7 @@ UvTexture UvTexture::resolve(const MaterialNode& node, TextureCache& cache,
         t.decodeSrgb = true;
     } else {
         if (cs != "auto")
-            notes->push_back(node.path.str() + ": sourceColorSpace '" + cs +
+            notes->push_back((node.where.empty() ? "" : node.where + ": ") + node.path.str() + ": sourceColorSpace '" + cs +
                              "' is not raw|sRGB|auto; using auto");
         t.decodeSrgb = autoDecodesSrgb(tex);
     }

@@ -307,11 +307,13 @@ TEST_F(MaterialProgramTest, MissingTextureUsesFallbackAndNotesThePath) {
         .texture("/M/Tex", missing, {{Token("fallback"), Value(glm::vec4(1, 0, 0, 1))}})
         .connect("/M/Tex", "st", "/M/St", "result")
         .surfaceFrom("diffuseColor", "/M/Tex", "rgb");
+    n.node("/M/Tex").where = "look.usda:7:5";
     MaterialProgram p = compile(n);
     EXPECT_TRUE(p.isConstant());  // nothing left to look up
     expectNear(p.evaluate(ctx).params.baseColor, glm::vec3(1, 0, 0));
     ASSERT_EQ(notes.size(), 1u);
     EXPECT_NE(notes[0].find(missing), std::string::npos) << notes[0];
+    EXPECT_EQ(notes[0].rfind("look.usda:7:5: /M/Tex: ", 0), 0u) << notes[0];  // where the texture node is
 }
 
 TEST_F(MaterialProgramTest, NormalMapWithScaleAndBias) {

@@ -163,6 +163,14 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
             for (const std::string& w : skinWarnings) warn(prim.location().str() + ": " + prim.path(), w);
         }
         bool ok = !isImplicitShape(type) || prepareShape(prim, &e);  // warns when not
+        if (ok && e.shape) checkShapeExtent(prim, *e.shape);
+        if (type == "Sphere") {  // drawn analytically: its bounds are the radius
+            ShapeMesh bounds;
+            const float r = std::abs(getFloat(attributeValue(prim, "radius")).value_or(1.0f));
+            bounds.extentMin = glm::vec3(-r);
+            bounds.extentMax = glm::vec3(r);
+            checkShapeExtent(prim, bounds);
+        }
         bool inserted = ok && (isRprim ? index->insertRprim(hdType, this, id)
                                        : index->insertSprim(hdType, this, id));
         if (inserted) {
@@ -256,6 +264,23 @@ void UsdSceneDelegate::checkExtent(const usd::Prim& prim) {
                 warn(where, "points lie outside the authored extent");
                 return;
             }
+}
+
+void UsdSceneDelegate::checkShapeExtent(const usd::Prim& prim, const ShapeMesh& shape) {
+    // An implicit shape's extent should hold its analytic bounds (size, radius, height, axis).
+    const usd::Attribute* ext = prim.attribute("extent");
+    if (!ext || !ext->hasValue()) return;
+    const usd::Value e = ext->get(_time);
+    const std::vector<double>* en = e.numbers();
+    if (!en || en->size() != 6 || e.components() != 3) return;
+    double tol = 1e-4;
+    for (int k = 0; k < 3; ++k) tol = std::max(tol, 1e-4 * std::abs((*en)[3 + k] - (*en)[k]));
+    for (int k = 0; k < 3; ++k)
+        if (shape.extentMin[k] < (*en)[k] - tol || shape.extentMax[k] > (*en)[3 + k] + tol) {
+            warn(ext->location().str() + ": " + prim.path(),
+                 "the " + prim.typeName() + " reaches outside its authored extent (its size, radius or height say otherwise)");
+            return;
+        }
 }
 
 const UsdSceneDelegate::Entry* UsdSceneDelegate::entry(const Path& id) const {

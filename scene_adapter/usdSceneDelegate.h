@@ -195,6 +195,8 @@ private:
     std::string subsetBindings(const usd::Prim& mesh) const;
     void warn(const std::string& where, const std::string& message);
     void checkExtent(const usd::Prim& prim);
+    /// The same for an implicit shape, against its analytic bounds.
+    void checkShapeExtent(const usd::Prim& prim, const ShapeMesh& shape);
     /// Warns when a camera with depth of field has a focal length over a metre long (likely
     /// authored in millimetres on a stage that is not in centimetres).
     void checkLens(const usd::Prim& camera);

@@ -163,6 +163,22 @@ def Camera "C" { float focalLength = 0.5
     for (const auto& w : tenths.scene->warnings()) EXPECT_EQ(w.find("lens"), std::string::npos) << w;
 }
 
+TEST(UsdSceneDelegate, ImplicitShapesOutsideTheirExtentAreReported) {
+    Populated p(R"(#usda 1.0
+def Cube "Small" { double size = 2
+    float3[] extent = [(-0.1, -0.1, -0.1), (0.1, 0.1, 0.1)] }
+def Cube "Right" { double size = 2
+    float3[] extent = [(-1, -1, -1), (1, 1, 1)] }
+def Sphere "Ball" { double radius = 3
+    float3[] extent = [(-1, -1, -1), (1, 1, 1)] }
+)");
+    std::string all;
+    for (const auto& w : p.scene->warnings()) all += w + "\n";
+    EXPECT_NE(all.find("/Small: the Cube reaches outside its authored extent"), std::string::npos) << all;
+    EXPECT_NE(all.find("/Ball: the Sphere reaches outside"), std::string::npos) << all;
+    EXPECT_EQ(all.find("/Right"), std::string::npos) << all;
+}
+
 TEST(UsdSceneDelegate, SubsetFacesOutsideTheMeshAreReported) {
     Populated p(R"(#usda 1.0
 def Mesh "M" {

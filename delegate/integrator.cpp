@@ -296,8 +296,8 @@ Frame tangentFrame(const Hit& hit, const glm::vec3& n, const shading::NormalMapU
 // 1 - presence, unweighted. Transparent mode (ShadedMaterial::keepsSpecular, the
 // UsdPreviewSurface fallback): the surface both reflects, its specular lobes at full strength
 // and the rest scaled by the opacity a (MaterialParams::diffuseScale), and lets 1 - a of the
-// light through: passing is picked with probability q = (1 - a) / (2 - a) and weighted
-// (1 - a) / q, shading with 1 / (1 - q) (q <= 1/2: neither weight exceeds 2).
+// light through: passing is picked with probability q (below) and weighted (1 - a) / q,
+// shading with 1 / (1 - q).
 struct Crossing {
     bool pass = false;
     float weight = 1.0f;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Polygon triangulation with validation: convex faces become fans, concave ones are ear-clipped
-// in their plane; bad faces are reported, not read.
+// Polygon triangulation with validation: convex faces become fans, concave ones are split
+// inside their outline; bad faces are reported, not read.
 #pragma once
 
 #include <string>
@@ -22,9 +22,10 @@ struct Triangulation {
 };
 
 /// Triangulates every face, honouring holeIndices and leftHanded orientation: a fan from its
-/// first corner when the face is convex in its plane (or `points` is null), else ear clipping
-/// in that plane (Newell normal), so a concave face (an L, a C, a letter) keeps its notches;
-/// a face ear clipping cannot finish (self-intersecting) ends as a fan of what is left.
+/// first corner when the face is convex in its plane (or `points` is null); a concave quad
+/// (a dart) split along its other diagonal; a larger concave face ear-clipped in its plane
+/// (Newell normal), so an L, a C or a letter keeps its notches; a face ear clipping cannot
+/// finish (self-intersecting) ends as a fan of what is left.
 /// Returns false (with *error) when the topology is inconsistent as a whole: the counts do not
 /// sum to the number of indices. Faces that only reference out-of-range points or have fewer
 /// than 3 vertices are skipped and counted; holeIndices that name no face are counted in

@@ -85,7 +85,8 @@ void GeometryPrim::syncInstances(SceneDelegate* delegate, EmbreeRenderParam* par
     std::vector<InstanceRecord> records;
     if (_visible && _instance.blas()) {
         std::vector<std::string> warnings;
-        records = computeInstances(delegate, _instancer, id(), _record.objectToWorld, &warnings);
+        records = computeInstances(delegate, _instancer, id(), _record.objectToWorld, &warnings,
+                                   &param->instancerPrimvars());
         for (const auto& w : warnings) param->warn(_instancer, w);
     }
     _instances.rebuild(param->device(), param->scene(), _instance.blas(), &_record,

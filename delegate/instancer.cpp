@@ -10,7 +10,6 @@
 
 #include "delegate/hd/sceneDelegate.h"
 #include "delegate/hd/tokens.h"
-#include "delegate/primvarUtil.h"
 #include "delegate/transformCheck.h"
 
 namespace principled::embree {
@@ -35,7 +34,8 @@ glm::mat4 instanceTransform(const glm::mat4& instancer, const glm::vec3& positio
 std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, const Path& instancerId,
                                              const Path& prototypeId,
                                              const glm::mat4& prototypeTransform,
-                                             std::vector<std::string>* warnings) {
+                                             std::vector<std::string>* warnings,
+                                             InstancerPrimvarCache* primvarCache) {
     std::vector<int> indices = delegate->getInstanceIndices(instancerId, prototypeId);
     // Shared by every prototype of the instancer (no per-prototype copy of the arrays).
     const std::shared_ptr<const InstancerArrays> arrays = delegate->getInstancerArrays(instancerId);
@@ -63,39 +63,9 @@ std::vector<InstanceRecord> computeInstances(const SceneDelegate* delegate, cons
         s = nullptr;
     }
     glm::mat4 instancer(delegate->getTransform(instancerId));
-    // Per-instance primvars of the instancer (UsdGeomPointInstancer: vertex, varying or
-    // uniform interpolation, one value per instance), for the prototypes' materials.
-    auto primvars = std::make_shared<std::vector<PrimvarChannel>>();
-    for (Interpolation interp : {Interpolation::Vertex, Interpolation::Varying, Interpolation::Uniform, Interpolation::Instance})
-        for (const auto& d : delegate->getPrimvarDescriptors(instancerId, interp)) {
-            std::vector<int> idx;
-            std::vector<float> flat;
-            int components = 0;
-            if (!flattenFloats(delegate->getIndexedPrimvar(instancerId, d.name, &idx), &flat, &components) ||
-                components <= 0 || components > 4)
-                continue;
-            PrimvarChannel ch;
-            ch.name = d.name;
-            ch.components = components;
-            ch.perPrimitive = true;
-            const size_t values = flat.size() / size_t(components);
-            const size_t n = idx.empty() ? values : idx.size();
-            if (n != count) {
-                warnings->push_back("primvar '" + d.name.str() + "' of the instancer has " + std::to_string(n) +
-                                    " values for " + std::to_string(count) + " instances; ignored");
-                continue;
-            }
-            ch.data.resize(count * size_t(components));
-            bool ok = true;
-            for (size_t i = 0; i < count && ok; ++i) {
-                const size_t v = idx.empty() ? i : size_t(idx[i]);
-                ok = idx.empty() || (idx[i] >= 0 && v < values);
-                if (ok) std::copy_n(&flat[v * size_t(components)], components, &ch.data[i * size_t(components)]);
-            }
-            if (ok) primvars->push_back(std::move(ch));
-        }
-    const std::shared_ptr<const std::vector<PrimvarChannel>> shared =
-        primvars->empty() ? nullptr : std::shared_ptr<const std::vector<PrimvarChannel>>(std::move(primvars));
+    // The instancer's per-instance primvars, for the prototypes' materials.
+    const InstancerPrimvars shared = primvarCache ? primvarCache->get(delegate, instancerId, arrays, count, warnings)
+                                                  : readInstancerPrimvars(delegate, instancerId, count, warnings);
     std::vector<InstanceRecord> out;
     out.reserve(indices.size());
     size_t outOfRange = 0, unusable = 0;

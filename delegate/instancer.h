@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "delegate/hd/path.h"
+#include "delegate/instancerPrimvars.h"
 #include "delegate/sceneData.h"
 
 namespace principled::hd {
@@ -27,12 +28,14 @@ glm::mat4 instanceTransform(const glm::mat4& instancer, const glm::vec3& positio
                             const glm::mat4& prototype);
 
 /// The instances drawing prototype rprim `prototypeId` of `instancerId`, from the scene
-/// delegate's instancer arrays. Arrays of the wrong length are ignored (a warning each).
+/// delegate's instancer arrays. Arrays of the wrong length are ignored (a warning each). With
+/// a cache, the instancer's per-instance primvars are read once for all its prototypes.
 std::vector<InstanceRecord> computeInstances(const hd::SceneDelegate* delegate,
                                              const hd::Path& instancerId,
                                              const hd::Path& prototypeId,
                                              const glm::mat4& prototypeTransform,
-                                             std::vector<std::string>* warnings);
+                                             std::vector<std::string>* warnings,
+                                             InstancerPrimvarCache* primvarCache = nullptr);
 
 /// Top-level Embree instances sharing one BLAS. Not thread-safe itself; distinct sets may be
 /// rebuilt in parallel (rtcAttachGeometry is thread-safe).

@@ -15,6 +15,7 @@
 
 #include "delegate/hd/path.h"
 #include "delegate/hd/prim.h"
+#include "delegate/instancerPrimvars.h"
 #include "delegate/sceneData.h"
 #include "delegate/shading/textureCache.h"
 
@@ -174,6 +175,9 @@ public:
     void requestSubdivisionRefit() { _subdivisionRefit = true; }
     bool takeSubdivisionRefit() { return _subdivisionRefit.exchange(false); }
 
+    /// PointInstancers' per-instance primvars, read once for all prototypes of an instancer.
+    InstancerPrimvarCache& instancerPrimvars() { return _instancerPrimvars; }
+
     // Counters for render stats and for tests of incremental updates.
     std::atomic<long> blasBuilds{0};
     std::atomic<long> meshesRebuilt{0};
@@ -191,6 +195,7 @@ public:
     }
 
 private:
+    InstancerPrimvarCache _instancerPrimvars;
     RTCDevice _device;
     RTCScene _scene;
     std::atomic<bool> _sceneDirty{true};

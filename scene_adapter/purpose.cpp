@@ -3,14 +3,14 @@
 
 #include <string>
 
+#include "scene_adapter/lightTypes.h"
 #include "scene_adapter/usda/stage.h"
 
 namespace principled::adapter {
 
 bool renderPurpose(const usd::Prim& prim, double time) {
     const std::string& type = prim.typeName();
-    const bool light = type.size() > 5 && type.compare(type.size() - 5, 5, "Light") == 0;
-    if (type == "Material" || type == "Camera" || light) return true;
+    if (type == "Material" || type == "Camera" || !lightTypeOf(type).empty()) return true;
     for (const usd::Prim* p = &prim; p && p->path() != "/"; p = p->parent())
         if (const usd::Attribute* a = p->attribute("purpose"); a && a->hasValue()) {
             const std::string purpose = a->get(time).getString().value_or("default");

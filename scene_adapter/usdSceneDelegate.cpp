@@ -13,6 +13,7 @@
 #include "delegate/hd/camera.h"
 #include "delegate/hd/tokens.h"
 #include "scene_adapter/implicitShapes.h"
+#include "scene_adapter/lightTypes.h"
 #include "scene_adapter/primvars.h"
 #include "scene_adapter/purpose.h"
 #include "scene_adapter/usda/stage.h"
@@ -27,18 +28,6 @@ namespace {
 
 // UsdGeomCamera stores lengths in tenths of a scene unit (GfCamera::APERTURE_UNIT).
 constexpr double kCameraUnit = 0.1;
-
-// The light sprim type of a UsdLux prim type; empty for anything else.
-Token lightTypeOf(const std::string& type) {
-    if (type == "DistantLight") return tokens::distantLight();
-    if (type == "DomeLight" || type == "DomeLight_1") return tokens::domeLight();
-    if (type == "SphereLight") return tokens::sphereLight();
-    if (type == "RectLight") return tokens::rectLight();
-    if (type == "DiskLight") return tokens::diskLight();
-    if (type == "CylinderLight") return tokens::cylinderLight();
-    if (type == "PortalLight") return tokens::portalLight();
-    return Token();
-}
 
 std::string tokenAttr(const usd::Prim& prim, const char* name, double time,
                       const std::string& fallback) {

@@ -186,6 +186,8 @@ private:
     /// Instancers that draw `path` or anything below it (as prototypes or by containing it).
     std::vector<hd::Path> instancersDrawing(const std::string& path) const;
     bool subtreeHasInstances(const std::string& path) const;
+    /// A primvar of a prim that is not an rprim changed: the rprims below inherit it.
+    void inheritedPrimvarChanged(const usd::Prim& prim, hd::RenderIndex* index);
 
     const Entry* entry(const hd::Path& id) const;
     const usd::Prim* prim(const hd::Path& id) const;

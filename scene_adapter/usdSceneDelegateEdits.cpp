@@ -15,6 +15,8 @@
 //   other shader attributes (info:id), outputs   Resource on that material
 //   light attributes          Params             camera attributes   Params
 //   PointInstancer arrays     Instancer / InstanceIndex on its prototype rprims
+//   PointInstancer primvars:*   Instancer | Primvar on its prototype rprims (per instance, inherited)
+//   primvars:* on other prims   Primvar on the rprims below (constant primvars are inherited)
 //   material:binding          MaterialId on the rprims whose resolved material changed
 //   GeomSubset changes        MaterialId on its mesh
 // Edits that reach into instanceable prims' groups re-populate the groups (see repopulate).
@@ -340,6 +342,24 @@ void UsdSceneDelegate::visibilityChanged(const usd::Prim& prim, RenderIndex* ind
     for (const std::string& inst : instancers) resyncSubtree(inst, index);
 }
 
+void UsdSceneDelegate::inheritedPrimvarChanged(const usd::Prim& prim, RenderIndex* index) {
+    // A constant primvar on an ancestor is inherited by the rprims below that do not author
+    // their own (UsdGeomPrimvarsAPI::FindInheritablePrimvars); instance groups are keyed by it.
+    if (subtreeHasInstances(prim.path())) return repopulate(index);
+    ChangeTracker& tracker = index->changeTracker();
+    std::function<void(const usd::Prim&)> walk = [&](const usd::Prim& p) {
+        for (const Path& id : idsOf(&p)) {
+            const Entry& e = _entries[id];
+            if (isRprimType(e.type)) tracker.markRprimDirty(id, RprimDirty::Primvar);
+            else if (e.type == instancerType() && !e.instanceXforms)
+                for (const auto& [protoId, proto] : _entries)
+                    if (proto.instancer == id) tracker.markRprimDirty(protoId, RprimDirty::Primvar);
+        }
+        for (const usd::Prim* child : p.children()) walk(*child);
+    };
+    walk(prim);
+}
+
 void UsdSceneDelegate::subsetsChanged(const usd::Prim& mesh, RenderIndex* index) {
     for (const Path& id : idsOf(&mesh)) {
         Entry& e = _entries[id];
@@ -499,6 +519,10 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
         return;
     }
     if (type == "PointInstancer" && attr == "prototypes") return resyncSubtree(primPath, index);
+    if (startsWith(attr, "primvars:") && type != "PointInstancer") {
+        const Entry* own = entry(Path(primPath));
+        if (!own || !isRprimType(own->type)) return inheritedPrimvarChanged(*p, index);
+    }
     for (const Path& id : idsOf(p)) {
         Entry& e = _entries[id];
         if (isRprimType(e.type)) {
@@ -521,8 +545,11 @@ void UsdSceneDelegate::attributeChanged(const std::string& primPath, const std::
             tracker.markSprimDirty(id, texture ? SprimDirty::Resource : SprimDirty::Params);
         } else if (e.type == instancerType() && !e.instanceXforms) {
             DirtyBits bits = 0;
-            if (attr == "positions" || attr == "orientations" || attr == "scales")
+            if (attr == "positions" || attr == "orientations" || attr == "scales" || attr == "velocities" ||
+                attr == "accelerations")
                 bits = RprimDirty::Instancer;
+            else if (startsWith(attr, "primvars:"))  // per instance (the records), or inherited
+                bits = RprimDirty::Instancer | RprimDirty::Primvar;
             else if (attr == "protoIndices" || attr == "ids" || attr == "invisibleIds")
                 bits = RprimDirty::InstanceIndex;
             if (bits)

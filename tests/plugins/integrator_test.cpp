@@ -11,6 +11,7 @@
 #include "delegate/hd/renderIndex.h"
 #include "delegate/renderPass.h"
 #include "plugins/renderSession.h"
+#include "scene_adapter/stageEditor.h"
 #include "tests/support/sessionRender.h"
 
 using namespace principled;
@@ -859,4 +860,55 @@ def PointInstancer "PI" {
     EXPECT_EQ(albedoAt(usda, 10), glm::vec3(0, 0, 1));
     const std::string dc = R"(color3f[] primvars:displayColor = [(1, 0, 0), (0, 0, 1)] (interpolation = "vertex"))";
     EXPECT_EQ(albedoAt(scene(dc, "", ""), 10), glm::vec3(0, 0, 1));
+}
+
+TEST(Integrator, PointInstancerPrimvarEditsReachEveryPrototype) {
+    // Two prototypes share the instancer's per-instance tint (read once for both); an edit of
+    // the tint shows on both, as in a fresh render of the edited file.
+    const std::string usda = R"(#usda 1.0
+def Camera "Cam" {
+    token projection = "orthographic"
+    float horizontalAperture = 40
+    float verticalAperture = 20
+    double3 xformOp:translate = (2, 1, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def PointInstancer "PI" {
+    rel prototypes = [</PI/Protos/A>, </PI/Protos/B>]
+    int[] protoIndices = [0, 1]
+    point3f[] positions = [(0, 0, 0), (2, 0, 0)]
+    color3f[] primvars:displayColor = [(1, 0, 0), (0, 0, 1)] (interpolation = "vertex")
+    def Scope "Protos" {
+)" + test::quadMesh("A", "(0, -1, 0), (2, -1, 0), (2, 3, 0), (0, 3, 0)") +
+                             test::quadMesh("B", "(0, -1, 0), (2, -1, 0), (2, 3, 0), (0, 3, 0)") + "}\n}\n";
+    auto s = test::renderUsda(usda, 16, 8, 1, {"albedo"});
+    EXPECT_EQ(test::aovAt(*s, "albedo", 5, 4), glm::vec3(1, 0, 0));
+    EXPECT_EQ(test::aovAt(*s, "albedo", 10, 4), glm::vec3(0, 0, 1));
+    s->editor().setAttribute("/PI", "primvars:displayColor", adapter::EditValue::of({0, 1, 0, 1, 1, 0}));
+    while (!s->step()) {
+    }
+    EXPECT_EQ(test::aovAt(*s, "albedo", 5, 4), glm::vec3(0, 1, 0));
+    EXPECT_EQ(test::aovAt(*s, "albedo", 10, 4), glm::vec3(1, 1, 0));
+}
+
+TEST(Integrator, AnAncestorsConstantPrimvarEditReachesTheMeshesBelow) {
+    const std::string usda = R"(#usda 1.0
+def Camera "Cam" {
+    token projection = "orthographic"
+    float horizontalAperture = 40
+    float verticalAperture = 20
+    double3 xformOp:translate = (2, 1, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+def Xform "Group" {
+    color3f[] primvars:displayColor = [(1, 0, 0)] (interpolation = "constant")
+)" + test::quadMesh("Q", "(0, -1, 0), (4, -1, 0), (4, 3, 0), (0, 3, 0)") + "}\n";
+    auto s = test::renderUsda(usda, 16, 8, 1, {"albedo"});
+    EXPECT_EQ(test::aovAt(*s, "albedo", 8, 4), glm::vec3(1, 0, 0));
+    s->editor().setAttribute("/Group", "primvars:displayColor", adapter::EditValue::of({0, 1, 0}));
+    while (!s->step()) {
+    }
+    EXPECT_EQ(test::aovAt(*s, "albedo", 8, 4), glm::vec3(0, 1, 0));
 }

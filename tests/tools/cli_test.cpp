@@ -315,3 +315,35 @@ def Mesh "M" {
     for (size_t at = 0; (at = r.output.find("extent", at)) != std::string::npos; ++at) ++extentWarnings;
     EXPECT_EQ(extentWarnings, 1u) << r.output;
 }
+
+TEST(Cli, FractionalFramesGetDistinctNamesThatSortInTimeOrder) {
+    // %g named 1001, 1001.001, ... all "1001" (each frame overwrote the last); and 2.5 was
+    // "2.5" beside "0003". Every frame of a sequence now has the same number of decimals.
+    fs::path f = tempDir() / "subframes.usda";
+    std::ofstream(f) << "#usda 1.0\ndef Sphere \"S\" { }\n";
+    const fs::path dir = tempDir() / "subframes";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    Result r = run("render " + f.string() + " -o " + (dir / "a.exr").string() +
+                   " --res 4x4 --spp 1 -q --frames 1001:1001.003:0.001");
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"a.1001.000.exr", "a.1001.001.exr", "a.1001.002.exr", "a.1001.003.exr"}));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    r = run("render " + f.string() + " -o " + (dir / "b.####.exr").string() + " --res 4x4 --spp 1 -q --frames 2:3:0.5");
+    ASSERT_EQ(r.status, 0) << r.output;
+    names.clear();
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"b.0002.0.exr", "b.0002.5.exr", "b.0003.0.exr"}));
+    // Steps finer than the names can tell apart, and --time beside --frames, are refused.
+    Result fine = run("render " + f.string() + " -o " + (dir / "c.exr").string() + " --res 4x4 --spp 1 -q --frames 1:1.000001:0.0000001");
+    EXPECT_NE(fine.status, 0);
+    EXPECT_NE(fine.output.find("would write the same file"), std::string::npos) << fine.output;
+    Result both = run("render " + f.string() + " -o " + (dir / "d.exr").string() + " --res 4x4 --spp 1 -q --frames 0:2 --time 1");
+    EXPECT_NE(both.status, 0);
+    EXPECT_NE(both.output.find("--time and --frames"), std::string::npos) << both.output;
+}

@@ -54,17 +54,31 @@ std::vector<double> parseFrames(const std::string& text) {
     return frames;
 }
 
-std::string frameTag(double t) {
+/// The fewest decimals (0-6) that write every frame of the sequence exactly, so that all of
+/// its names have the same form and sort in time order.
+int frameDecimals(const std::vector<double>& frames) {
+    for (int d = 0; d < 6; ++d) {
+        const double k = std::pow(10.0, d);
+        bool exact = true;
+        for (double t : frames) exact = exact && std::abs(t * k - std::round(t * k)) <= 1e-6 * std::max(1.0, std::abs(t * k));
+        if (exact) return d;
+    }
+    return 6;
+}
+
+/// 7 -> "0007", -1 -> "-0001"; with 3 decimals, 2.5 -> "0002.500".
+std::string frameTag(double t, int decimals) {
     char buf[64];
-    if (t == std::floor(t)) std::snprintf(buf, sizeof buf, "%04lld", static_cast<long long>(t));
-    else std::snprintf(buf, sizeof buf, "%g", t);
+    const double a = std::abs(t);
+    if (decimals == 0) std::snprintf(buf, sizeof buf, "%s%04lld", t < 0 ? "-" : "", static_cast<long long>(std::llround(a)));
+    else std::snprintf(buf, sizeof buf, "%s%0*.*f", t < 0 ? "-" : "", 5 + decimals, decimals, a);
     return buf;
 }
 
 /// OUT.exr -> OUT.0007.exr, or "####" in the name replaced by the frame.
-std::string framePath(const std::string& out, double t, bool animated) {
+std::string framePath(const std::string& out, double t, int decimals, bool animated) {
     if (!animated) return out;
-    std::string tag = frameTag(t);
+    std::string tag = frameTag(t, decimals);
     auto hashes = out.find("####");
     if (hashes != std::string::npos) return out.substr(0, hashes) + tag + out.substr(hashes + 4);
     fs::path p(out);
@@ -207,6 +221,7 @@ private:
     std::vector<long long> _done;  // rank 0: samples per pixel finished by each rank
     std::vector<std::string> _written;  // checkpoints this rank wrote (removed at the end)
     int _checkpointsWritten = 0;
+    int _frameDecimals = 0;  ///< of the frame numbers in file names (frameDecimals)
 };
 
 std::unique_ptr<host::RenderSession> Job::open(double time, int first, int end) {
@@ -242,7 +257,7 @@ void Job::checkSameEverywhere(const std::string& settings) {
 std::string Job::checkpointPath(double time, bool wholeFrame) const {
     fs::path dir = _opt.checkpointDir.empty() ? fs::path(_outputs.front() + ".ckpt") : fs::path(_opt.checkpointDir);
     // Whole frames of an animation are independent of the rank layout; sample ranges are not.
-    std::string name = _opt.frames.empty() ? "" : "frame" + frameTag(time) + ".";
+    std::string name = _opt.frames.empty() ? "" : "frame" + frameTag(time, _frameDecimals) + ".";
     name += wholeFrame && !_opt.frames.empty() ? "whole" : "rank" + std::to_string(_comm.rank());
     return (dir / (name + ".exr")).string();
 }
@@ -334,6 +349,13 @@ void Job::run() {
     if (_opt.checkpointEvery < 0) throw RankError("--checkpoint-every must be at least 0");
     std::vector<double> frames = parseFrames(_opt.frames);
     bool animated = !_opt.frames.empty();
+    if (animated && !std::isnan(_base.time))
+        throw RankError("--time and --frames cannot be combined: --frames gives each frame its time");
+    _frameDecimals = frameDecimals(frames);
+    for (size_t f = 1; f < frames.size(); ++f)
+        if (frameTag(frames[f], _frameDecimals) == frameTag(frames[f - 1], _frameDecimals))
+            throw RankError("--frames " + _opt.frames + ": frames " + std::to_string(frames[f - 1]) + " and " +
+                            std::to_string(frames[f]) + " would write the same file (frame numbers keep 6 decimals)");
     _sceneText = _scene.empty() ? std::string(kDefaultSceneUsda) : readFile(_scene);
     _hash = hashBytes(_sceneText);
     int spp = _base.samplesPerPixel;
@@ -374,7 +396,7 @@ void Job::run() {
         if (wholeFrames) {
             writeOutputs(*session, [&] {
                 std::vector<std::string> outs;
-                for (const auto& out : _outputs) outs.push_back(framePath(out, time, animated));
+                for (const auto& out : _outputs) outs.push_back(framePath(out, time, _frameDecimals, animated));
                 return outs;
             }(), _split);
             continue;
@@ -401,7 +423,7 @@ void Job::run() {
         }
         if (!acc.applyTo(*session)) throw RankError("cannot apply the merged accumulation");
         std::vector<std::string> outs;
-        for (const auto& out : _outputs) outs.push_back(framePath(out, time, animated));
+        for (const auto& out : _outputs) outs.push_back(framePath(out, time, _frameDecimals, animated));
         writeOutputs(*session, outs, _split);
     }
     // Everyone is done (and every output is written) before checkpoints are removed.

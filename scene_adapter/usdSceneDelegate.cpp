@@ -44,6 +44,14 @@ const std::set<std::string>& ignoredTypes() {
     return t;
 }
 
+// Schemas that describe no geometry or light a renderer draws (physics, audio, render passes,
+// a Volume's field assets: the Volume itself is reported): skipped without a warning.
+bool drawsNothing(const std::string& type) {
+    static const std::set<std::string> t{"RenderPass", "RenderDenoisePass", "SpatialAudio", "OpenVDBAsset",
+                                         "Field3DAsset", "FieldAsset", "CollisionGroup", "GeomSubsetAPI"};
+    return t.count(type) || type.rfind("Physics", 0) == 0;
+}
+
 // Whether the prim authors a value for the attribute (a declaration without one is as if the
 // attribute were not there: it hides no inherited primvar, UsdGeomPrimvarsAPI).
 bool hasValue(const usd::Prim& p, const std::string& name) {
@@ -126,9 +134,18 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     else if (type == "Camera") hdType = tokens::camera();
     else if (type == "Material") hdType = tokens::material();
     else if (Token light = lightTypeOf(type); !light.empty()) hdType = light;
-    else if (!ignoredTypes().count(type))
-        warn(prim.location().str() + ": " + prim.path(),
-             "prim type '" + type + "' is not supported yet; skipped");
+    else if (!ignoredTypes().count(type) && !drawsNothing(type)) {
+        // Once per type: a scene of thousands of NURBS patches gives one line, not thousands.
+        bool first;
+        {
+            std::lock_guard<std::mutex> lock(_warningsMutex);
+            first = _unsupportedTypes.insert(type).second;
+        }
+        if (first)
+            warn(prim.location().str() + ": " + prim.path(),
+                 "prim type '" + type + "' is not supported yet; this prim and every other '" + type +
+                     "' prim are skipped");
+    }
 
     if (!hdType.empty() && prim.isDefined()) {
         Entry e;

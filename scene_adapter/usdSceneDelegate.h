@@ -215,6 +215,7 @@ private:
     std::vector<std::string> _warnings;
     std::mutex _warningsMutex;  ///< warn() may be called from parallel rprim syncs
     std::unordered_set<std::string> _warningSet;  ///< each warning is reported once
+    std::unordered_set<std::string> _unsupportedTypes;  ///< prim types reported as not drawn
     MaterialBindingResolver _bindings;
     /// Collection path (</Light.collection:lightLink> or :shadowLink) -> its membership, for
     /// the collections that do not hold everything.

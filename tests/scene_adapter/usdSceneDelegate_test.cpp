@@ -737,3 +737,24 @@ TEST(UsdSceneDelegate, DomeLight1TurnsItsPoleToTheSceneUpAxis) {
     EXPECT_NEAR(d.y, 0.0, 1e-12);
     EXPECT_NEAR(d.z, 1.0, 1e-12);
 }
+
+TEST(UsdSceneDelegate, UnsupportedPrimTypesAreReportedOncePerType) {
+    // 2500 warnings for 2000 NURBS patches and 500 physics prims buried every other warning.
+    std::string text = "#usda 1.0\ndef Xform \"W\" {\n";
+    for (int i = 0; i < 50; ++i) text += "    def NurbsPatch \"P" + std::to_string(i) + "\" {}\n";
+    text += "    def PhysicsScene \"Physics\" {}\n    def PhysicsCollisionGroup \"G\" {}\n"
+            "    def SpatialAudio \"Sound\" {}\n    def RenderPass \"Pass\" {}\n"
+            "    def Volume \"Smoke\" { def OpenVDBAsset \"density\" {} }\n}\n";
+    Populated p(text);
+    std::string all;
+    size_t nurbs = 0;
+    for (const auto& w : p.scene->warnings()) {
+        all += w + "\n";
+        nurbs += w.find("'NurbsPatch'") != std::string::npos;
+    }
+    EXPECT_EQ(nurbs, 1u) << all;
+    EXPECT_NE(all.find("t.usda:3:5: /W/P0"), std::string::npos) << all;  // the first one's location
+    EXPECT_NE(all.find("'Volume'"), std::string::npos) << all;
+    for (const char* quiet : {"Physics", "SpatialAudio", "RenderPass", "OpenVDBAsset"})
+        EXPECT_EQ(all.find(quiet), std::string::npos) << quiet << "\n" << all;
+}

@@ -699,10 +699,11 @@ PathSample Integrator::trace(const Ray& cameraRay, Sampler& sampler) const {
         }
 
         const GeometryRecord& rec = *hit.record;
-        // UsdGeomGprim doubleSided = 0: camera rays do not see the back of a single-sided mesh
-        // or sphere (as Storm and usdrecord cull it); light transport still uses both sides.
-        // Culled faces have their own budget (dense single-sided cards seen from behind).
-        if (depth == 0 && hit.backface && culledFromBehind(rec) && culled < kMaxCulledLayers) {
+        // UsdGeomGprim doubleSided = 0 with backfaceCulling on: camera rays do not see the back
+        // of a single-sided mesh or sphere (as Storm and usdrecord cull it); light transport
+        // still uses both sides. Culled faces have their own budget (dense single-sided cards).
+        if (depth == 0 && hit.backface && _settings.backfaceCulling && culledFromBehind(rec) &&
+            culled < kMaxCulledLayers) {
             ++culled;
             passOn(hit);
             --depth;
@@ -1017,7 +1018,7 @@ uint32_t Integrator::traceCausticPath(const EmittedRay& emitted, Sampler& sample
             const Hit seen = seenAlong(hit, -cc.toCamera);
             const GeometryRecord& rec = *hit.record;
             // Camera rays do not see the back of a single-sided mesh (trace(), depth 0).
-            const bool culled = seen.backface && culledFromBehind(rec);
+            const bool culled = seen.backface && _settings.backfaceCulling && culledFromBehind(rec);
             const ShadingFrame sf = shadingFrame(seen, mat, cc.toCamera, _settings.bumpShadowing);
             const glm::vec3 wiLocal = sf.frame.toLocal(toLight);
             const bool transmit = wiLocal.z * sf.woLocal.z < 0.0f;

@@ -44,6 +44,8 @@ struct IntegratorSettings {
     float clampIndirect = 0;  ///< max channel of an indirect contribution; 0 = off
     bool domeVisible = true;  ///< camera rays that escape see the dome light
     bool lightsVisible = false;  ///< camera rays see sphere/rect/disk/cylinder light shapes
+    /// Camera rays pass the back faces of single-sided (doubleSided = 0) meshes and spheres.
+    bool backfaceCulling = false;
     /// Diffuse and sheen lobes are shadowed where the shading normal (normal map, bent normal)
     /// leans away from the surface's own normal (bsdf/bumpShadowing.h; Cycles 3.4 does too).
     bool bumpShadowing = true;

@@ -643,6 +643,9 @@ std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescript
         {"Lights visible to camera", Token("lightCameraVisibility"), Value(0),
          "camera rays see the shapes of sphere, rect, disk and cylinder lights (0, as Cycles, Karma and hdEmbree: "
          "lights light the scene and show in reflections only)"},
+        {"Back-face culling", Token("backfaceCulling"), Value(0),
+         "camera rays skip the back faces of meshes and spheres whose doubleSided is 0 (1, as Storm and usdrecord; "
+         "0, as Cycles and Karma by default: both sides are seen; UsdGeomGprim leaves culling to the renderer)"},
         {"Caustics", Token("caustics"), Value(1),
          "light tracing for caustics: light from sphere, rect, disk, cylinder, distant and untextured mesh lights through sharp "
          "specular, clearcoat or glass lobes onto the surfaces the camera sees (0: path tracing only)"},
@@ -805,6 +808,7 @@ IntegratorSettings EmbreeRenderDelegate::integratorSettings() const {
     s.clampIndirect = std::max(0.0f, floatSetting("clampIndirect", 0.0f));
     s.domeVisible = intSetting("domeLightCameraVisibility", 1) != 0;
     s.lightsVisible = intSetting("lightCameraVisibility", 0) != 0;
+    s.backfaceCulling = intSetting("backfaceCulling", 0) != 0;
     s.bumpShadowing = intSetting("bumpShadowing", 1) != 0;
     s.causticRoughness = intSetting("caustics", 1) != 0 ? std::clamp(floatSetting("causticRoughness", 0.1f), 0.0f, 1.0f) : 0.0f;
     s.causticPaths = std::clamp(floatSetting("causticPaths", 0.125f), 0.0f, 64.0f);

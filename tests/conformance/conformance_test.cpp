@@ -96,8 +96,9 @@ struct Rendered {
 
 Rendered render(const std::string& path, int w = 64, int h = 64, int spp = 2,
                 std::vector<std::string> aovs = {"primId", "position"}, double time = NAN,
-                const std::string& camera = "") {
+                const std::string& camera = "", const std::map<std::string, std::string>& settings = {}) {
     host::SessionOptions o;
+    o.settings = settings;
     o.width = w;
     o.height = h;
     o.samplesPerPixel = spp;
@@ -697,18 +698,24 @@ TEST(Readme, SingleAndDoubleSided) {
 }
 
 // Camera rays skip the back of doubleSided = 0 meshes, as Storm/usdrecord cull them.
-TEST(Readme, SingleSidedBackFacesAreNotDrawn) {
+TEST(Readme, SingleSidedBackFacesAreNotDrawnWithBackfaceCulling) {
     // singleSided.usda: Plane_0 (x < 0) winds counter-clockwise seen from +z, Plane_1 (x > 0)
     // clockwise, both doubleSided = 0. Seen from the front (+z, the default camera), Plane_1 shows
-    // its back and is not drawn (usdrecord: one plane). doubleSided_quad.usda: both drawn.
-    Rendered single = render(corpus("test_assets/schemaTests/usdGeom/meshes/singleSided/singleSided.usda"), 64, 64, 1,
-                             {"primId", "position"});
-    int left = 0, right = 0;
-    for (int y = 0; y < single.h; ++y)
-        for (int x = 0; x < single.w; ++x)
-            if (single.hit(x, y)) (single.vec3("position", x, y).x < 0.0f ? left : right)++;
-    EXPECT_GT(left, 200) << "front-facing Plane_0 missing";
-    EXPECT_EQ(right, 0) << "back-facing single-sided Plane_1 was drawn";
+    // its back: with backfaceCulling = 1 it is not drawn (usdrecord: one plane); by default both
+    // sides are drawn, as Cycles and Karma do (the schema leaves culling to the renderer).
+    const std::string file = corpus("test_assets/schemaTests/usdGeom/meshes/singleSided/singleSided.usda");
+    for (const bool cull : {true, false}) {
+        Rendered single = render(file, 64, 64, 1, {"primId", "position"}, NAN, "",
+                                 cull ? std::map<std::string, std::string>{{"backfaceCulling", "1"}}
+                                      : std::map<std::string, std::string>{});
+        int left = 0, right = 0;
+        for (int y = 0; y < single.h; ++y)
+            for (int x = 0; x < single.w; ++x)
+                if (single.hit(x, y)) (single.vec3("position", x, y).x < 0.0f ? left : right)++;
+        EXPECT_GT(left, 200) << "front-facing Plane_0 missing";
+        if (cull) EXPECT_EQ(right, 0) << "back-facing single-sided Plane_1 was drawn";
+        else EXPECT_GT(right, 200) << "back-facing Plane_1 culled without backfaceCulling";
+    }
 }
 
 TEST(Readme, DoubleSidedBothPlanesDrawn) {

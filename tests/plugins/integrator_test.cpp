@@ -694,12 +694,14 @@ TEST(Integrator, HugeAndFarTrianglesAreHitOrReported) {
 }
 
 TEST(Integrator, CameraRaysPassEverySingleSidedBackFace) {
-    // doubleSided = 0 culls the back of spheres as of meshes, and of any number of stacked
-    // single-sided cards (the 65th used to be drawn: the cull shared the 64-layer budget of
-    // transparent surfaces).
-    auto alpha = [](const std::string& body) {
-        return test::meanAlpha(*test::renderUsda("#usda 1.0\ndef Camera \"Cam\" {}\ndef DomeLight \"Sky\" { }\n" + body, 4, 4, 1));
+    // With backfaceCulling, doubleSided = 0 culls the back of spheres as of meshes, and of any
+    // number of stacked single-sided cards (the 65th used to be drawn: the cull shared the
+    // 64-layer budget of transparent surfaces). By default both sides are seen, as in Cycles.
+    auto alpha = [](const std::string& body, const char* cull = "1") {
+        return test::meanAlpha(*test::renderUsda("#usda 1.0\ndef Camera \"Cam\" {}\ndef DomeLight \"Sky\" { }\n" + body, 4, 4, 1,
+                                                 {}, {{"backfaceCulling", cull}}));
     };
+    EXPECT_EQ(alpha("def Sphere \"Shell\" { double radius = 10 }\n", "0"), 1.0);
     EXPECT_EQ(alpha("def Sphere \"Shell\" { double radius = 10 }\n"), 0.0);  // seen from inside
     EXPECT_EQ(alpha("def Sphere \"Shell\" { double radius = 10\n uniform bool doubleSided = 1 }\n"), 1.0);
     std::string cards;
@@ -711,6 +713,7 @@ TEST(Integrator, CameraRaysPassEverySingleSidedBackFace) {
         cards += test::quadMesh("C" + std::to_string(i), corners);
     }
     EXPECT_EQ(alpha(cards), 0.0);
+    EXPECT_EQ(alpha(cards, "0"), 1.0);
 }
 
 TEST(Integrator, OrthographicCamerasClipAtTheirNearPlane) {

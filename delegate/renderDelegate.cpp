@@ -325,7 +325,12 @@ void EmbreeRenderDelegate::buildMeshLights() {
         GeometryRecord* r = g->record();
         r->emissiveLight = -1;
         r->emissiveLightCount = 0;
-        if (r->kind != GeometryRecord::Kind::Triangles) continue;
+        if (r->kind != GeometryRecord::Kind::Triangles) {
+            // Emissive spheres, points and curves light the scene through the paths that hit
+            // them (they are not sampled as lights), so the scene is not dark: no default dome.
+            if (materialMayEmit(r->materialIndex)) _anyEmitter = true;
+            continue;
+        }
         const std::vector<unsigned>* ids = g->instanceGeomIds();
         if (!ids && g->instanceId() == RTC_INVALID_GEOMETRY_ID) continue;
         std::vector<int> materials;  // the emitting materials this prim uses, sorted

@@ -13,6 +13,7 @@
 
 #include "delegate/colorTemperature.h"
 #include "plugins/renderSession.h"
+#include "tests/support/sessionRender.h"
 #include "tests/support/lambertPlaneScene.h"
 
 using namespace principled;
@@ -1022,4 +1023,29 @@ def SphereLight "Squashed" { float inputs:radius = 0.5
     EXPECT_NE(all.find("bad.usda:2:"), std::string::npos) << "the delegate's warnings say where: " << all;
     EXPECT_NE(all.find("radius is negative"), std::string::npos) << all;
     EXPECT_NE(all.find("/Squashed: non-uniform scale"), std::string::npos) << all;
+}
+
+TEST(Lights, AnEmissiveSphereIsLightEnoughForNoDefaultDome) {
+    // A scene lit only by an emissive Sphere prim got the white default dome (only triangle
+    // emitters counted): its background was 1 where Cycles' is black.
+    const std::string usda = R"(#usda 1.0
+def Camera "Cam" { double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"] }
+def Sphere "Bulb" (prepend apiSchemas = ["MaterialBindingAPI"]) {
+    double radius = 0.5
+    rel material:binding = </Glow>
+}
+def Material "Glow" {
+    token outputs:surface.connect = </Glow/S.outputs:surface>
+    def Shader "S" {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:emissiveColor = (4, 4, 4)
+        token outputs:surface
+    }
+}
+)";
+    auto s = test::renderUsda(usda, 16, 16, 1);
+    EXPECT_EQ(s->stats()["defaultLight"], 0.0);
+    EXPECT_EQ(test::aovAt(*s, "color", 0, 0), glm::vec3(0.0f));  // the corner sees the background
+    EXPECT_GT(test::aovAt(*s, "color", 8, 8).x, 3.5f);           // the bulb itself
 }

@@ -130,6 +130,9 @@ void RenderSession::setup() {
     _index = std::make_unique<RenderIndex>(_delegate);
     adapter::AdapterOptions ao;
     ao.time = _options.time;
+    ao.includedPurposes = stageSettings.includedPurposes;
+    ao.materialBindingPurposes = stageSettings.materialBindingPurposes;
+    ao.disableDepthOfField = stageSettings.disableDepthOfField;
     _sceneDelegate = std::make_unique<adapter::UsdSceneDelegate>(*_stage, ao);
     _sceneDelegate->populate(_index.get());
     _editor = std::make_unique<adapter::StageEditor>(*_stage, *_sceneDelegate, *_index);

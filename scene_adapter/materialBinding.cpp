@@ -46,15 +46,16 @@ bool dictionaryLess(std::string_view a, std::string_view b) {
 
 // The collection-binding relationships of one purpose on a prim, in dictionary order:
 // "material:binding:collection:NAME" (all-purpose, NAME without ':') or
-// "material:binding:collection:full:NAME".
-std::vector<const usd::Relationship*> collectionBindings(const usd::Prim& prim, bool full) {
+// "material:binding:collection:PURPOSE:NAME".
+std::vector<const usd::Relationship*> collectionBindings(const usd::Prim& prim, const std::string& purpose) {
     std::vector<const usd::Relationship*> out;
     for (const usd::Relationship* r : prim.relationships()) {
         std::string_view n = r->name();
         if (n.substr(0, kCollectionPrefix.size()) != kCollectionPrefix) continue;
         n.remove_prefix(kCollectionPrefix.size());
-        if (full) {
-            if (n.substr(0, 5) != "full:" || n.size() == 5) continue;
+        if (!purpose.empty()) {
+            if (n.size() <= purpose.size() + 1 || n.substr(0, purpose.size()) != purpose || n[purpose.size()] != ':')
+                continue;
         } else if (n.empty() || n.find(':') != std::string_view::npos) {
             continue;
         }
@@ -118,11 +119,11 @@ std::string MaterialBindingResolver::inheritedKey(const usd::Prim& prim) const {
     // (it wins over anything inside). Equal keys resolve every descendant alike. Collection
     // bindings make membership depend on the exact path: the key is then the path itself.
     std::string key;
-    for (const bool full : {true, false}) {
-        const char* directName = full ? "material:binding:full" : "material:binding";
+    for (const std::string& purpose : _purposes) {
+        const std::string directName = purpose.empty() ? "material:binding" : "material:binding:" + purpose;
         std::string nearest, strongest;
         for (const usd::Prim* p = &prim; p && p->path() != "/"; p = p->parent()) {
-            if (!collectionBindings(*p, full).empty()) {
+            if (!collectionBindings(*p, purpose).empty()) {
                 _sawCollections.store(true, std::memory_order_relaxed);
                 return "path:" + prim.path();
             }
@@ -139,8 +140,8 @@ std::string MaterialBindingResolver::inheritedKey(const usd::Prim& prim) const {
 }
 
 std::string MaterialBindingResolver::resolve(const usd::Prim& subject) const {
-    for (const bool full : {true, false}) {
-        const char* directName = full ? "material:binding:full" : "material:binding";
+    for (const std::string& purpose : _purposes) {
+        const std::string directName = purpose.empty() ? "material:binding" : "material:binding:" + purpose;
         std::string bound;  // the Material bound so far
         bool boundDirectHere = false;  // the binding taken so far is the current prim's direct one
         for (const usd::Prim* p = &subject; p && p->path() != "/"; p = p->parent()) {
@@ -153,7 +154,7 @@ std::string MaterialBindingResolver::resolve(const usd::Prim& subject) const {
                     }
                 }
             }
-            for (const usd::Relationship* r : collectionBindings(*p, full)) {
+            for (const usd::Relationship* r : collectionBindings(*p, purpose)) {
                 _sawCollections.store(true, std::memory_order_relaxed);
                 const int c = collectionTargetIndex(*r);
                 if (c < 0) {

@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "scene_adapter/collectionMembership.h"
 
@@ -23,10 +24,15 @@ namespace principled::adapter {
 class MaterialBindingResolver {
 public:
     using WarnFn = CollectionMembership::WarnFn;
-    MaterialBindingResolver(const usd::Stage& stage, WarnFn warn) : _stage(stage), _warn(std::move(warn)) {}
+    /// `purposes`: the binding purposes in order of preference ("" is the all-purpose binding);
+    /// UsdRenderSettings materialBindingPurposes, whose fallback is ["full", ""].
+    MaterialBindingResolver(const usd::Stage& stage, WarnFn warn,
+                            std::vector<std::string> purposes = {"full", ""})
+        : _stage(stage), _warn(std::move(warn)), _purposes(std::move(purposes)) {}
 
     /// The bound Material's path, or "" when nothing binds one. Rules (UsdShadeMaterialBindingAPI
-    /// material resolution): for the purpose "full", then for all-purpose bindings, walk from the
+    /// material resolution): for each purpose in order (by default "full", then all-purpose
+    /// bindings), walk from the
     /// prim up to the root; at each prim its direct binding is taken when nothing nearer bound one
     /// or when it is strongerThanDescendants (bindMaterialAs), then the first of its collection
     /// bindings (material:binding:collection:NAME, in name order) whose collection holds the prim
@@ -58,6 +64,7 @@ private:
 
     const usd::Stage& _stage;
     WarnFn _warn;
+    std::vector<std::string> _purposes;
     mutable std::mutex _mutex;
     mutable std::map<std::string, std::shared_ptr<const CollectionMembership>> _collections;
     mutable std::atomic<bool> _sawCollections{false};

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "scene_adapter/usda/prim.h"
@@ -81,6 +82,16 @@ void framing(const usd::Prim& p, hd::Framing* out, std::vector<std::string>* war
     }
 }
 
+// A token[] attribute's values when authored as one.
+std::optional<std::vector<std::string>> tokens(const usd::Prim& p, const char* name, std::vector<std::string>* warnings) {
+    const usd::Attribute* a = authored(p, name);
+    if (!a) return std::nullopt;
+    const usd::Value v = a->get();
+    if (const std::vector<std::string>* t = v.strings()) return *t;
+    warnings->push_back(p.path() + ": " + name + " is not a token[]; ignored");
+    return std::nullopt;
+}
+
 }  // namespace
 
 StageRenderSettings readRenderSettings(const usd::Stage& stage) {
@@ -111,11 +122,28 @@ StageRenderSettings readRenderSettings(const usd::Stage& stage) {
     out.width = 2048, out.height = 1080;
     resolution(*settings, &out.width, &out.height, &out.warnings);
     framing(*settings, &out.framing, &out.warnings);
+    if (auto t = tokens(*settings, "includedPurposes", &out.warnings)) out.includedPurposes = *t;
+    if (auto t = tokens(*settings, "materialBindingPurposes", &out.warnings)) {
+        out.materialBindingPurposes.clear();  // the schema allows "full", "preview" and ""
+        for (const std::string& purpose : *t) {
+            if (purpose == "full" || purpose == "preview" || purpose.empty()) out.materialBindingPurposes.push_back(purpose);
+            else out.warnings.push_back(settings->path() + ": materialBindingPurposes '" + purpose +
+                                        "' is not full, preview or \"\"; ignored");
+        }
+    }
+    if (const usd::Attribute* a = authored(*settings, "disableDepthOfField"))
+        out.disableDepthOfField = a->get().getBool().value_or(false);
+    if (const usd::Relationship* r = settings->relationship("products"); r && r->targets().size() > 1)
+        out.warnings.push_back(settings->path() + ": " + std::to_string(r->targets().size()) +
+                               " products; only the first, <" + r->targets().front() + ">, is rendered");
     const std::string productPath = target(*settings, "products");
     if (!productPath.empty()) {
         const usd::Prim* product = stage.prim(productPath);
         if (product && product->typeName() == "RenderProduct" && product->isActive() && product->isDefined()) {
             if (std::string c = target(*product, "camera"); !c.empty()) out.camera = c;
+            if (const usd::Relationship* vars = product->relationship("orderedVars"); vars && !vars->targets().empty())
+                out.warnings.push_back(product->path() + ": orderedVars (RenderVars) are not written; ask for AOVs with "
+                                                         "--aov (principled render --aov all lists them)");
             resolution(*product, &out.width, &out.height, &out.warnings);
             framing(*product, &out.framing, &out.warnings);
         } else {

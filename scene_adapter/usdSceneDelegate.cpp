@@ -75,7 +75,8 @@ std::string stripNamespace(const std::string& name, const std::string& ns) {
 
 UsdSceneDelegate::UsdSceneDelegate(const usd::Stage& stage, const AdapterOptions& options)
     : _stage(stage), _options(options),
-      _bindings(stage, [this](const std::string& where, const std::string& message) { warn(where, message); }) {
+      _bindings(stage, [this](const std::string& where, const std::string& message) { warn(where, message); },
+                options.materialBindingPurposes) {
     _time = std::isnan(options.time) ? stage.defaultTime() : options.time;
 }
 
@@ -103,7 +104,7 @@ void UsdSceneDelegate::visit(const usd::Prim& prim, const glm::dmat4& parentWorl
     if (!prim.isActive() || prim.isAbstract() || !prim.isDefined()) return;
     // Render purpose only; a descendant that authors its own purpose keeps it (UsdGeomImageable
     // ComputePurposeInfo), so the subtree of a guide is still walked.
-    const bool drawn = renderPurpose(prim, _time);
+    const bool drawn = renderPurpose(prim, _time, _options.includedPurposes);
 
     std::string warning;
     LocalTransform local = computeLocalTransform(prim, _time, &warning);
@@ -647,6 +648,8 @@ Value UsdSceneDelegate::getCameraParamValue(const Path& id, const Token& param) 
     }
     const usd::Prim* p = prim(id);
     if (!p) return {};
+    // UsdRenderSettings disableDepthOfField: "as if the F-stop were infinite"; 0 means the same.
+    if (k == "fStop" && _options.disableDepthOfField) return Value(0.0f);
     Value v = attributeValue(*p, k);
     if (isLength)
         if (auto f = getFloat(v)) return Value(static_cast<float>(*f * kCameraUnit));

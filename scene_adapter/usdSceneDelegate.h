@@ -34,6 +34,12 @@ struct AdapterOptions {
     /// Subdivision level for every mesh; -1 leaves it to the render delegate (adaptive). A mesh
     /// overrides it with the attribute `int principled:refineLevel`.
     int refineLevel = -1;
+    /// UsdRenderSettings includedPurposes: the purposes drawn (guide and proxy are not, by default).
+    std::vector<std::string> includedPurposes{"default", "render"};
+    /// UsdRenderSettings materialBindingPurposes: binding purposes in order of preference.
+    std::vector<std::string> materialBindingPurposes{"full", ""};
+    /// UsdRenderSettings disableDepthOfField: every camera is a pinhole.
+    bool disableDepthOfField = false;
 };
 
 class UsdSceneDelegate : public hd::SceneDelegate {

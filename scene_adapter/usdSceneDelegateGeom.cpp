@@ -314,7 +314,7 @@ void UsdSceneDelegate::visitPrototype(const usd::Prim& prim, const Path& id, con
     }
     bool shape = isImplicitShape(type);
     if ((type == "Mesh" || type == "Sphere" || type == "Points" || type == "BasisCurves" || shape) &&
-        prim.isDefined() && renderPurpose(prim, _time)) {
+        prim.isDefined() && renderPurpose(prim, _time, _options.includedPurposes)) {
         Entry e;
         e.prim = &prim;
         e.type = type == "Sphere"        ? tokens::sphere()

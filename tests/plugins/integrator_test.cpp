@@ -915,3 +915,80 @@ def Xform "Group" {
     }
     EXPECT_EQ(test::aovAt(*s, "albedo", 8, 4), glm::vec3(0, 1, 0));
 }
+
+TEST(Integrator, RenderSettingsPurposesAreHonoured) {
+    // UsdRenderSettings includedPurposes, materialBindingPurposes and disableDepthOfField were
+    // read by no one: the proxy was not drawn, the preview binding not used, the blur kept.
+    auto scene = [](const std::string& settings) {
+        return R"(#usda 1.0
+def RenderSettings "Settings" {
+    )" + settings + R"(
+}
+def Camera "Cam" {
+    token projection = "orthographic"
+    float horizontalAperture = 40
+    float verticalAperture = 20
+    double3 xformOp:translate = (2, 1, 5)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky" { }
+)" + test::quadMesh("Left", "(0, -1, 0), (2, -1, 0), (2, 3, 0), (0, 3, 0)",
+                    "uniform token purpose = \"render\"\n    rel material:binding = </Blue>\n    rel material:binding:preview = </Red>") +
+               test::quadMesh("Right", "(2, -1, 0), (4, -1, 0), (4, 3, 0), (2, 3, 0)", "uniform token purpose = \"proxy\"") +
+               R"(
+def Material "Blue" {
+    token outputs:surface.connect = </Blue/S.outputs:surface>
+    def Shader "S" { uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (0, 0, 1)
+        token outputs:surface }
+}
+def Material "Red" {
+    token outputs:surface.connect = </Red/S.outputs:surface>
+    def Shader "S" { uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor = (1, 0, 0)
+        token outputs:surface }
+}
+)";
+    };
+    auto plain = test::renderUsda(scene(""), 16, 8, 1, {"albedo"});
+    EXPECT_EQ(test::aovAt(*plain, "albedo", 5, 4), glm::vec3(0, 0, 1));  // full/all-purpose binding
+    EXPECT_EQ(test::aovAt(*plain, "albedo", 10, 4), glm::vec3(0.0f));     // proxy not drawn
+    auto set = test::renderUsda(scene(R"(uniform token[] includedPurposes = ["default", "proxy"]
+    uniform token[] materialBindingPurposes = ["preview", ""])"),
+                                16, 8, 1, {"albedo"});
+    EXPECT_EQ(test::aovAt(*set, "albedo", 5, 4), glm::vec3(0.0f));  // render purpose left out
+    EXPECT_NE(test::aovAt(*set, "albedo", 10, 4), glm::vec3(0.0f));  // the proxy drawn
+    auto preview = test::renderUsda(scene(R"(uniform token[] materialBindingPurposes = ["preview", ""])"), 16, 8, 1, {"albedo"});
+    EXPECT_EQ(test::aovAt(*preview, "albedo", 5, 4), glm::vec3(1, 0, 0));
+}
+
+TEST(Integrator, RenderSettingsCanDisableDepthOfField) {
+    // A tiny quad far out of focus at f/0.5 spreads over many pixels; with disableDepthOfField
+    // its coverage is the pinhole image's.
+    auto coverage = [](const std::string& settings) {
+        const std::string usda = "#usda 1.0\n" + settings + R"(
+def Camera "Cam" {
+    float focalLength = 50
+    float fStop = 0.5
+    float focusDistance = 1000
+    double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)" + test::quadMesh("Q", "(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)");
+        return test::meanAlpha(*test::renderUsda(usda, 32, 32, 64));
+    };
+    const double pinhole = coverage("def RenderSettings \"S\" { uniform bool disableDepthOfField = 1 }\n");
+    const double blurred = coverage("");
+    EXPECT_GT(pinhole, 0.0);
+    EXPECT_NE(pinhole, blurred);
+    // Every covered pixel of the pinhole image is fully covered or is an edge pixel: the sharp
+    // image's coverage matches the quad's area on the image, not a blur disk's.
+    const double area = test::meanAlpha(*test::renderUsda(R"(#usda 1.0
+def Camera "Cam" {
+    float focalLength = 50
+    double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)" + test::quadMesh("Q", "(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)"), 32, 32, 64));
+    EXPECT_NEAR(pinhole, area, 1e-6);
+}

@@ -92,7 +92,7 @@ public:
     IntegratorSettings integratorSettings() const;
     int samplesPerPixel() const;
     float noiseThreshold() const { return std::max(0.0f, floatSetting("noiseThreshold", 0.0f)); }
-    int minSamples() const { return intSetting("minSamples", 16); }
+    int minSamples() const { return intSetting("minSamples", 0); }
     int seed() const;
     void addPassStats(long rays, long samples, long invalidSamples, double seconds);
     /// Caustic light tracing as the last pass found it: casters, caustic lights, and the light

@@ -34,6 +34,14 @@ namespace {
 constexpr int kTileSize = 16;
 constexpr int kMaxSamplesPerPass = 16;
 
+// The samples a pixel takes before adaptive sampling may stop it: the minSamples setting, or
+// with 0 (the default) more the lower the threshold, as Cycles' automatic rule does
+// (16 / threshold^0.3: 32 at 0.1, 40 at 0.05, 64 at 0.01).
+int adaptiveMinSamples(int setting, float threshold) {
+    if (setting > 0) return std::max(2, setting);
+    return std::max(2, int(std::ceil(16.0 / std::pow(double(threshold), 0.3))));
+}
+
 // A camera ray through image position (px, py) in pixels, top-left origin. With a lens
 // (lensRadius > 0, perspective only) the ray starts at lens point lens * lensRadius on the
 // z = 0 plane and passes through the pinhole ray's point on the focus plane z = -focusDistance.
@@ -503,17 +511,32 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
         _delegate->setCausticStats(long(_caustics->casterCount()), long(_caustics->lightCount()), causticPathsThisPass);
     _samples += batch;
     ++_passes;
-    // Adaptive sampling: a pixel stops once the relative standard error of its mean luminance
-    // is below the threshold (after a minimum number of samples).
+    // Adaptive sampling: a pixel stops once the relative standard error of the mean luminance
+    // over its 3x3 neighbourhood is below the threshold (after a minimum number of samples).
+    // The neighbourhood matters: a pixel's own estimate decides little of it. Judged on its own
+    // samples alone, a pixel that had not yet drawn its rare bright paths had a low variance and
+    // stopped early, low: the Cornell box at 0.05 came out 1.2 % dark.
     float threshold = _delegate->noiseThreshold();
-    int minSamples = std::max(2, _delegate->minSamples());
     if (threshold > 0.0f) {
+        const int minSamples = adaptiveMinSamples(_delegate->minSamples(), threshold);
+        std::vector<float> mean(pixels), variance(pixels);
+        for (size_t p = 0; p < pixels; ++p) {
+            mean[p] = _pixelSamples[p] > 0 ? float(_lumSum[p] / _pixelSamples[p]) : 0.0f;
+            variance[p] = float(meanVariance(p));
+        }
         size_t active = 0;
         for (size_t p = 0; p < pixels; ++p) {
             if (!_pixelDone[p] && _pixelSamples[p] >= minSamples) {
-                double mean = _lumSum[p] / _pixelSamples[p];
+                const int x = int(p % size_t(state.width)), y = int(p / size_t(state.width));
+                double m = 0.0, v = 0.0;
+                int k = 0;
+                for (int yy = std::max(0, y - 1); yy <= std::min(state.height - 1, y + 1); ++yy)
+                    for (int xx = std::max(0, x - 1); xx <= std::min(state.width - 1, x + 1); ++xx) {
+                        const size_t q = size_t(yy) * size_t(state.width) + size_t(xx);
+                        m += mean[q], v += variance[q], ++k;
+                    }
                 // 1e-3: an absolute floor so black pixels converge instead of dividing by ~0.
-                double rel = std::sqrt(meanVariance(p)) / std::max(mean, 1e-3);
+                double rel = std::sqrt(v / k) / std::max(m / k, 1e-3);
                 if (rel < threshold) {
                     // Its estimate stops changing, and so does its variance (the light-traced
                     // share's frame sums go on growing without it).

@@ -550,7 +550,10 @@ MaterialNetwork UsdSceneDelegate::getMaterialResource(const Path& materialId) co
         for (const usd::Attribute* a : sh->attributes()) {
             if (a->name().rfind("inputs:", 0) != 0) continue;
             Token input(stripNamespace(a->name(), "inputs:"));
-            if (a->hasValue()) node.parameters[input] = toHdValue(a->get(_time));
+            // A value blocked at this time (a None time sample) is as if unauthored: the
+            // shader's fallback applies, with no complaint about the value.
+            if (a->hasValue())
+                if (const usd::Value v = a->get(_time); !v.isNone()) node.parameters[input] = toHdValue(v);
             if (const usd::Value* cs = a->metadata("colorSpace"))  // MaterialX image colour space
                 if (auto name = cs->getString())
                     node.parameters[Token("colorSpace:" + input.str())] = Value(Token(*name));

@@ -992,3 +992,32 @@ def Camera "Cam" {
 )" + test::quadMesh("Q", "(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)"), 32, 32, 64));
     EXPECT_NEAR(pinhole, area, 1e-6);
 }
+
+TEST(Integrator, AShaderInputBlockedAtTheRenderTimeTakesItsFallbackQuietly) {
+    // A None time sample is legal authoring (SdfValueBlock): the input resolves to the schema
+    // fallback. It was reported as "a non-numeric value".
+    const std::string usda = R"(#usda 1.0
+def Camera "Cam" { double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"] }
+def DomeLight "Sky" {}
+)" + test::quadMesh("Q", "(-5, -5, 0), (5, -5, 0), (5, 5, 0), (-5, 5, 0)", "rel material:binding = </M>") + R"(
+def Material "M" {
+    token outputs:surface.connect = </M/S.outputs:surface>
+    def Shader "S" {
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor.timeSamples = { 0: (1, 0, 0), 5: None, 10: (0, 0, 1) }
+        token outputs:surface
+    }
+}
+)";
+    host::SessionOptions o;
+    o.width = o.height = 4;
+    o.samplesPerPixel = 1;
+    o.aovs = {"albedo"};
+    o.time = 5.0;
+    auto s = host::RenderSession::openString(usda, "blocked.usda", o);
+    while (!s->step()) {
+    }
+    EXPECT_EQ(test::aovAt(*s, "albedo", 2, 2), glm::vec3(0.18f));
+    EXPECT_EQ(test::warningsText(*s), "");
+}

@@ -153,8 +153,14 @@ void Composer::addToStack(LayerStack& stack, const Layer* layer, LayerOffset off
                  Diagnostic::Severity::Error);
             continue;
         }
+        LayerOffset subOffset = sub.offset;
+        if (!subOffset.valid()) {  // PcpErrorInvalidSublayerOffset
+            warn(sub.location, "invalid sublayer offset (" + subOffset.str() + ") for @" + sub.assetPath +
+                                   "@: using no offset instead");
+            subOffset = LayerOffset{};
+        }
         addToStack(stack, subLayer,
-                   offset.compose(withTimeScale(sub.offset, timeCodesPerSecond(*layer), timeCodesPerSecond(*subLayer))),
+                   offset.compose(withTimeScale(subOffset, timeCodesPerSecond(*layer), timeCodesPerSecond(*subLayer))),
                    chain);
     }
     chain.pop_back();
@@ -375,7 +381,13 @@ void Composer::addReferenceArc(Node& node, const Reference& ref, Arc arc) {
         }
     // Between layers of different time codes per second the arc's scale takes their ratio (the
     // authoring layer's offset already carries its own ratio to the stack's root).
-    const LayerOffset arcOffset = withTimeScale(ref.offset, timeCodesPerSecond(*authoringLayer),
+    LayerOffset authored = ref.offset;
+    if (!authored.valid()) {  // PcpErrorInvalidReferenceOffset
+        warn(ref.location, "invalid " + std::string(what) + " offset (" +
+                               authored.str() + "): using no offset instead");
+        authored = LayerOffset{};
+    }
+    const LayerOffset arcOffset = withTimeScale(authored, timeCodesPerSecond(*authoringLayer),
                                                 timeCodesPerSecond(*stack->layers.front()));
     LayerOffset offset = node.offset.compose(authoring).compose(arcOffset);
     std::vector<Node*> todo{child.get()};
@@ -671,6 +683,10 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
         for (const auto& [key, value] : s.spec->metadata) composeField(prim._metadata, key, value);
     if (const Value* r = prim.metadata("relocates"))
         warn(r->location(), "relocates are not applied (prims stay where their specs put them)");
+    for (const char* key : {"clips", "clipSets"})
+        if (const Value* c = prim.metadata(key))
+            warn(c->location(), std::string(key) + " (value clips) are not applied: " + prim.path() +
+                                    " and its descendants keep the values their layers author, not the clips' animation");
     if (const Value* active = prim.metadata("active"))
         if (auto b = active->getBool()) prim._active = *b;
     if (prim._parent && !prim._parent->isActive()) prim._active = false;

@@ -3,6 +3,8 @@
 // the file:line:col it was authored at. Specs are uncomposed opinions; see composer.h.
 #pragma once
 
+#include <cmath>
+
 #include <map>
 #include <memory>
 #include <optional>
@@ -22,6 +24,9 @@ struct LayerOffset {
     double offset = 0.0;
     double scale = 1.0;
     double apply(double t) const { return t * scale + offset; }
+    /// SdfLayerOffset::IsValid and its inverse's: finite, and a scale that is not 0.
+    bool valid() const { return std::isfinite(offset) && std::isfinite(scale) && scale != 0.0; }
+    std::string str() const { return "offset = " + std::to_string(offset) + "; scale = " + std::to_string(scale); }
     /// `inner` nested inside this offset.
     LayerOffset compose(const LayerOffset& inner) const {
         return {inner.offset * scale + offset, inner.scale * scale};

@@ -216,6 +216,42 @@ def "A" { def "B" { } }
     EXPECT_TRUE(hasWarning(*stage, "relocates are not applied")) << allWarnings(*stage);
 }
 
+TEST(Composer, ValueClipsAreReportedAsNotApplied) {
+    auto stage = Stage::openString(R"(#usda 1.0
+def Xform "Crowd" (
+    clips = { dictionary default = { asset[] assetPaths = [@./clip.usda@]
+                                      string primPath = "/Crowd" double2[] active = [(0, 0)] } }
+)
+{
+}
+)",
+                                   "clips.usda");
+    EXPECT_TRUE(hasWarning(*stage, "clips.usda:3:")) << allWarnings(*stage);
+    EXPECT_TRUE(hasWarning(*stage, "value clips) are not applied: /Crowd")) << allWarnings(*stage);
+}
+
+TEST(Composer, InvalidLayerOffsetsAreReplacedByNoOffset) {
+    // scale = 0 sent every sample to one time (the animation collapsed) and nan put NaN keys in
+    // the sample map; Pcp reports such offsets and uses no offset instead.
+    test::TempDir dir("badoffset");
+    dir.write("anim.usda", R"(#usda 1.0
+def "P" { double c.timeSamples = { 0: 0, 10: 10 } }
+)");
+    for (const char* offset : {"scale = 0", "offset = nan", "offset = 5; scale = inf"}) {
+        std::string root = dir.write("root.usda", std::string("#usda 1.0\n( subLayers = [ @anim.usda@ (") + offset + ") ] )\n"
+                                                  "def \"R\" ( references = @anim.usda@</P> (" + offset + ") ) { }\n");
+        auto stage = Stage::open(root);
+        EXPECT_TRUE(hasWarning(*stage, "invalid sublayer offset")) << offset << "\n" << allWarnings(*stage);
+        EXPECT_TRUE(hasWarning(*stage, "invalid reference offset")) << offset << "\n" << allWarnings(*stage);
+        for (const char* prim : {"/P", "/R"}) {
+            const auto& samples = stage->prim(prim)->attribute("c")->timeSamples();
+            ASSERT_EQ(samples.size(), 2u) << offset << " " << prim;
+            EXPECT_EQ(samples.begin()->first, 0.0);
+            EXPECT_EQ(samples.rbegin()->first, 10.0);
+        }
+    }
+}
+
 TEST(Composer, SubLayerStrengthAndOffsets) {
     test::TempDir dir("sub");
     dir.write("weak.usda", R"(#usda 1.0

@@ -260,3 +260,35 @@ TEST(Checkpoint, ForeignCheckpointIsRefused) {
     EXPECT_TRUE(fs::exists(d / "out.exr.ckpt" / "rank0.exr")) << "a refused checkpoint is left alone";
     EXPECT_FALSE(fs::exists(d / "out.exr"));
 }
+
+TEST(Checkpoint, ChangedSublayerOrTextureIsRefusedNamingTheFile) {
+    // The composed stage is the scene: a checkpoint is refused when any layer it read changed
+    // (the root layer was the only one hashed) or a file its attributes name (a texture).
+    fs::path d = dir() / "layers";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    ASSERT_EQ(shell(binary() + " render -o " + (d / "sky.png").string() + " --res 8x4 --spp 1 -q").status, 0);
+    std::ofstream(d / "top.usda") << "#usda 1.0\n(\n    subLayers = [@sub.usda@]\n)\n";
+    auto writeSub = [&](const char* color) {
+        std::ofstream(d / "sub.usda") << "#usda 1.0\ndef Sphere \"S\" { color3f[] primvars:displayColor = [" << color
+                                      << "] }\ndef DomeLight \"Sky\" { asset inputs:texture:file = @sky.png@ }\n";
+    };
+    writeSub("(0.8, 0.2, 0.2)");
+    const std::string top = (d / "top.usda").string(), args = " --spp 8 --checkpoint-every 2";
+    Result killed = shell("PRINCIPLED_TEST_KILL_AFTER_CHECKPOINT=1 " + render(args, d / "out.exr", top));
+    ASSERT_TRUE(fs::exists(d / "out.exr.ckpt" / "rank0.exr")) << killed.output;
+
+    writeSub("(0.2, 0.2, 0.8)");
+    Result sub = shell(render(args + " --resume", d / "out.exr", top));
+    EXPECT_EQ(sub.status, 1) << sub.output;
+    EXPECT_NE(sub.output.find("refusing to resume"), std::string::npos) << sub.output;
+    EXPECT_NE(sub.output.find((d / "sub.usda").string() + " changed"), std::string::npos) << sub.output;
+
+    writeSub("(0.8, 0.2, 0.2)");  // the same bytes again: only the texture differs now
+    ASSERT_EQ(shell(binary() + " render -o " + (d / "sky.png").string() + " --res 8x4 --spp 1 --seed 9 -q").status, 0);
+    Result tex = shell(render(args + " --resume", d / "out.exr", top));
+    EXPECT_EQ(tex.status, 1) << tex.output;
+    EXPECT_NE(tex.output.find((d / "sky.png").string() + " changed"), std::string::npos) << tex.output;
+    EXPECT_TRUE(fs::exists(d / "out.exr.ckpt" / "rank0.exr")) << "a refused checkpoint is left alone";
+    EXPECT_FALSE(fs::exists(d / "out.exr"));
+}

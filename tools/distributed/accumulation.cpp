@@ -258,6 +258,7 @@ bool writeCheckpoint(const std::string& path, const Accumulation& acc, const Che
     spec.strings["principled:checkpoint"] = "1";
     spec.strings["principled:sceneHash"] = info.sceneHash;
     spec.strings["principled:settings"] = info.settings;
+    spec.strings["principled:sceneFiles"] = info.sceneFiles;
     spec.strings["principled:sampleRange"] = std::to_string(info.rangeFirst) + ":" + std::to_string(info.rangeEnd);
     spec.numbers["principled:completedSamples"] = acc.completedSamples;
     spec.numbers["principled:passes"] = acc.stats.passes;
@@ -323,6 +324,7 @@ bool readCheckpoint(const std::string& path, Accumulation* acc, CheckpointInfo* 
     }
     info->sceneHash = spec.string("principled:sceneHash");
     info->settings = spec.string("principled:settings");
+    info->sceneFiles = spec.string("principled:sceneFiles");
     std::string range = spec.string("principled:sampleRange");
     if (std::sscanf(range.c_str(), "%d:%d", &info->rangeFirst, &info->rangeEnd) != 2) {
         *error = path + ": checkpoint has no valid principled:sampleRange";

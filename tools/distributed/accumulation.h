@@ -53,6 +53,10 @@ struct Accumulation {
 /// Checkpoint identity, stored as EXR metadata and checked on --resume.
 struct CheckpointInfo {
     std::string sceneHash;
+    /// What the scene was read from, one file a line: "layer HASH PATH" for every layer of the
+    /// composed stage, "file SIZE:MTIME PATH" for every other file its attributes name
+    /// (textures, IES profiles); names the file that changed when a resume is refused.
+    std::string sceneFiles;
     std::string settings;   ///< canonical "key=value;..." of everything that changes the image
     int rangeFirst = 0, rangeEnd = 0;  ///< the sample range this accumulation belongs to
     int rank = 0, ranks = 1;           ///< informational

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -23,6 +24,8 @@
 #include "delegate/imageWriter.h"
 #include "plugins/renderSession.h"
 #include "scene_adapter/usda/error.h"
+#include "scene_adapter/usda/prim.h"
+#include "scene_adapter/usda/stage.h"
 #include "tools/defaultScene.h"
 #include "tools/distributed/accumulation.h"
 #include "tools/distributed/comm.h"
@@ -132,6 +135,57 @@ std::string readFile(const std::string& path) {
     return s.str();
 }
 
+/// "SIZE:MTIME" of a file (modification time in nanoseconds), "missing" when it is not a file.
+std::string fileStamp(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return "missing";
+    return std::to_string(st.st_size) + ":" +
+           std::to_string(int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec);
+}
+
+/// Every file the stage's attributes name (textures, IES profiles...), resolved.
+std::set<std::string> assetFiles(const usd::Stage& stage) {
+    std::set<std::string> files;
+    auto add = [&](const usd::Value& v) {
+        if (auto a = v.getAsset(); a && !a->resolved.empty()) files.insert(a->resolved);
+        if (const auto* list = v.assets())
+            for (const auto& a : *list)
+                if (!a.resolved.empty()) files.insert(a.resolved);
+    };
+    for (const usd::Prim* p : stage.traverse())
+        for (const usd::Attribute* attr : p->attributes()) {
+            if (const usd::Value* v = attr->defaultValue()) add(*v);
+            for (const auto& [t, v] : attr->timeSamples()) add(v);
+        }
+    return files;
+}
+
+/// The file whose entry differs between two CheckpointInfo::sceneFiles ("" when none does),
+/// with what differs.
+std::string changedSceneFile(const std::string& was, const std::string& now) {
+    auto parse = [](const std::string& text) {
+        std::map<std::string, std::string> m;  // path -> "layer HASH" / "file STAMP"
+        std::stringstream ss(text);
+        std::string line;
+        while (std::getline(ss, line)) {
+            auto a = line.find(' '), b = a == std::string::npos ? a : line.find(' ', a + 1);
+            if (b != std::string::npos) m[line.substr(b + 1)] = line.substr(0, b);
+        }
+        return m;
+    };
+    auto a = parse(was), b = parse(now);
+    for (const auto& [path, entry] : a) {
+        auto it = b.find(path);
+        if (it != b.end() && it->second != entry)
+            return path + " changed since the checkpoint was written";
+    }
+    for (const auto& [path, entry] : b)
+        if (!a.count(path) && entry.rfind("layer ", 0) == 0) return path + " is not a layer of the checkpoint's scene";
+    for (const auto& [path, entry] : a)
+        if (!b.count(path) && entry.rfind("layer ", 0) == 0) return path + " is no longer a layer of the scene";
+    return "";
+}
+
 /// Writes the session's AOVs like `principled render` does, each file through a temporary
 /// name renamed into place, so an output is either complete or absent.
 void writeOutputs(host::RenderSession& session, const std::vector<std::string>& outputs, bool split) {
@@ -195,6 +249,9 @@ public:
 
 private:
     std::unique_ptr<host::RenderSession> open(double time, int first, int end);
+    /// _hash and _sceneFiles from the first session's stage: every layer it read and every
+    /// file its attributes name.
+    void describeScene(const usd::Stage& stage);
     void checkSameEverywhere(const std::string& settings);
     /// Renders [first, end) into the session, resuming from / writing checkpoints.
     void render(host::RenderSession& session, int first, int end, const std::string& checkpoint,
@@ -211,6 +268,7 @@ private:
     host::SessionOptions _base;
     int _width = 0, _height = 0;  ///< the image size the sessions resolved
     std::string _scene, _sceneText, _hash;
+    std::string _sceneFiles;  ///< CheckpointInfo::sceneFiles of this scene
     std::vector<std::string> _outputs;
     bool _split, _quiet;
     std::set<std::string> _reportedWarnings;  ///< printed already (later frames repeat the stage's)
@@ -233,12 +291,30 @@ std::unique_ptr<host::RenderSession> Job::open(double time, int first, int end) 
         auto session = _scene.empty() ? host::RenderSession::openString(_sceneText, "<default scene>", o)
                                       : host::RenderSession::openFile(_scene, o);
         _width = session->width(), _height = session->height();  // resolved (RenderSettings)
+        if (_hash.empty()) describeScene(session->stage());
         return session;
     } catch (const usd::Error& e) {
         throw RankError(e.what());
     } catch (const host::UserError& e) {
         throw RankError(e.what());
     }
+}
+
+void Job::describeScene(const usd::Stage& stage) {
+    if (_scene.empty()) {
+        _hash = hashBytes(_sceneText);
+        return;
+    }
+    // The composed stage is the scene: a shot's root layer rarely changes, its sublayers,
+    // references and payloads do. One layer hashes as its bytes alone.
+    std::string all;
+    for (const auto& layer : stage.layerFiles()) {
+        std::string text = readFile(layer);
+        _sceneFiles += "layer " + hashBytes(text) + " " + layer + "\n";
+        all += text;
+    }
+    _hash = hashBytes(all);
+    for (const auto& file : assetFiles(stage)) _sceneFiles += "file " + fileStamp(file) + " " + file + "\n";
 }
 
 void Job::checkSameEverywhere(const std::string& settings) {
@@ -300,9 +376,14 @@ void Job::render(host::RenderSession& session, int first, int end, const std::st
         CheckpointInfo info;
         std::string error;
         if (!readCheckpoint(checkpoint, &acc, &info, &error)) throw RankError(error);
+        const std::string changed = changedSceneFile(info.sceneFiles, _sceneFiles);
         if (info.sceneHash != _hash)
             throw RankError("refusing to resume from " + checkpoint + ": it was rendered from another scene (hash " +
-                            info.sceneHash + ", this scene " + _hash + "); delete it or render without --resume");
+                            info.sceneHash + ", this scene " + _hash + (changed.empty() ? "" : "; " + changed) +
+                            "); delete it or render without --resume");
+        if (!changed.empty())
+            throw RankError("refusing to resume from " + checkpoint + ": " + changed +
+                            " (size or modification time); delete it or render without --resume");
         if (info.settings != settings)
             throw RankError("refusing to resume from " + checkpoint + ": it was rendered with other settings (" +
                             settingsDiff(info.settings, settings) + "); delete it or render without --resume");
@@ -328,7 +409,7 @@ void Job::render(host::RenderSession& session, int first, int end, const std::st
         // then costs this rank nothing on --resume).
         if (_opt.checkpointEvery > 0 &&
             (done - lastCheckpoint >= _opt.checkpointEvery || (session.converged() && done > lastCheckpoint))) {
-            CheckpointInfo info{_hash, settings, first, end, _comm.rank(), _comm.size()};
+            CheckpointInfo info{_hash, _sceneFiles, settings, first, end, _comm.rank(), _comm.size()};
             std::string error;
             if (!writeCheckpoint(checkpoint, Accumulation::capture(session), info, &error)) throw RankError(error);
             if (_written.empty() || _written.back() != checkpoint) _written.push_back(checkpoint);
@@ -356,8 +437,8 @@ void Job::run() {
         if (frameTag(frames[f], _frameDecimals) == frameTag(frames[f - 1], _frameDecimals))
             throw RankError("--frames " + _opt.frames + ": frames " + std::to_string(frames[f - 1]) + " and " +
                             std::to_string(frames[f]) + " would write the same file (frame numbers keep 6 decimals)");
-    _sceneText = _scene.empty() ? std::string(kDefaultSceneUsda) : readFile(_scene);
-    _hash = hashBytes(_sceneText);
+    if (_scene.empty()) _sceneText = kDefaultSceneUsda;
+    else if (!std::ifstream(_scene)) throw RankError(_scene + ": cannot read the scene file");
     int spp = _base.samplesPerPixel;
     int ranks = _comm.size(), rank = _comm.rank();
     _totalWork = (long long)frames.size() * spp;

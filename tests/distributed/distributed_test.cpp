@@ -292,3 +292,18 @@ TEST(Checkpoint, ChangedSublayerOrTextureIsRefusedNamingTheFile) {
     EXPECT_TRUE(fs::exists(d / "out.exr.ckpt" / "rank0.exr")) << "a refused checkpoint is left alone";
     EXPECT_FALSE(fs::exists(d / "out.exr"));
 }
+
+TEST(Checkpoint, AdaptiveSamplingIsRefusedHoweverItIsSet) {
+    // --set noiseThreshold=... turned adaptive sampling on past the refusal of --noise-threshold:
+    // an interrupted and resumed render then differed from the uninterrupted one.
+    fs::path d = dir() / "adaptive";
+    fs::remove_all(d);
+    for (const char* how : {" --noise-threshold 0.05", " --set noiseThreshold=0.05"}) {
+        Result r = shell(render(std::string(" --spp 8 --checkpoint-every 2") + how, d / "out.exr"));
+        EXPECT_EQ(r.status, 1) << how << "\n" << r.output;
+        EXPECT_NE(r.output.find("cannot be combined"), std::string::npos) << how << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(d / "out.exr")) << how;
+    }
+    Result off = shell(render(" --spp 2 --checkpoint-every 2 --set noiseThreshold=0", d / "out.exr"));
+    EXPECT_EQ(off.status, 0) << off.output;
+}

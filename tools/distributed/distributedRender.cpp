@@ -424,9 +424,13 @@ void Job::render(host::RenderSession& session, int first, int end, const std::st
 }
 
 void Job::run() {
-    if (_base.noiseThreshold > 0.0f)
-        throw RankError("--noise-threshold (adaptive sampling) cannot be combined with MPI ranks, --frames or "
-                        "checkpoints: which pixels stopped is not part of the merged accumulation");
+    // The effective setting: --set noiseThreshold=... is applied after --noise-threshold.
+    float noiseThreshold = _base.noiseThreshold;
+    if (auto it = _base.settings.find("noiseThreshold"); it != _base.settings.end())
+        noiseThreshold = std::strtof(it->second.c_str(), nullptr);
+    if (noiseThreshold > 0.0f || std::isnan(noiseThreshold))
+        throw RankError("--noise-threshold / --set noiseThreshold (adaptive sampling) cannot be combined with MPI "
+                        "ranks, --frames or checkpoints: which pixels stopped is not part of the merged accumulation");
     if (_opt.checkpointEvery < 0) throw RankError("--checkpoint-every must be at least 0");
     std::vector<double> frames = parseFrames(_opt.frames);
     bool animated = !_opt.frames.empty();

@@ -94,8 +94,15 @@ int runRender(const RenderArgs& a) {
         threadLimit = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, size_t(a.threads));
 
-    if (distributed::wanted(a.distributed))
-        return distributed::run(o, a.scene, a.outputs, a.split, a.quiet, a.distributed);
+    if (distributed::wanted(a.distributed)) {
+        // Passes are checkpointed and merged whole: a deadline would end ranks at different samples.
+        if (a.timeLimit > 0.0)
+            return fail("--time-limit cannot be combined with MPI ranks, --frames, --checkpoint-every or --resume "
+                        "(checkpoint with --checkpoint-every and stop the job instead)");
+        distributed::Options d = a.distributed;
+        d.statsPath = a.statsPath;
+        return distributed::run(o, a.scene, a.outputs, a.split, a.quiet, d);
+    }
 
     auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<host::RenderSession> session;

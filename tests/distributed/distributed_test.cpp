@@ -307,3 +307,26 @@ TEST(Checkpoint, AdaptiveSamplingIsRefusedHoweverItIsSet) {
     Result off = shell(render(" --spp 2 --checkpoint-every 2 --set noiseThreshold=0", d / "out.exr"));
     EXPECT_EQ(off.status, 0) << off.output;
 }
+
+TEST(Checkpoint, StatsAreWrittenAndTimeLimitIsRefused) {
+    // With --checkpoint-every, --frames or --resume, --stats wrote nothing and --time-limit was
+    // ignored, both without a word (exit 0).
+    fs::path d = dir() / "statsLimit";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    Result ck = shell(render(" --spp 4 --checkpoint-every 2 --stats " + (d / "ck.json").string(), d / "ck.exr"));
+    ASSERT_EQ(ck.status, 0) << ck.output;
+    std::ifstream in(d / "ck.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* key : {"\"samplesPerPixel\": 4", "\"width\": 32", "\"renderWallSeconds\"", "\"checkpointsWritten\": 2"})
+        EXPECT_NE(json.find(key), std::string::npos) << key << " missing from " << json;
+    Result frames = shell(render(" --spp 2 --frames 0:1 --stats " + (d / "fr.json").string(), d / "fr.exr"));
+    ASSERT_EQ(frames.status, 0) << frames.output;
+    EXPECT_TRUE(fs::exists(d / "fr.json"));
+    for (const char* how : {" --checkpoint-every 2", " --frames 0:1", " --resume"}) {
+        Result limit = shell(render(std::string(" --spp 4 --time-limit 0.5") + how, d / "tl.exr"));
+        EXPECT_EQ(limit.status, 1) << how << "\n" << limit.output;
+        EXPECT_NE(limit.output.find("--time-limit cannot be combined"), std::string::npos) << how << "\n" << limit.output;
+        EXPECT_FALSE(fs::exists(d / "tl.exr")) << how;
+    }
+}

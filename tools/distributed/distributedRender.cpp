@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "delegate/imageWriter.h"
 #include "plugins/renderSession.h"
@@ -279,6 +280,8 @@ private:
     std::vector<long long> _done;  // rank 0: samples per pixel finished by each rank
     std::vector<std::string> _written;  // checkpoints this rank wrote (removed at the end)
     int _checkpointsWritten = 0;
+    long long _resumedSamples = 0;  ///< samples per pixel this rank took from checkpoints
+    std::string _cameraPath;        ///< the camera the sessions resolved
     int _frameDecimals = 0;  ///< of the frame numbers in file names (frameDecimals)
 };
 
@@ -291,6 +294,7 @@ std::unique_ptr<host::RenderSession> Job::open(double time, int first, int end) 
         auto session = _scene.empty() ? host::RenderSession::openString(_sceneText, "<default scene>", o)
                                       : host::RenderSession::openFile(_scene, o);
         _width = session->width(), _height = session->height();  // resolved (RenderSettings)
+        _cameraPath = session->cameraPath();
         if (_hash.empty()) describeScene(session->stage());
         return session;
     } catch (const usd::Error& e) {
@@ -396,6 +400,7 @@ void Job::render(host::RenderSession& session, int first, int end, const std::st
         if (!acc.applyTo(session))
             throw RankError("refusing to resume from " + checkpoint + ": its AOVs or resolution differ");
         lastCheckpoint = acc.completedSamples;
+        _resumedSamples += acc.completedSamples;
         note((_comm.distributed() ? "rank " + std::to_string(_comm.rank()) + ": " : std::string()) + "resumed " +
              std::to_string(acc.completedSamples) + " of samples " + std::to_string(first) + ":" +
              std::to_string(end) + " from " + checkpoint);
@@ -534,6 +539,23 @@ void Job::run() {
         note("rendered " + std::to_string(_width) + "x" + std::to_string(_height) + " at " +
              std::to_string(spp) + " spp, " + std::to_string(frames.size()) + " frame(s) on " + std::to_string(ranks) +
              " rank(s)" + how + " in " + std::to_string(seconds).substr(0, 6) + "s");
+        if (!_opt.statsPath.empty()) {
+            // The job's figures (a plain render's --stats also has the delegate's and startup's).
+            nlohmann::json j;
+            j["scene"] = _scene.empty() ? "<default scene>" : _scene;
+            j["width"] = _width;
+            j["height"] = _height;
+            j["samplesPerPixel"] = spp;
+            j["camera"] = _cameraPath;
+            j["timedOut"] = false;
+            j["frames"] = frames.size();
+            j["ranks"] = ranks;
+            j["renderWallSeconds"] = seconds;
+            j["checkpointsWritten"] = _checkpointsWritten;  // rank 0's
+            j["resumedSamplesPerPixel"] = _resumedSamples;  // rank 0's, over its frames
+            std::ofstream f(_opt.statsPath);
+            if (!(f << j.dump(2) << "\n")) throw RankError(_opt.statsPath + ": cannot write the stats file");
+        }
         if (std::getenv("PRINCIPLED_MPI_TIMING"))
             std::fprintf(stderr, "principled: timing: total %.4f s, reduce %.4f s (cpu %.4f s), %zu bytes received\n",
                          seconds, reduceSeconds, reduceCpuSeconds, reducedBytes);

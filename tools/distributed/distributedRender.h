@@ -22,6 +22,7 @@ struct Options {
     int checkpointEvery = 0;    ///< samples per pixel between checkpoints (0: none)
     std::string checkpointDir;  ///< default: FIRST_OUTPUT.ckpt
     bool resume = false;
+    std::string statsPath;      ///< --stats (set by the render command): rank 0 writes the job's statistics
 };
 
 /// Adds --frames, --checkpoint-every, --checkpoint-dir and --resume to the render command.

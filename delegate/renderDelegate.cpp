@@ -610,68 +610,70 @@ AovDescriptor EmbreeRenderDelegate::defaultAovDescriptor(const Token& aovName) c
 }
 
 std::vector<RenderSettingDescriptor> EmbreeRenderDelegate::renderSettingDescriptors() const {
+    // Words list their choices and numbers their range (renderSettingProblem): hosts and
+    // `principled render --set` refuse anything else instead of rendering with the default.
     return {
-        {"Samples per pixel", Token("convergedSamplesPerPixel"), Value(64), "samples per pixel at convergence"},
+        {"Samples per pixel", Token("convergedSamplesPerPixel"), Value(64), "samples per pixel at convergence", {}, 1, 1 << 20},
         {"Random seed", Token("seed"), Value(0), "same seed, same image; another seed, another image"},
-        {"Max depth", Token("maxDepth"), Value(8), "bounces after the camera hit (0 = direct light only)"},
-        {"Clamp indirect", Token("clampIndirect"), Value(0.0f), "max channel value of an indirect contribution; 0 = off"},
-        {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4"},
-        {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent"},
-        {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)"},
-        {"MIS compensation", Token("misCompensation"), Value(1), "with MIS, a textured dome light samples only what lies above its mean radiance; BSDF sampling takes the rest (0: the whole map)"},
-        {"Spatial light pick", Token("spatialLightPick"), Value(1), "with more lights than neeAllLights, next-event estimation weighs each light's power by 1 / distance^2 from the point (beyond 64 lights through a light tree; 0: by power alone)"},
-        {"NEE all lights", Token("neeAllLights"), Value(4), "next-event estimation samples every light when the scene has at most this many (0: always pick one)"},
-        {"Light pick uniform", Token("lightPickUniform"), Value(0.1f), "next-event estimation light pick: this fraction uniform, the rest by power"},
-        {"Light solid angle", Token("lightSolidAngle"), Value(1), "small mesh lights (<= 8 triangles) sampled by solid angle (Arvo 1995); 0: by area"},
-        {"NEE", Token("nee"), Value(1), "next-event estimation (shadow rays to lights); 0: lights found by BSDF sampling only"},
-        {"Lobe pruning", Token("lobePruning"), Value(1), "skip BSDF lobes whose weight is below the cutoff"},
-        {"VNDF sampling", Token("vndf"), Value(1), "GGX visible-normal sampling (0: classic distribution sampling)"},
-        {"Delta roughness", Token("deltaRoughness"), Value(1e-3f), "below this roughness specular is a perfect mirror"},
-        {"Legacy specular G", Token("legacySpecularG"), Value(0), "Burley 2012 course-notes G remap (0.5 + 0.5 r)^2"},
+        {"Max depth", Token("maxDepth"), Value(8), "bounces after the camera hit (0 = direct light only)", {}, 0, 1024},
+        {"Clamp indirect", Token("clampIndirect"), Value(0.0f), "max channel value of an indirect contribution; 0 = off", {}, 0},
+        {"Shading model", Token("shadingModel"), Value(Token("disney")), "disney | ue4", {"disney", "ue4"}},
+        {"Sampler", Token("sampler"), Value(Token("sobol")), "sobol (Owen-scrambled) | independent", {"sobol", "independent"}},
+        {"MIS", Token("mis"), Value(1), "multiple importance sampling of lights and BSDF (0: next-event estimation only)", {}, 0, 1},
+        {"MIS compensation", Token("misCompensation"), Value(1), "with MIS, a textured dome light samples only what lies above its mean radiance; BSDF sampling takes the rest (0: the whole map)", {}, 0, 1},
+        {"Spatial light pick", Token("spatialLightPick"), Value(1), "with more lights than neeAllLights, next-event estimation weighs each light's power by 1 / distance^2 from the point (beyond 64 lights through a light tree; 0: by power alone)", {}, 0, 1},
+        {"NEE all lights", Token("neeAllLights"), Value(4), "next-event estimation samples every light when the scene has at most this many (0: always pick one)", {}, 0},
+        {"Light pick uniform", Token("lightPickUniform"), Value(0.1f), "next-event estimation light pick: this fraction uniform, the rest by power", {}, 0, 1},
+        {"Light solid angle", Token("lightSolidAngle"), Value(1), "small mesh lights (<= 8 triangles) sampled by solid angle (Arvo 1995); 0: by area", {}, 0, 1},
+        {"NEE", Token("nee"), Value(1), "next-event estimation (shadow rays to lights); 0: lights found by BSDF sampling only", {}, 0, 1},
+        {"Lobe pruning", Token("lobePruning"), Value(1), "skip BSDF lobes whose weight is below the cutoff", {}, 0, 1},
+        {"VNDF sampling", Token("vndf"), Value(1), "GGX visible-normal sampling (0: classic distribution sampling)", {}, 0, 1},
+        {"Delta roughness", Token("deltaRoughness"), Value(1e-3f), "below this roughness specular is a perfect mirror", {}, 0, 1},
+        {"Legacy specular G", Token("legacySpecularG"), Value(0), "Burley 2012 course-notes G remap (0.5 + 0.5 r)^2", {}, 0, 1},
         {"Specular Fresnel", Token("specularFresnel"), Value(Token("schlick")),
          "schlick (Burley 2012) | dielectric (Cycles 3.4 Principled v1: F0 blended to white along the exact "
-         "dielectric Fresnel of the index from specular)"},
-        {"Lobe mask", Token("lobeMask"), Value(31), "diagnostics: BSDF lobes allowed (bits: 1 diffuse, 2 sheen, 4 specular, 8 clearcoat, 16 transmission)"},
-        {"Noise threshold", Token("noiseThreshold"), Value(0.0f), "stop sampling a pixel when the relative standard error of its mean is below this; 0 = off"},
+         "dielectric Fresnel of the index from specular)", {"schlick", "dielectric"}},
+        {"Lobe mask", Token("lobeMask"), Value(31), "diagnostics: BSDF lobes allowed (bits: 1 diffuse, 2 sheen, 4 specular, 8 clearcoat, 16 transmission)", {}, 0, 31},
+        {"Noise threshold", Token("noiseThreshold"), Value(0.0f), "stop sampling a pixel when the relative standard error of its mean is below this; 0 = off", {}, 0, 10},
         {"Min samples", Token("minSamples"), Value(0),
-         "adaptive sampling: samples before a pixel may stop; 0 = from the threshold, 16 / threshold^0.3 (40 at 0.05)"},
-        {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome"},
-        {"Refine level", Token("refineLevel"), Value(-1), "subdivision level for every mesh; -1 = adaptive from the projected size"},
-        {"Dicing rate", Token("dicingRate"), Value(1.5f), "adaptive subdivision: target refined edge length in pixels"},
-        {"Max refine level", Token("maxRefineLevel"), Value(6), "adaptive subdivision: highest level"},
+         "adaptive sampling: samples before a pixel may stop; 0 = from the threshold, 16 / threshold^0.3 (40 at 0.05)", {}, 0, 1 << 20},
+        {"Default lighting", Token("defaultLighting"), Value(1), "light a scene without lights with a white dome", {}, 0, 1},
+        {"Refine level", Token("refineLevel"), Value(-1), "subdivision level for every mesh; -1 = adaptive from the projected size", {}, -1, 8},
+        {"Dicing rate", Token("dicingRate"), Value(1.5f), "adaptive subdivision: target refined edge length in pixels", {}, 0.05},
+        {"Max refine level", Token("maxRefineLevel"), Value(6), "adaptive subdivision: highest level", {}, 0, 8},
         {"Dicing tolerance", Token("dicingTolerance"), Value(0.1f),
          "adaptive subdivision: refine no further once the surface lies within this many pixels of its limit "
-         "(flat cages stay unrefined); 0 = edge length (dicingRate) only"},
+         "(flat cages stay unrefined); 0 = edge length (dicingRate) only", {}, 0},
         {"Subdivision budget", Token("subdivisionBudget"), Value(16e6f),
          "triangles all subdivision meshes may refine to together; over it every level is lowered in half steps "
-         "(the dicing rate times sqrt 2 each) until the scene fits; 0 = no limit"},
-        {"Dome visible to camera", Token("domeLightCameraVisibility"), Value(1), "camera rays see the dome light"},
+         "(the dicing rate times sqrt 2 each) until the scene fits; 0 = no limit", {}, 0},
+        {"Dome visible to camera", Token("domeLightCameraVisibility"), Value(1), "camera rays see the dome light", {}, 0, 1},
         {"Lights visible to camera", Token("lightCameraVisibility"), Value(0),
          "camera rays see the shapes of sphere, rect, disk and cylinder lights (0, as Cycles, Karma and hdEmbree: "
-         "lights light the scene and show in reflections only)"},
+         "lights light the scene and show in reflections only)", {}, 0, 1},
         {"Back-face culling", Token("backfaceCulling"), Value(0),
          "camera rays skip the back faces of meshes and spheres whose doubleSided is 0 (1, as Storm and usdrecord; "
-         "0, as Cycles and Karma by default: both sides are seen; UsdGeomGprim leaves culling to the renderer)"},
+         "0, as Cycles and Karma by default: both sides are seen; UsdGeomGprim leaves culling to the renderer)", {}, 0, 1},
         {"Caustics", Token("caustics"), Value(1),
          "light tracing for caustics: light from sphere, rect, disk, cylinder, distant and untextured mesh lights through sharp "
-         "specular, clearcoat or glass lobes onto the surfaces the camera sees (0: path tracing only)"},
+         "specular, clearcoat or glass lobes onto the surfaces the camera sees (0: path tracing only)", {}, 0, 1},
         {"Caustic roughness", Token("causticRoughness"), Value(0.1f),
-         "lobes at most this rough carry caustics to light tracing"},
+         "lobes at most this rough carry caustics to light tracing", {}, 0, 1},
         {"Caustic paths", Token("causticPaths"), Value(0.125f),
          "light paths per camera sample when the scene has caustic casters and lights (with causticAdaptive: "
-         "the first passes' count; later passes pick within 1/16x to 4x of it)"},
+         "the first passes' count; later passes pick within 1/16x to 4x of it)", {}, 0, 64},
         {"Caustic adaptive", Token("causticAdaptive"), Value(1),
          "later passes trace as many caustic light paths as make the image's variance times its rays least, "
-         "from the passes before (0: causticPaths throughout)"},
+         "from the passes before (0: causticPaths throughout)", {}, 0, 1},
         {"Caustic merging", Token("causticMerging"), Value(1),
          "caustics seen after the first bounce (in mirrors, lighting other surfaces) from light-traced photons "
-         "(progressive photon mapping); 0: path tracing finds those"},
+         "(progressive photon mapping); 0: path tracing finds those", {}, 0, 1},
         {"Caustic merge radius", Token("causticMergeRadius"), Value(0.0f),
          "photon search radius at 1 sample per pixel, scene units (0: 5 % of the caustic casters' size); "
-         "shrinks as samples accumulate"},
+         "shrinks as samples accumulate", {}, 0},
         {"Bump shadowing", Token("bumpShadowing"), Value(1),
          "diffuse and sheen lobes shadowed where a normal map or bent normal leans away from the surface "
-         "(Chiang et al. 2019, as Cycles); 0: off"},
+         "(Chiang et al. 2019, as Cycles); 0: off", {}, 0, 1},
     };
 }
 

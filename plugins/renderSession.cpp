@@ -99,6 +99,12 @@ void RenderSession::applySettings() {
             throw UserError("render setting '" + key + "' expects " +
                             (std::holds_alternative<Token>(d->defaultValue) ? "a word" : "a number") +
                             ", not '" + text + "'");
+        if (std::holds_alternative<int>(d->defaultValue) && !std::holds_alternative<int>(v))
+            throw UserError("render setting '" + key + "' expects an integer, not '" + text + "'");
+        // Words among their choices, numbers within their range (the descriptor table).
+        if (std::string problem = hd::renderSettingProblem(*d, v); !problem.empty())
+            throw UserError("render setting '" + key + "' " + problem +
+                            (std::holds_alternative<Token>(v) ? "" : ", not '" + text + "'"));
         _delegate->setRenderSetting(Token(key), v);
     }
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <ctime>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -31,6 +32,7 @@ struct RenderArgs {
     std::string scene;
     std::vector<std::string> outputs;
     int spp = 64;
+    bool sppGiven = false;  ///< --spp on the command line
     std::string res;  ///< "" : the stage's RenderSettings resolution, else 640x360
     int seed = 0;
     int threads = 0;
@@ -82,6 +84,17 @@ int runRender(const RenderArgs& a) {
         if (eq == std::string::npos || eq == 0)
             return fail("--set expects KEY=VALUE, not '" + kv + "'");
         o.settings[kv.substr(0, eq)] = kv.substr(eq + 1);
+    }
+    // --set KEY=VALUE is applied after the options it overlaps (--seed, --max-depth...) and wins;
+    // the sample count is given once, as it also cuts MPI ranks' sample ranges.
+    if (auto it = o.settings.find("convergedSamplesPerPixel"); it != o.settings.end()) {
+        if (a.sppGiven)
+            return fail("--spp " + std::to_string(a.spp) + " and --set convergedSamplesPerPixel=" + it->second +
+                        " both give the samples per pixel; give one");
+        char* end = nullptr;
+        long n = std::strtol(it->second.c_str(), &end, 10);
+        if (!it->second.empty() && *end == '\0' && n >= 1 && n <= (1 << 20)) o.samplesPerPixel = int(n);
+        // (anything else: the session's error names the setting and its range)
     }
     o.aovs = a.aovs;
     for (const auto& out : a.outputs) {
@@ -236,13 +249,18 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--time-limit", args->timeLimit, "Stop after this many seconds of rendering (the image so far is written)")
         ->check(CLI::Range(0.0, 1e9));
     cmd->add_option("--time", args->time, "Time code to render the stage at (default: startTimeCode, else the default values)");
-    cmd->add_option("--set", args->settings, "Render setting KEY=VALUE (repeatable), e.g. --set mis=0 --set maxDepth=3");
+    cmd->add_option("--set", args->settings,
+                    "Render setting KEY=VALUE (repeatable), e.g. --set mis=0 --set maxDepth=3; applied after the "
+                    "options (it wins over --seed, --max-depth...); convergedSamplesPerPixel beside --spp is refused");
     cmd->add_option("--refine-level", args->refineLevel,
                     "Subdivision level for every mesh (0-8); -1 = adaptive from the projected size")
         ->check(CLI::Range(-1, 8));
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar, warnings or summary");
     distributed::addOptions(cmd, &args->distributed);
-    cmd->callback([args, exitCode] { *exitCode = runRender(*args); });
+    cmd->callback([args, exitCode, cmd] {
+        args->sppGiven = cmd->count("--spp") > 0;
+        *exitCode = runRender(*args);
+    });
 }
 
 }  // namespace principled::tools

@@ -347,3 +347,42 @@ TEST(Cli, FractionalFramesGetDistinctNamesThatSortInTimeOrder) {
     EXPECT_NE(both.status, 0);
     EXPECT_NE(both.output.find("--time and --frames"), std::string::npos) << both.output;
 }
+
+TEST(Cli, SetValuesAreValidatedLikeTheirOptions) {
+    // Unknown words rendered with the default and out-of-range numbers were clamped, silently;
+    // --model phong and --sampler halton were already refused.
+    const std::string out = " -o " + (tempDir() / "set.exr").string() + " --res 8x8 -q";
+    struct Case {
+        const char* set;
+        std::vector<const char*> expected;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"shadingModel=phong", {"'shadingModel'", "'phong'", "disney, ue4"}},
+             {"sampler=halton", {"'sampler'", "'halton'", "sobol, independent"}},
+             {"specularFresnel=bogus", {"'specularFresnel'", "'bogus'", "schlick, dielectric"}},
+             {"maxDepth=-3", {"'maxDepth'", "between 0 and 1024", "'-3'"}},
+             {"convergedSamplesPerPixel=0", {"'convergedSamplesPerPixel'", "between 1 and"}},
+             {"deltaRoughness=nan", {"'deltaRoughness'", "finite"}},
+             {"clampIndirect=-5", {"'clampIndirect'", "at least 0"}},
+             {"lobeMask=999", {"'lobeMask'", "between 0 and 31"}},
+             {"seed=1.5", {"'seed'", "integer", "'1.5'"}},
+             {"mis=2", {"'mis'", "between 0 and 1"}},
+         }) {
+        Result r = run(std::string("render --set ") + c.set + out);
+        EXPECT_EQ(r.status, 1) << c.set << ": " << r.output;
+        for (const char* e : c.expected) EXPECT_NE(r.output.find(e), std::string::npos) << c.set << ": " << e << "\n" << r.output;
+    }
+    for (const char* ok : {"specularFresnel=dielectric", "sampler=independent", "maxDepth=0", "lobeMask=31", "seed=-7"})
+        EXPECT_EQ(run(std::string("render --set ") + ok + out).status, 0) << ok;
+    // The sample count is given once: --set convergedSamplesPerPixel alone sets it, beside --spp it is refused.
+    Result both = run("render --spp 4 --set convergedSamplesPerPixel=8 -o " + (tempDir() / "set.exr").string() + " --res 8x8 -q");
+    EXPECT_EQ(both.status, 1) << both.output;
+    EXPECT_NE(both.output.find("--spp 4 and --set convergedSamplesPerPixel=8"), std::string::npos) << both.output;
+    const fs::path stats = tempDir() / "set.json";
+    Result alone = run("render --set convergedSamplesPerPixel=3 -o " + (tempDir() / "set.exr").string() +
+                       " --res 8x8 -q --stats " + stats.string());
+    ASSERT_EQ(alone.status, 0) << alone.output;
+    std::ifstream in(stats);
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"samplesPerPixel\": 3"), std::string::npos) << json;
+}

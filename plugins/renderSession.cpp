@@ -160,10 +160,18 @@ void RenderSession::setup() {
         } else if (!embree::findAov(a)) {
             std::string known;
             for (const auto& info : embree::allAovs()) known += std::string(known.empty() ? "" : ", ") + info.name;
-            throw UserError("unknown AOV '" + a + "'; known AOVs: " + known + ", all");
+            throw UserError("unknown AOV '" + a + "'; known AOVs: " + known + ", primvars:NAME, all");
         } else {
             names.push_back(a);
         }
+    }
+    // A primvar AOV no prim can fill is black: most likely a misspelt name (primvars:St).
+    for (const auto& name : names) {
+        if (name.rfind("primvars:", 0) != 0) continue;
+        const auto prims = _stage->traverse();
+        if (std::none_of(prims.begin(), prims.end(), [&](const usd::Prim* p) { return p->attribute(name) != nullptr; }))
+            _notes.push_back("AOV '" + name + "': no prim has primvar '" + name.substr(9) +
+                             "'; the layer is written empty (0)");
     }
     for (const auto& name : names) bindAov(name);
     _color = _buffers.front().second;

@@ -386,3 +386,20 @@ TEST(Cli, SetValuesAreValidatedLikeTheirOptions) {
     const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     EXPECT_NE(json.find("\"samplesPerPixel\": 3"), std::string::npos) << json;
 }
+
+TEST(Cli, PrimvarAovThatNoPrimHasWarnsNamingIt) {
+    // A misspelt primvar AOV was an all-zero layer without a word.
+    fs::path f = tempDir() / "primvarAov.usda";
+    std::ofstream(f) << "#usda 1.0\ndef Sphere \"S\" { float primvars:mask = 1 }\n";
+    const std::string common = "render " + f.string() + " -o " + (tempDir() / "pv.exr").string() + " --res 8x8 --spp 1 --aov ";
+    Result missing = run(common + "primvars:doesnotexist");
+    EXPECT_EQ(missing.status, 0) << missing.output;
+    EXPECT_NE(missing.output.find("warning: AOV 'primvars:doesnotexist': no prim has primvar 'doesnotexist'"),
+              std::string::npos) << missing.output;
+    Result present = run(common + "primvars:mask");
+    EXPECT_EQ(present.status, 0) << present.output;
+    EXPECT_EQ(present.output.find("no prim has primvar"), std::string::npos) << present.output;
+    Result unknown = run(common + "bogus");
+    EXPECT_EQ(unknown.status, 1) << unknown.output;
+    EXPECT_NE(unknown.output.find("primvars:NAME"), std::string::npos) << unknown.output;
+}

@@ -18,9 +18,9 @@
 #include "delegate/renderDelegate.h"
 #include "plugins/renderSession.h"
 #include "scene_adapter/usda/error.h"
-#include "tools/aovLayers.h"
 #include "tools/defaultScene.h"
 #include "tools/distributed/distributedRender.h"
+#include "tools/outputs.h"
 #include "tools/processClock.h"
 #include "tools/progressBar.h"
 
@@ -97,11 +97,11 @@ int runRender(const RenderArgs& a) {
         // (anything else: the session's error names the setting and its range)
     }
     o.aovs = a.aovs;
-    for (const auto& out : a.outputs) {
-        auto ext = std::filesystem::path(out).extension().string();
-        if (ext != ".exr" && ext != ".png")
-            return fail(out + ": output must end in .exr or .png");
-    }
+    // Every output (and the stats file) can be written, before the scene is loaded.
+    for (const auto& out : a.outputs)
+        if (std::string problem = checkWritable(out, true); !problem.empty()) return fail(problem);
+    if (!a.statsPath.empty())
+        if (std::string problem = checkWritable(a.statsPath, false); !problem.empty()) return fail(problem);
     std::unique_ptr<tbb::global_control> threadLimit;
     if (a.threads > 0)
         threadLimit = std::make_unique<tbb::global_control>(
@@ -168,30 +168,10 @@ int runRender(const RenderArgs& a) {
     double renderCpuSeconds = double(std::clock() - c1) / CLOCKS_PER_SEC;
     report();
 
-    AovLayers written = aovLayers(*session);
-    const std::vector<embree::ImageLayer>& layers = written.layers;
-    for (const auto& out : a.outputs) {
-        std::error_code ec;
-        auto path = std::filesystem::path(out);
-        if (!path.parent_path().empty()) std::filesystem::create_directories(path.parent_path(), ec);
-        std::string error;
-        bool exr = path.extension() == ".exr";
-        if (a.split && exr) {
-            for (const auto& l : layers) {
-                auto p = path;
-                p.replace_filename(path.stem().string() + "." + (l.name.empty() ? "color" : l.name) + ".exr");
-                embree::ImageLayer single = l;
-                single.name.clear();
-                if (!embree::writeImage(p.string(), session->width(), session->height(), {single}, &error,
-                                        session->pixelAspectRatio()))
-                    return fail(error);
-            }
-        } else if (!embree::writeImage(out, session->width(), session->height(),
-                                       exr ? layers : std::vector<embree::ImageLayer>{layers[0]}, &error,
-                                       session->pixelAspectRatio())) {
-            return fail(error);
-        }
-    }
+    // Each output through a temporary file renamed into place; one that fails does not stop
+    // the others (nor the stats).
+    const std::vector<std::string> writeErrors = writeOutputs(*session, a.outputs, a.split);
+    for (const auto& e : writeErrors) std::fprintf(stderr, "principled: error: %s\n", e.c_str());
     if (!a.statsPath.empty()) {
         nlohmann::json j;
         j["scene"] = a.scene.empty() ? "<default scene>" : a.scene;
@@ -215,6 +195,7 @@ int runRender(const RenderArgs& a) {
         if (!f) return fail(a.statsPath + ": cannot write the stats file");
         f << j.dump(2) << "\n";
     }
+    if (!writeErrors.empty()) return 1;
     if (!a.quiet)
         std::fprintf(stderr, "principled: rendered %dx%d at %d spp in %.2fs (%.1f Mrays/s)\n",
                      session->width(), session->height(), session->completedSamples(),

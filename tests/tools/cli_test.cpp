@@ -403,3 +403,63 @@ TEST(Cli, PrimvarAovThatNoPrimHasWarnsNamingIt) {
     EXPECT_EQ(unknown.status, 1) << unknown.output;
     EXPECT_NE(unknown.output.find("primvars:NAME"), std::string::npos) << unknown.output;
 }
+
+TEST(Cli, OutputsAreCheckedBeforeRenderingAndOneFailureDoesNotLoseTheOthers) {
+    const fs::path dir = tempDir() / "outputs";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "d.exr");
+    // Unwritable places fail before the scene is read (a missing scene would be the error otherwise).
+    Result proc = run("render /nonexistent/scene.usda -o /proc/x.exr");
+    EXPECT_EQ(proc.status, 1) << proc.output;
+    EXPECT_NE(proc.output.find("/proc/x.exr: cannot write in /proc"), std::string::npos) << proc.output;
+    Result isDir = run("render /nonexistent/scene.usda -o " + (dir / "d.exr").string());
+    EXPECT_EQ(isDir.status, 1) << isDir.output;
+    EXPECT_NE(isDir.output.find("is a directory"), std::string::npos) << isDir.output;
+    Result stats = run("render /nonexistent/scene.usda -o " + (dir / "a.exr").string() + " --stats /proc/s.json");
+    EXPECT_EQ(stats.status, 1) << stats.output;
+    EXPECT_NE(stats.output.find("/proc/s.json"), std::string::npos) << stats.output;
+    // Upper-case extensions, and a stats file in a directory that does not exist yet.
+    Result upper = run("render -o " + (dir / "U.EXR").string() + " -o " + (dir / "U.PNG").string() +
+                       " --res 8x8 --spp 1 -q --stats " + (dir / "new" / "s.json").string());
+    EXPECT_EQ(upper.status, 0) << upper.output;
+    EXPECT_TRUE(exrStats((dir / "U.EXR").string()).first);
+    EXPECT_TRUE(fs::exists(dir / "U.PNG"));
+    EXPECT_TRUE(fs::exists(dir / "new" / "s.json"));
+    // A file that cannot be written (here a --split layer whose name is a directory) fails the
+    // render, after every other file is written.
+    fs::create_directories(dir / "sp.albedo.exr");
+    Result split = run("render -o " + (dir / "sp.exr").string() + " -o " + (dir / "other.png").string() +
+                       " --split --aov albedo,normal --res 8x8 --spp 1 -q");
+    EXPECT_EQ(split.status, 1) << split.output;
+    EXPECT_NE(split.output.find("sp.albedo.exr"), std::string::npos) << split.output;
+    for (const char* f : {"sp.color.exr", "sp.normal.exr", "other.png"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "left behind: " << e.path();
+}
+
+TEST(Cli, KilledWhileWritingLeavesThePreviousImage) {
+    // The image was written in place: a kill during the write left a truncated EXR over the
+    // previous good one. Now it goes to a temporary name renamed into place.
+    const fs::path dir = tempDir() / "killwrite";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path out = dir / "big.exr";
+    ASSERT_EQ(run("render -o " + out.string() + " --res 8x8 --spp 1 -q").status, 0);
+    const auto before = fs::last_write_time(out);
+    // Kill -9 once the new image is being written: a temporary file appears, or the output changes.
+    const std::string bin = std::string(PRINCIPLED_BINARY_DIR) + "/bin/principled";
+    const std::string script = bin + " render -o " + out.string() + " --res 1200x1200 --spp 1 --aov all -q & pid=$!; "
+                               "for i in $(seq 1 12000); do "
+                               "ls " + dir.string() + "/.big.tmp* >/dev/null 2>&1 && break; "
+                               "[ " + out.string() + " -nt " + dir.string() + "/stamp ] && break; "
+                               "kill -0 $pid 2>/dev/null || break; sleep 0.005; done; kill -KILL $pid; wait $pid";
+    std::ofstream(dir / "stamp") << "";
+    fs::last_write_time(dir / "stamp", before);
+    const int rc = std::system(("sh -c '" + script + "' >/dev/null 2>&1").c_str());
+    (void)rc;  // killed on purpose
+    auto in = OIIO::ImageInput::open(out.string());
+    ASSERT_TRUE(in) << "the previous image must survive: " << OIIO::geterror();
+    EXPECT_EQ(in->spec().width, 8);
+    std::vector<float> px(size_t(in->spec().width) * in->spec().height * in->spec().nchannels);
+    EXPECT_TRUE(in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+}

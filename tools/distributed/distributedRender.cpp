@@ -30,7 +30,7 @@
 #include "tools/defaultScene.h"
 #include "tools/distributed/accumulation.h"
 #include "tools/distributed/comm.h"
-#include "tools/aovLayers.h"
+#include "tools/outputs.h"
 #include "tools/progressBar.h"
 
 namespace principled::tools::distributed {
@@ -187,39 +187,13 @@ std::string changedSceneFile(const std::string& was, const std::string& now) {
     return "";
 }
 
-/// Writes the session's AOVs like `principled render` does, each file through a temporary
-/// name renamed into place, so an output is either complete or absent.
+/// Writes the session's AOVs like `principled render` does (tools/outputs.h): every output,
+/// each complete or absent; then fails naming every file that could not be written.
 void writeOutputs(host::RenderSession& session, const std::vector<std::string>& outputs, bool split) {
-    AovLayers written = aovLayers(session);
-    const std::vector<embree::ImageLayer>& layers = written.layers;
-    auto atomicWrite = [&](const fs::path& path, const std::vector<embree::ImageLayer>& ls) {
-        std::error_code ec;
-        if (!path.parent_path().empty()) fs::create_directories(path.parent_path(), ec);
-        fs::path tmp = path.parent_path() /
-                       ("." + path.stem().string() + ".tmp" + std::to_string(getpid()) + path.extension().string());
-        std::string error;
-        if (!embree::writeImage(tmp.string(), session.width(), session.height(), ls, &error, session.pixelAspectRatio())) {
-            fs::remove(tmp, ec);
-            throw RankError(path.string() + ": " + error);
-        }
-        fs::rename(tmp, path, ec);
-        if (ec) throw RankError(path.string() + ": cannot rename into place: " + ec.message());
-    };
-    for (const auto& out : outputs) {
-        fs::path path(out);
-        bool exr = path.extension() == ".exr";
-        if (split && exr) {
-            for (const auto& l : layers) {
-                fs::path p = path;
-                p.replace_filename(path.stem().string() + "." + (l.name.empty() ? "color" : l.name) + ".exr");
-                embree::ImageLayer single = l;
-                single.name.clear();
-                atomicWrite(p, {single});
-            }
-        } else {
-            atomicWrite(path, exr ? layers : std::vector<embree::ImageLayer>{layers[0]});
-        }
-    }
+    std::vector<std::string> errors = tools::writeOutputs(session, outputs, split);
+    std::string all;
+    for (const auto& e : errors) all += (all.empty() ? "" : "; ") + e;
+    if (!errors.empty()) throw RankError(all);
 }
 
 /// Under mpirun a rank's stderr is a pipe to the launcher; rank 0 usually runs on the node

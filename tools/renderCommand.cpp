@@ -2,6 +2,7 @@
 #include "tools/renderCommand.h"
 
 #include <chrono>
+#include <csignal>
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include "delegate/imageWriter.h"
 #include "delegate/renderDelegate.h"
@@ -50,6 +52,39 @@ struct RenderArgs {
     bool split = false;
     bool quiet = false;
     distributed::Options distributed;  // mpirun, --frames, checkpoints: tools/distributed/
+};
+
+/// SIGINT / SIGTERM during the render: the first stops it after the current pass (the image so
+/// far is written), a second exits at once.
+volatile std::sig_atomic_t gStopSignal = 0;
+
+extern "C" void onStopSignal(int sig) {
+    if (gStopSignal != 0) _exit(128 + sig);
+    gStopSignal = sig;
+}
+
+/// Installs onStopSignal for SIGINT and SIGTERM while it lives; the previous handlers after.
+class StopSignals {
+public:
+    StopSignals() {
+        struct sigaction sa {};
+        sa.sa_handler = onStopSignal;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, &_int);
+        sigaction(SIGTERM, &sa, &_term);
+        // A signal the parent ignores on purpose (a shell script's background job and SIGINT) stays ignored.
+        if (_int.sa_handler == SIG_IGN) sigaction(SIGINT, &_int, nullptr);
+        if (_term.sa_handler == SIG_IGN) sigaction(SIGTERM, &_term, nullptr);
+    }
+    ~StopSignals() {
+        sigaction(SIGINT, &_int, nullptr);
+        sigaction(SIGTERM, &_term, nullptr);
+    }
+    StopSignals(const StopSignals&) = delete;
+    StopSignals& operator=(const StopSignals&) = delete;
+
+private:
+    struct sigaction _int {}, _term {};
 };
 
 int fail(const std::string& message) {
@@ -149,6 +184,7 @@ int runRender(const RenderArgs& a) {
         firstImageUnix = unixSeconds();
         cpuToFirstImage = processCpuSeconds();
     };
+    StopSignals stopSignals;  // until the outputs are written
     while (!session->step()) {
         firstImage();
         double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
@@ -156,6 +192,7 @@ int runRender(const RenderArgs& a) {
             timedOut = true;
             break;
         }
+        if (gStopSignal != 0) break;
         bar.update(session->completedSamples(), session->targetSamples(),
                    std::to_string(session->completedSamples()) + "/" +
                        std::to_string(session->targetSamples()) + " spp");
@@ -167,6 +204,12 @@ int runRender(const RenderArgs& a) {
     double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     double renderCpuSeconds = double(std::clock() - c1) / CLOCKS_PER_SEC;
     report();
+    const int stopSignal = gStopSignal;
+    if (stopSignal != 0 && !a.quiet)
+        std::fprintf(stderr, "principled: %s: stopped after the pass in progress; writing the image so far (%d of %d spp; "
+                             "press Ctrl-C again to exit without writing)\n",
+                     stopSignal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)",
+                     session->completedSamples(), session->targetSamples());
 
     // Each output through a temporary file renamed into place; one that fails does not stop
     // the others (nor the stats).
@@ -180,6 +223,7 @@ int runRender(const RenderArgs& a) {
         j["samplesPerPixel"] = session->completedSamples();
         j["camera"] = session->cameraPath();
         j["timedOut"] = timedOut;
+        j["interrupted"] = stopSignal != 0;
         j["loadSeconds"] = loadSeconds;
         j["renderWallSeconds"] = renderSeconds;
         j["renderCpuSeconds"] = renderCpuSeconds;  // equal-CPU-time comparisons on a shared machine
@@ -196,6 +240,7 @@ int runRender(const RenderArgs& a) {
         f << j.dump(2) << "\n";
     }
     if (!writeErrors.empty()) return 1;
+    if (stopSignal != 0) return 128 + stopSignal;  // 130 (SIGINT), 143 (SIGTERM), as the shell reports a kill
     if (!a.quiet)
         std::fprintf(stderr, "principled: rendered %dx%d at %d spp in %.2fs (%.1f Mrays/s)\n",
                      session->width(), session->height(), session->completedSamples(),
@@ -227,7 +272,9 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--noise-threshold", args->noiseThreshold,
                     "Adaptive sampling: stop a pixel when the relative standard error of its mean is below this (e.g. 0.01); 0 = off")
         ->check(CLI::Range(0.0, 10.0));
-    cmd->add_option("--time-limit", args->timeLimit, "Stop after this many seconds of rendering (the image so far is written)")
+    cmd->add_option("--time-limit", args->timeLimit,
+                    "Stop after this many seconds of rendering (the image so far is written). Ctrl-C / SIGTERM also "
+                    "stop after the pass in progress, write the image and exit 130 / 143; a second Ctrl-C exits at once")
         ->check(CLI::Range(0.0, 1e9));
     cmd->add_option("--time", args->time, "Time code to render the stage at (default: startTimeCode, else the default values)");
     cmd->add_option("--set", args->settings,

@@ -9,7 +9,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <csignal>
+#include <tuple>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -462,4 +465,52 @@ TEST(Cli, KilledWhileWritingLeavesThePreviousImage) {
     EXPECT_EQ(in->spec().width, 8);
     std::vector<float> px(size_t(in->spec().width) * in->spec().height * in->spec().nchannels);
     EXPECT_TRUE(in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+}
+
+namespace {
+
+// Starts `principled ARGS` with stdout and stderr to `log`; returns its pid.
+pid_t spawnPrincipled(const std::string& args, const fs::path& log) {
+    const std::string cmd = "exec " + std::string(PRINCIPLED_BINARY_DIR) + "/bin/principled " + args + " >" +
+                            log.string() + " 2>&1";
+    pid_t pid = fork();
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    return pid;
+}
+
+}  // namespace
+
+TEST(Cli, InterruptWritesTheImageSoFarAndExitsWithTheSignalsCode) {
+    // Ctrl-C or SIGTERM during a plain render wrote nothing: the progressive image was lost.
+    const fs::path dir = tempDir() / "interrupt";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (auto [sig, code, name] : {std::tuple{SIGINT, 130, "interrupted (SIGINT)"}, std::tuple{SIGTERM, 143, "terminated (SIGTERM)"}}) {
+        const fs::path out = dir / (std::to_string(sig) + ".exr"), png = dir / (std::to_string(sig) + ".png");
+        const fs::path log = dir / "log.txt", stats = dir / "s.json";
+        pid_t pid = spawnPrincipled("render -o " + out.string() + " -o " + png.string() + " --stats " + stats.string() +
+                                        " --res 100x75 --spp 1000000 --threads 1",
+                                    log);
+        ASSERT_GT(pid, 0);
+        sleep(2);
+        kill(pid, sig);
+        int status = 0;
+        waitpid(pid, &status, 0);
+        std::ifstream in(log);
+        const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        ASSERT_TRUE(WIFEXITED(status)) << name << ": killed by the signal\n" << output;
+        EXPECT_EQ(WEXITSTATUS(status), code) << output;
+        EXPECT_NE(output.find(name), std::string::npos) << output;
+        EXPECT_NE(output.find("of 1000000 spp"), std::string::npos) << output;
+        auto [finite, mean] = exrStats(out.string());
+        EXPECT_TRUE(finite);
+        EXPECT_GT(mean, 0.0) << name;
+        EXPECT_TRUE(fs::exists(png)) << name;
+        std::ifstream s(stats);
+        const std::string json((std::istreambuf_iterator<char>(s)), std::istreambuf_iterator<char>());
+        EXPECT_NE(json.find("\"interrupted\": true"), std::string::npos) << json;
+    }
 }

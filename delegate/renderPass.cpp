@@ -311,6 +311,7 @@ void EmbreeRenderPass::execute(const RenderPassState& state) {
     // The first pass is a single sample so a viewport shows an image at once; later passes
     // double up to kMaxSamplesPerPass.
     int batch = std::min({_target - _samples, 1 << std::min(_passes, 4), kMaxSamplesPerPass});
+    if (_passSampleLimit > 0) batch = std::min(batch, _passSampleLimit);
     int first = rangeFirst + _samples;
     std::atomic<long> rays{0}, invalid{0}, taken{0}, lightRays{0}, cameraRays{0};
     auto start = std::chrono::steady_clock::now();

@@ -4,6 +4,7 @@
 // when the scene, the settings, the camera, the size or the bindings change.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
 #include <set>
@@ -54,6 +55,11 @@ public:
     }
     bool setPixelStats(const PixelStats& stats, int completedSamples);
 
+    /// Caps the samples per pixel of each following pass (0: none; passes double from 1 up to
+    /// 16): a host with a deadline sizes the next pass to the time left (`--time-limit`). The
+    /// samples rendered are the same sample indices either way.
+    void setPassSampleLimit(int samples) { _passSampleLimit = std::max(0, samples); }
+
     /// Pixels still being sampled (adaptive sampling stops converged ones).
     size_t activePixels() const { return _active; }
 
@@ -64,6 +70,7 @@ private:
     int _samples = 0;
     int _target = 0;
     int _passes = 0;
+    int _passSampleLimit = 0;  ///< setPassSampleLimit
     bool _converged = false;
     // What the accumulated samples were rendered with.
     unsigned _sceneVersion = 0, _settingsVersion = 0;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/renderCommand.h"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <ctime>
@@ -18,6 +19,7 @@
 
 #include "delegate/imageWriter.h"
 #include "delegate/renderDelegate.h"
+#include "delegate/renderPass.h"
 #include "plugins/renderSession.h"
 #include "scene_adapter/usda/error.h"
 #include "tools/defaultScene.h"
@@ -185,7 +187,27 @@ int runRender(const RenderArgs& a) {
         cpuToFirstImage = processCpuSeconds();
     };
     StopSignals stopSignals;  // until the outputs are written
-    while (!session->step()) {
+    // --time-limit: a pass cannot stop midway, so each is sized to the time left from the
+    // seconds per sample per pixel of the one before (the first, 1 spp, includes the scene's
+    // build): the limit is overshot by at most about one 1-spp pass.
+    double secondsPerSample = 0.0;
+    for (;;) {
+        if (a.timeLimit > 0.0 && secondsPerSample > 0.0) {
+            double left = a.timeLimit - std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+            double fit = left / secondsPerSample;
+            if (fit < 0.5) {  // even one sample would end further past the limit than stopping now is before it
+                timedOut = true;
+                break;
+            }
+            session->pass()->setPassSampleLimit(int(std::clamp(fit, 1.0, 1024.0)));
+        }
+        const auto passStart = std::chrono::steady_clock::now();
+        const int before = session->completedSamples();
+        const bool converged = session->step();
+        const int taken = session->completedSamples() - before;
+        if (taken > 0)
+            secondsPerSample = std::chrono::duration<double>(std::chrono::steady_clock::now() - passStart).count() / taken;
+        if (converged) break;
         firstImage();
         double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
         if (a.timeLimit > 0.0 && elapsed >= a.timeLimit) {
@@ -273,7 +295,8 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
                     "Adaptive sampling: stop a pixel when the relative standard error of its mean is below this (e.g. 0.01); 0 = off")
         ->check(CLI::Range(0.0, 10.0));
     cmd->add_option("--time-limit", args->timeLimit,
-                    "Stop after this many seconds of rendering (the image so far is written). Ctrl-C / SIGTERM also "
+                    "Stop after this many seconds of rendering (the image so far is written; passes are sized to the time "
+                    "left, so the limit is overshot by about one sample per pixel's time). Ctrl-C / SIGTERM also "
                     "stop after the pass in progress, write the image and exit 130 / 143; a second Ctrl-C exits at once")
         ->check(CLI::Range(0.0, 1e9));
     cmd->add_option("--time", args->time, "Time code to render the stage at (default: startTimeCode, else the default values)");

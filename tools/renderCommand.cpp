@@ -11,6 +11,7 @@
 #include <fstream>
 #include <memory>
 #include <limits>
+#include <new>
 #include <regex>
 
 #include <nlohmann/json.hpp>
@@ -97,12 +98,14 @@ int fail(const std::string& message) {
 int runRender(const RenderArgs& a) {
     host::SessionOptions o;
     std::smatch m;
-    static const std::regex resPattern(R"(^(\d{1,5})x(\d{1,5})$)");
+    static const std::regex resPattern(R"(^(\d+)x(\d+)$)");
     if (a.res.empty()) {
         o.width = o.height = 0;  // the stage's RenderSettings, else 640x360
     } else {
         if (!std::regex_match(a.res, m, resPattern))
             return fail("--res must look like WIDTHxHEIGHT (e.g. 640x360), not '" + a.res + "'");
+        if (m[1].length() > 5 || m[2].length() > 5 || std::stoi(m[1]) > 32768 || std::stoi(m[2]) > 32768)
+            return fail("--res " + a.res + " is too large: at most 32768x32768");
         o.width = std::stoi(m[1]);
         o.height = std::stoi(m[2]);
         if (o.width == 0 || o.height == 0) return fail("--res must be at least 1x1, not '" + a.res + "'");
@@ -310,7 +313,17 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     distributed::addOptions(cmd, &args->distributed);
     cmd->callback([args, exitCode, cmd] {
         args->sppGiven = cmd->count("--spp") > 0;
-        *exitCode = runRender(*args);
+        try {
+            *exitCode = runRender(*args);
+        } catch (const std::bad_alloc&) {
+            std::string aovs;
+            for (const auto& aov : args->aovs) aovs += (aovs.empty() ? "" : ",") + aov;
+            *exitCode = fail("ran out of memory rendering " +
+                             (args->res.empty() ? std::string("at the stage's resolution") : args->res) +
+                             (aovs.empty() ? "" : " with --aov " + aovs) +
+                             ": reduce --res, the AOVs (--aov) or the scene's subdivision (--refine-level, "
+                             "--set subdivisionBudget=...), or render on a machine with more memory");
+        }
     });
 }
 

@@ -23,8 +23,9 @@ struct Result {
     std::string output;  // stdout + stderr
 };
 
-Result run(const std::string& args) {
-    std::string cmd = std::string(PRINCIPLED_BINARY_DIR) + "/bin/principled " + args + " 2>&1";
+// Runs a shell command line, stderr with stdout.
+Result shell(const std::string& line) {
+    std::string cmd = line + " 2>&1";
     Result r{-1, ""};
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
@@ -35,6 +36,8 @@ Result run(const std::string& args) {
     r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
     return r;
 }
+
+Result run(const std::string& args) { return shell(std::string(PRINCIPLED_BINARY_DIR) + "/bin/principled " + args); }
 
 fs::path tempDir() {
     fs::path d = fs::temp_directory_path() / "principled_cli_test";
@@ -534,4 +537,21 @@ TEST(Cli, TimeLimitStopsWithinAboutOneSampleOfTheLimit) {
     EXPECT_NE(json.find("\"timedOut\": true"), std::string::npos) << json;
     // Past the limit by at most about one sample per pixel's time (the mean, with slack for load).
     EXPECT_LE(wall - 2.0, wall / spp + 0.1) << json;
+}
+
+TEST(Cli, OversizedResolutionAndOutOfMemorySayWhatToReduce) {
+    // Six digits were a format error; running out of memory printed a bare "std::bad_alloc".
+    Result big = run("render -o " + (tempDir() / "big.exr").string() + " --res 100000x100000");
+    EXPECT_EQ(big.status, 1) << big.output;
+    EXPECT_NE(big.output.find("too large: at most 32768x32768"), std::string::npos) << big.output;
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "ulimit -v leaves no room for AddressSanitizer's shadow memory";
+#endif
+    // 3 GB of address space: 20000x20000 with every AOV needs far more.
+    Result oom = shell("ulimit -v 3000000; " + std::string(PRINCIPLED_BINARY_DIR) + "/bin/principled render -o " +
+                       (tempDir() / "oom.exr").string() + " --res 20000x20000 --spp 1 --threads 1 --aov all -q");
+    EXPECT_EQ(oom.status, 1) << oom.output;
+    EXPECT_NE(oom.output.find("ran out of memory rendering 20000x20000 with --aov all: reduce --res"), std::string::npos)
+        << oom.output;
+    EXPECT_EQ(oom.output.find("std::bad_alloc"), std::string::npos) << oom.output;
 }

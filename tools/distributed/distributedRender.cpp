@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <new>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -567,12 +568,16 @@ int run(const host::SessionOptions& session, const std::string& scene, const std
     try {
         Job(comm, session, scene, outputs, split, quiet, options).run();
     } catch (const std::exception& e) {
+        const std::string what = dynamic_cast<const std::bad_alloc*>(&e)
+                                     ? "ran out of memory: reduce --res, the AOVs (--aov) or the scene's subdivision "
+                                       "(--refine-level, --set subdivisionBudget=...)"
+                                     : e.what();
         if (!comm.distributed()) {
-            std::fprintf(stderr, "principled: error: %s\n", e.what());
+            std::fprintf(stderr, "principled: error: %s\n", what.c_str());
             return 1;
         }
         std::fprintf(stderr, "principled: error: rank %d of %d (%s): %s\n", comm.rank(), comm.size(),
-                     comm.host().c_str(), e.what());
+                     comm.host().c_str(), what.c_str());
         comm.abort(1);
     }
     return 0;

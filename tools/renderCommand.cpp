@@ -137,6 +137,9 @@ int runRender(const RenderArgs& a) {
         // (anything else: the session's error names the setting and its range)
     }
     o.aovs = a.aovs;
+    if (!outputFormat(a.scene).empty())
+        return fail("'" + a.scene + "' is an image, not a scene: -o takes one output; give each its own -o "
+                    "(-o a.exr -o a.png)");
     // Every output (and the stats file) can be written, before the scene is loaded.
     for (const auto& out : a.outputs)
         if (std::string problem = checkWritable(out, true); !problem.empty()) return fail(problem);
@@ -280,8 +283,11 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     auto args = std::make_shared<RenderArgs>();
     auto* cmd = app.add_subcommand("render", "Render a .usda stage (default: the built-in scene)");
     cmd->add_option("scene", args->scene, "USDA file; omitted: the built-in default scene");
-    cmd->add_option("-o,--output", args->outputs, "Output image(s): .exr (linear float) or .png (sRGB)")
-        ->required();
+    // -o, --aov and --set take one value each time (repeat them): `-o out.exr scene.usda` keeps
+    // the scene a positional instead of a second output.
+    cmd->add_option("-o,--output", args->outputs, "Output image: .exr (linear float) or .png (sRGB); repeat for more (-o a.exr -o a.png)")
+        ->required()
+        ->allow_extra_args(false);
     cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--res", args->res, "Resolution WIDTHxHEIGHT (default: the stage's RenderSettings, else 640x360)");
     cmd->add_option("--seed", args->seed, "Random seed (same seed, same image)");
@@ -291,7 +297,8 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--model", args->model, "Shading model: disney or ue4");
     cmd->add_option("--stats", args->statsPath, "Write render statistics as JSON");
     cmd->add_option("--aov", args->aovs, "AOVs to write besides color, comma-separated, or 'all'")
-        ->delimiter(',');
+        ->delimiter(',')
+        ->allow_extra_args(false);
     cmd->add_flag("--split", args->split, "Write one EXR per AOV (NAME.AOV.exr) instead of one multi-layer EXR");
     cmd->add_option("--sampler", args->sampler, "sobol (Owen-scrambled, default) or independent");
     cmd->add_option("--noise-threshold", args->noiseThreshold,
@@ -305,7 +312,8 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--time", args->time, "Time code to render the stage at (default: startTimeCode, else the default values)");
     cmd->add_option("--set", args->settings,
                     "Render setting KEY=VALUE (repeatable), e.g. --set mis=0 --set maxDepth=3; applied after the "
-                    "options (it wins over --seed, --max-depth...); convergedSamplesPerPixel beside --spp is refused");
+                    "options (it wins over --seed, --max-depth...); convergedSamplesPerPixel beside --spp is refused")
+        ->allow_extra_args(false);
     cmd->add_option("--refine-level", args->refineLevel,
                     "Subdivision level for every mesh (0-8); -1 = adaptive from the projected size")
         ->check(CLI::Range(-1, 8));

@@ -555,3 +555,21 @@ TEST(Cli, OversizedResolutionAndOutOfMemorySayWhatToReduce) {
         << oom.output;
     EXPECT_EQ(oom.output.find("std::bad_alloc"), std::string::npos) << oom.output;
 }
+
+TEST(Cli, SceneAfterRepeatableOptionsIsTheScene) {
+    // -o, --aov and --set took any number of values: a scene after them was another value.
+    fs::path scene = tempDir() / "order.usda";
+    std::ofstream(scene) << "#usda 1.0\ndef Sphere \"S\" { }\n";
+    const std::string exr = (tempDir() / "order.exr").string(), common = " --res 8x8 --spp 1 -q";
+    for (const std::string& args : {"render -o " + exr + " " + scene.string() + common,
+                                    "render --aov albedo " + scene.string() + " -o " + exr + common,
+                                    "render --set mis=0 " + scene.string() + " -o " + exr + common}) {
+        fs::remove(exr);
+        Result r = run(args);
+        EXPECT_EQ(r.status, 0) << args << "\n" << r.output;
+        EXPECT_TRUE(fs::exists(exr)) << args;
+    }
+    Result two = run("render -o " + exr + " " + (tempDir() / "order.png").string() + common);
+    EXPECT_EQ(two.status, 1) << two.output;
+    EXPECT_NE(two.output.find("give each its own -o"), std::string::npos) << two.output;
+}

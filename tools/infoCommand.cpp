@@ -34,7 +34,11 @@ int runInfo(const std::string& scene, const std::string& camera, int refineLevel
     }
     const usd::Stage& stage = s->stage();
     std::map<std::string, int> byType;
-    for (const usd::Prim* p : stage.traverse()) ++byType[p->typeName().empty() ? "(untyped)" : p->typeName()];
+    size_t nativeInstances = 0;  // instanceable prims (native instancing)
+    for (const usd::Prim* p : stage.traverse()) {
+        ++byType[p->typeName().empty() ? "(untyped)" : p->typeName()];
+        nativeInstances += p->isInstance();
+    }
     std::printf("stage: %s\n", scene.empty() ? "<default scene>" : scene.c_str());
     std::printf("  layers: %zu, upAxis %s, metersPerUnit %g", stage.layerFiles().size(),
                 stage.upAxis().c_str(), stage.metersPerUnit());
@@ -46,7 +50,15 @@ int runInfo(const std::string& scene, const std::string& camera, int refineLevel
     auto sum = s->delegate()->summary();
     std::printf("geometry: %zu meshes (%zu triangles after refinement), %zu spheres, %zu instances",
                 sum.meshes, sum.triangles, sum.spheres, sum.instances);
-    if (sum.instancers) std::printf(" (%zu point instancers)", sum.instancers);
+    // The delegate's instancers include those it makes for instanceable prims: point
+    // instancers are the stage's PointInstancer prims.
+    const size_t pointInstancers = byType.count("PointInstancer") ? size_t(byType["PointInstancer"]) : 0;
+    if (pointInstancers || nativeInstances) {
+        std::printf(" (");
+        if (pointInstancers) std::printf("%zu point instancers%s", pointInstancers, nativeInstances ? ", " : "");
+        if (nativeInstances) std::printf("%zu instanceable prims", nativeInstances);
+        std::printf(")");
+    }
     if (sum.points) std::printf(", %zu points", sum.points);
     if (sum.curvePrims) std::printf(", %zu curves prims (%zu segments)", sum.curvePrims, sum.curveSegments);
     std::printf("\nmaterials: %zu\n", sum.materialLobes.size());

@@ -573,3 +573,20 @@ TEST(Cli, SceneAfterRepeatableOptionsIsTheScene) {
     EXPECT_EQ(two.status, 1) << two.output;
     EXPECT_NE(two.output.find("give each its own -o"), std::string::npos) << two.output;
 }
+
+TEST(Cli, InfoDoesNotCallNativeInstancesPointInstancers) {
+    // Two instanceable prims and no PointInstancer were reported as "(1 point instancers)".
+    fs::path f = tempDir() / "native.usda";
+    std::ofstream(f) << R"(#usda 1.0
+def Xform "Proto" { def Sphere "Ball" { } }
+def Xform "A" (instanceable = true references = </Proto>) { }
+def Xform "B" (instanceable = true references = </Proto>) { double3 xformOp:translate = (3, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"] }
+)";
+    Result r = run("info " + f.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("point instancers"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("2 instanceable prims"), std::string::npos) << r.output;
+    Result shot = run("info " + std::string(PRINCIPLED_SOURCE_DIR) + "/scenes/assembly/shot.usda");
+    EXPECT_NE(shot.output.find("(1 point instancers, "), std::string::npos) << shot.output;
+}

@@ -82,7 +82,9 @@ std::vector<std::string> writeOutputs(const host::RenderSession& session, const 
         const bool exr = outputFormat(out) == ".exr";
         if (split && exr) {
             for (const auto& l : layers) {
+                // "primvars:st" -> "primvars_st": ':' is not allowed in Windows/SMB file names.
                 std::string aov = l.name.empty() ? "color" : l.name;
+                std::replace(aov.begin(), aov.end(), ':', '_');
                 fs::path p = path;
                 p.replace_filename(path.stem().string() + "." + aov + path.extension().string());
                 embree::ImageLayer single = l;

@@ -20,7 +20,7 @@ std::string outputFormat(const std::string& path);
 /// Creates missing parent directories. image: an -o output (else the --stats file).
 std::string checkWritable(const std::string& path, bool image);
 /// Writes the session's AOVs to every output (an EXR gets every AOV as layers, or with split
-/// one file per AOV, OUT.AOV.exr; a PNG the color), each
+/// one file per AOV, OUT.AOV.exr with ':' in AOV names written as '_'; a PNG the color), each
 /// through a temporary file renamed into place. A failed file does not stop the others;
 /// returns one message per failure.
 std::vector<std::string> writeOutputs(const host::RenderSession& session, const std::vector<std::string>& outputs,

@@ -239,6 +239,11 @@ int runRender(const RenderArgs& a) {
                      stopSignal == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)",
                      session->completedSamples(), session->targetSamples());
 
+    // Under adaptive sampling pixels stop early: the samples actually taken, per pixel.
+    const bool adaptive = session->delegate()->noiseThreshold() > 0.0f;
+    const double meanSamples =
+        session->stats()["samples"] / std::max(1.0, double(session->width()) * double(session->height()));
+
     // Each output through a temporary file renamed into place; one that fails does not stop
     // the others (nor the stats).
     const std::vector<std::string> writeErrors = writeOutputs(*session, a.outputs, a.split);
@@ -248,7 +253,8 @@ int runRender(const RenderArgs& a) {
         j["scene"] = a.scene.empty() ? "<default scene>" : a.scene;
         j["width"] = session->width();
         j["height"] = session->height();
-        j["samplesPerPixel"] = session->completedSamples();
+        j["samplesPerPixel"] = session->completedSamples();  // the most a pixel took
+        j["meanSamplesPerPixel"] = meanSamples;                // less under adaptive sampling
         j["camera"] = session->cameraPath();
         j["timedOut"] = timedOut;
         j["interrupted"] = stopSignal != 0;
@@ -269,7 +275,11 @@ int runRender(const RenderArgs& a) {
     }
     if (!writeErrors.empty()) return 1;
     if (stopSignal != 0) return 128 + stopSignal;  // 130 (SIGINT), 143 (SIGTERM), as the shell reports a kill
-    if (!a.quiet)
+    if (!a.quiet && adaptive)
+        std::fprintf(stderr, "principled: rendered %dx%d at %.1f spp on average (adaptive sampling; at most %d) in %.2fs (%.1f Mrays/s)\n",
+                     session->width(), session->height(), meanSamples, session->targetSamples(),
+                     renderSeconds, session->stats()["mraysPerSecond"]);
+    else if (!a.quiet)
         std::fprintf(stderr, "principled: rendered %dx%d at %d spp in %.2fs (%.1f Mrays/s)\n",
                      session->width(), session->height(), session->completedSamples(),
                      renderSeconds, session->stats()["mraysPerSecond"]);
@@ -299,7 +309,7 @@ void addRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--aov", args->aovs, "AOVs to write besides color, comma-separated, or 'all'")
         ->delimiter(',')
         ->allow_extra_args(false);
-    cmd->add_flag("--split", args->split, "Write one EXR per AOV (NAME.AOV.exr) instead of one multi-layer EXR");
+    cmd->add_flag("--split", args->split, "Write one EXR per AOV (NAME.AOV.exr; ':' in AOV names becomes '_': NAME.primvars_st.exr) instead of one multi-layer EXR");
     cmd->add_option("--sampler", args->sampler, "sobol (Owen-scrambled, default) or independent");
     cmd->add_option("--noise-threshold", args->noiseThreshold,
                     "Adaptive sampling: stop a pixel when the relative standard error of its mean is below this (e.g. 0.01); 0 = off")

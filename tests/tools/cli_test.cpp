@@ -590,3 +590,28 @@ def Xform "B" (instanceable = true references = </Proto>) { double3 xformOp:tran
     Result shot = run("info " + std::string(PRINCIPLED_SOURCE_DIR) + "/scenes/assembly/shot.usda");
     EXPECT_NE(shot.output.find("(1 point instancers, "), std::string::npos) << shot.output;
 }
+
+TEST(Cli, SplitNamesHaveNoColonAndAdaptiveSummaryGivesTheMeanSamples) {
+    // --split wrote 'sp.primvars:st.exr'; under adaptive sampling the summary said "at 4096 spp"
+    // when most pixels had stopped at 31.
+    const fs::path dir = tempDir() / "splitColon";
+    fs::remove_all(dir);
+    fs::path scene = tempDir() / "splitColon.usda";
+    std::ofstream(scene) << "#usda 1.0\ndef Sphere \"S\" { float primvars:mask = 1 }\n";
+    Result r = run("render " + scene.string() + " -o " + (dir / "sp.exr").string() +
+                   " --split --aov primvars:mask --res 8x8 --spp 1 -q");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "sp.primvars_mask.exr"));
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(':'), std::string::npos) << e.path();
+    const fs::path stats = dir / "a.json";
+    Result adaptive = run("render " + scene.string() + " -o " + (dir / "a.exr").string() +
+                          " --res 16x16 --spp 512 --noise-threshold 0.5 --stats " + stats.string());
+    ASSERT_EQ(adaptive.status, 0) << adaptive.output;
+    EXPECT_NE(adaptive.output.find("spp on average (adaptive sampling; at most 512)"), std::string::npos) << adaptive.output;
+    std::ifstream in(stats);
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto at = json.find("\"meanSamplesPerPixel\": ");
+    ASSERT_NE(at, std::string::npos) << json;
+    EXPECT_LT(std::atof(json.c_str() + at + 23), 512.0) << json;
+}

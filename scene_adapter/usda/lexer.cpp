@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "scene_adapter/usda/lexer.h"
 
+#include "scene_adapter/usda/utf8.h"
+
 namespace principled::usd {
 
 namespace {
@@ -12,6 +14,9 @@ bool isIdentChar(char c) {
 }
 bool isDigit(char c) {
     return c >= '0' && c <= '9';
+}
+bool isNonAscii(char c) {
+    return static_cast<unsigned char>(c) >= 0x80;
 }
 }  // namespace
 
@@ -133,6 +138,29 @@ void Lexer::scanString(Token& t) {
     t.text = _text.substr(start, _pos - start);
 }
 
+void Lexer::scanIdentifier() {
+    // OpenUSD 24.03+ identifiers are Unicode: (XID_Start | '_') XID_Continue* (pathParser.h
+    // Utf8Identifier). We approximate both classes by "any well-formed multi-byte UTF-8
+    // sequence", so a non-ASCII letter, digit or mark is accepted anywhere in a name; what
+    // OpenUSD would refuse (a non-ASCII symbol or space) is accepted here too. Malformed UTF-8 is
+    // an error at the offending byte.
+    const std::size_t n = _text.size();
+    while (_pos < n) {
+        const char c = _text[_pos];
+        if (isIdentChar(c)) {
+            ++_pos;
+        } else if (isNonAscii(c)) {
+            std::size_t length = utf8SequenceLength(_text, _pos);
+            if (length == 0)
+                failHere("a well-formed UTF-8 character in an identifier",
+                         quoteText(_text.substr(_pos, 1)));
+            _pos += length;
+        } else {
+            break;
+        }
+    }
+}
+
 Token Lexer::scan() {
     skipSpaceAndComments();
     Token t;
@@ -146,8 +174,8 @@ Token Lexer::scan() {
     }
     const std::size_t start = _pos;
     const char c = _text[_pos];
-    if (isIdentStart(c)) {
-        while (_pos < n && isIdentChar(_text[_pos])) ++_pos;
+    if (isIdentStart(c) || isNonAscii(c)) {
+        scanIdentifier();
         t.kind = TokenKind::Identifier;
     } else if (isDigit(c) ||
                ((c == '-' || c == '+' || c == '.') && _pos + 1 < n &&

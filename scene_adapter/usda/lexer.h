@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Hand-written USDA tokenizer: identifiers (with ':' namespaces), numbers (incl. inf/nan),
-// quoted strings ('', "", triple-quoted), @asset@ / @@@asset@@@, </path>, punctuation.
+// Hand-written USDA tokenizer: identifiers (with ':' namespaces, UTF-8 allowed), numbers (incl.
+// inf/nan), quoted strings ('', "", triple-quoted), @asset@ / @@@asset@@@, </path>, punctuation.
 // Comments: '#', '//' to end of line and '/* ... */'. Tokens are views into the source text;
 // nothing is allocated per token.
 #pragma once
@@ -51,6 +51,8 @@ private:
     void skipSpaceAndComments();
     [[noreturn]] void failHere(std::string_view expected, std::string_view found) const;
     void scanString(Token& t);
+    /// An identifier from _pos: ASCII letters, digits, '_', ':' and UTF-8 characters.
+    void scanIdentifier();
 
     std::string_view _text;
     FileName _file;  ///< interned once: every token location shares it

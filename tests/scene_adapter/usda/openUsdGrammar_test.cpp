@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: Apache-2.0
+// Valid USDA that OpenUSD's text parser (pxr/usd/sdf/textFileFormatParser.h) accepts and that
+// we once refused or read wrongly (QA report on the USDA grammar); one test per finding.
+#include <gtest/gtest.h>
+
+#include "scene_adapter/usda/parser.h"
+#include "scene_adapter/usda/utf8.h"
+#include "testUtil.h"
+
+namespace principled::usd {
+namespace {
+
+std::unique_ptr<Layer> parse(std::string_view text) {
+    return parseLayer(text, "t.usda", "/tmp");
+}
+
+std::string errorOf(std::string_view text) {
+    return test::parseErrorOf([&] { parse(text); });
+}
+
+TEST(OpenUsdGrammar, Utf8SequenceLength) {
+    EXPECT_EQ(utf8SequenceLength("\xC3\xA9", 0), 2u);          // é
+    EXPECT_EQ(utf8SequenceLength("\xE5\x90\x8D", 0), 3u);      // 名
+    EXPECT_EQ(utf8SequenceLength("\xF0\x9F\x98\x80", 0), 4u);  // U+1F600
+    EXPECT_EQ(utf8SequenceLength("a", 0), 0u);
+    EXPECT_EQ(utf8SequenceLength("\xA9", 0), 0u);              // lone continuation byte
+    EXPECT_EQ(utf8SequenceLength("\xC0\xAF", 0), 0u);          // overlong '/'
+    EXPECT_EQ(utf8SequenceLength("\xE0\x80\xAF", 0), 0u);      // overlong '/'
+    EXPECT_EQ(utf8SequenceLength("\xED\xA0\x80", 0), 0u);      // surrogate D800
+    EXPECT_EQ(utf8SequenceLength("\xF4\x90\x80\x80", 0), 0u);  // above U+10FFFF
+    EXPECT_EQ(utf8SequenceLength("\xE5\x90", 0), 0u);          // cut short
+    EXPECT_EQ(utf8SequenceLength("\xFF", 0), 0u);
+}
+
+TEST(OpenUsdGrammar, Utf8Identifiers) {
+    auto layer = parse(R"(#usda 1.0
+def Xform "W" (
+    customData = { int clé = 1 }
+    variants = { string vé = "x" }
+)
+{
+    float café = 1
+    texCoord2f[] primvars:ñ:名 = [(0, 1)]
+    rel matériau = </W>
+}
+)");
+    const PrimSpec* w = layer->prim("/W");
+    ASSERT_NE(w, nullptr);
+    ASSERT_NE(w->attribute("café"), nullptr);
+    EXPECT_EQ(*w->attribute("café")->defaultValue->getDouble(), 1.0);
+    EXPECT_NE(w->attribute("primvars:ñ:名"), nullptr);
+    EXPECT_NE(w->relationship("matériau"), nullptr);
+    EXPECT_EQ(*w->metadata.at("customData").find("clé")->getInt(), 1);
+    EXPECT_EQ(w->variantSelections.at("vé"), "x");
+}
+
+TEST(OpenUsdGrammar, MalformedUtf8InAnIdentifierIsALocatedError) {
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"W\" {\n    float caf\xC3 = 1\n}\n"),
+              "t.usda:3:14: expected a well-formed UTF-8 character in an identifier, found "
+              "'\\xc3'");
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"W\" {\n    float \xFF = 1\n}\n"),
+              "t.usda:3:11: expected a well-formed UTF-8 character in an identifier, found "
+              "'\\xff'");
+}
+
+}  // namespace
+}  // namespace principled::usd

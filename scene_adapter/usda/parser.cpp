@@ -104,9 +104,26 @@ void Parser::parseMetadataBlock(Dictionary& metadata, const char* docKey, std::s
             next();
         }
         Token key = expectIdent(expected);
-        expect('=');
+        Token eq = expect('=');
+        if (key.text == "symmetryFunction" || key.text == "permission" ||
+            key.text == "displayUnit") {
+            // Their own grammar rules (textFileFormatParser.h): an identifier on the line of the
+            // '=', optional for symmetryFunction (Sdf writes `symmetryFunction = ` when empty).
+            metadata[std::string(key.text)] =
+                parseIdentifierOnLine(key.text, eq, key.text == "symmetryFunction");
+            continue;
+        }
         entry(op, key.text);
     }
+}
+
+Value Parser::parseIdentifierOnLine(std::string_view key, const Token& eq, bool optional) {
+    SourceLocation where = here();
+    const Token& t = peek();
+    if (t.kind == TokenKind::Identifier && t.line == eq.line)
+        return Value::string("token", std::string(next().text), where);
+    if (optional) return Value::string("token", "", _lex.location(eq));
+    fail("an identifier after '" + std::string(key) + " =' on line " + std::to_string(eq.line));
 }
 
 void Parser::parseLayerMetadata(Layer& layer) {

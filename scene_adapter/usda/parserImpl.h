@@ -65,6 +65,9 @@ private:
     template <class Entry>
     void parseMetadataBlock(Dictionary& metadata, const char* docKey, std::string_view expected,
                             Entry&& entry);
+    /// `symmetryFunction`, `permission`, `displayUnit`: the identifier after `key =` on the
+    /// line of the '=' (or an empty token when `optional` and there is none).
+    Value parseIdentifierOnLine(std::string_view key, const Token& eq, bool optional);
     void parseLayerMetadata(Layer& layer);
     void parseSubLayers(Layer& layer);
     /// Names of the prims parsed so far in one body (views of their names).

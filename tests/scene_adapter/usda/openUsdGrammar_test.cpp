@@ -63,5 +63,35 @@ TEST(OpenUsdGrammar, MalformedUtf8InAnIdentifierIsALocatedError) {
               "'\\xff'");
 }
 
+TEST(OpenUsdGrammar, EmptySymmetryFunction) {
+    // Sdf writes `symmetryFunction = ` for an empty token: the identifier is optional and must
+    // be on the line of the '='.
+    auto layer = parse(R"(#usda 1.0
+def Xform "W" (
+    symmetryFunction =
+    kind = "component"
+)
+{
+    float a = 1 (
+        symmetryFunction =
+        displayUnit = mm
+    )
+    float b = 2 (symmetryFunction = mirrorX; permission = private)
+    float c = 3 (symmetryFunction =)
+}
+)");
+    const PrimSpec* w = layer->prim("/W");
+    EXPECT_EQ(*w->metadata.at("symmetryFunction").getString(), "");
+    EXPECT_EQ(*w->metadata.at("kind").getString(), "component");
+    EXPECT_EQ(*w->attribute("a")->metadata.at("symmetryFunction").getString(), "");
+    EXPECT_EQ(*w->attribute("a")->metadata.at("displayUnit").getString(), "mm");
+    EXPECT_EQ(*w->attribute("b")->metadata.at("symmetryFunction").getString(), "mirrorX");
+    EXPECT_EQ(*w->attribute("b")->metadata.at("permission").getString(), "private");
+    EXPECT_EQ(*w->attribute("c")->metadata.at("symmetryFunction").getString(), "");
+    // permission and displayUnit require their identifier on the same line.
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"W\" (\n    permission =\n    kind = \"x\"\n) {}\n"),
+              "t.usda:4:5: expected an identifier after 'permission =' on line 3, found 'kind'");
+}
+
 }  // namespace
 }  // namespace principled::usd

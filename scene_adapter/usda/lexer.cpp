@@ -242,6 +242,52 @@ Token Lexer::scan() {
     return t;
 }
 
+namespace {
+int hexDigit(char h) {
+    return (h >= '0' && h <= '9')   ? h - '0'
+           : (h >= 'a' && h <= 'f') ? h - 'a' + 10
+           : (h >= 'A' && h <= 'F') ? h - 'A' + 10
+                                    : -1;
+}
+
+/// Decodes the escape whose backslash is at body[i] into `out`; returns the index of its last
+/// character. As TfEscapeStringReplaceChar (base/tf/stringUtils.cpp): \a \b \f \n \r \t
+/// \v; \x takes every hex digit that follows, \ooo one to three octal digits, each giving one
+/// byte (modulo 256); any other character stands for itself (\\ \" \' \c -> c).
+std::size_t unescapeOne(std::string_view body, std::size_t i, std::string& out) {
+    const char e = body[++i];
+    switch (e) {
+        case 'a': out += '\a'; return i;
+        case 'b': out += '\b'; return i;
+        case 'f': out += '\f'; return i;
+        case 'n': out += '\n'; return i;
+        case 'r': out += '\r'; return i;
+        case 't': out += '\t'; return i;
+        case 'v': out += '\v'; return i;
+        case 'x': {
+            unsigned v = 0;
+            while (i + 1 < body.size() && hexDigit(body[i + 1]) >= 0)
+                v = (v * 16 + static_cast<unsigned>(hexDigit(body[++i]))) & 0xFFu;
+            out += static_cast<char>(v);
+            return i;
+        }
+        default:
+            break;
+    }
+    if (e >= '0' && e <= '7') {
+        unsigned v = static_cast<unsigned>(e - '0');
+        for (int digits = 1; digits < 3 && i + 1 < body.size() && body[i + 1] >= '0' &&
+                             body[i + 1] <= '7';
+             ++digits)
+            v = v * 8 + static_cast<unsigned>(body[++i] - '0');
+        out += static_cast<char>(v & 0xFFu);
+        return i;
+    }
+    out += e;
+    return i;
+}
+}  // namespace
+
 std::string unescapeString(std::string_view raw) {
     std::size_t q = (raw.size() >= 6 && raw[1] == raw[0] && raw[2] == raw[0]) ? 3 : 1;
     if (raw.size() < 2 * q) return {};
@@ -249,57 +295,10 @@ std::string unescapeString(std::string_view raw) {
     std::string out;
     out.reserve(body.size());
     for (std::size_t i = 0; i < body.size(); ++i) {
-        char c = body[i];
-        if (c != '\\' || i + 1 >= body.size()) {
-            out += c;
-            continue;
-        }
-        char e = body[++i];
-        switch (e) {
-            case 'n':
-                out += '\n';
-                break;
-            case 't':
-                out += '\t';
-                break;
-            case 'r':
-                out += '\r';
-                break;
-            case '0':
-                out += '\0';
-                break;
-            case 'a':
-                out += '\a';
-                break;
-            case 'b':
-                out += '\b';
-                break;
-            case 'f':
-                out += '\f';
-                break;
-            case 'v':
-                out += '\v';
-                break;
-            case 'x': {
-                int v = 0, digits = 0;
-                while (digits < 2 && i + 1 < body.size()) {
-                    char h = body[i + 1];
-                    int d = (h >= '0' && h <= '9')   ? h - '0'
-                            : (h >= 'a' && h <= 'f') ? h - 'a' + 10
-                            : (h >= 'A' && h <= 'F') ? h - 'A' + 10
-                                                     : -1;
-                    if (d < 0) break;
-                    v = v * 16 + d;
-                    ++i;
-                    ++digits;
-                }
-                out += static_cast<char>(v);
-                break;
-            }
-            default:
-                out += e;
-                break;  // \\ \" \' and unknown escapes keep the character
-        }
+        if (body[i] == '\\' && i + 1 < body.size())
+            i = unescapeOne(body, i, out);
+        else
+            out += body[i];
     }
     return out;
 }

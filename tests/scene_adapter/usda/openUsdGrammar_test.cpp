@@ -3,6 +3,7 @@
 // we once refused or read wrongly (QA report on the USDA grammar); one test per finding.
 #include <gtest/gtest.h>
 
+#include "scene_adapter/usda/lexer.h"
 #include "scene_adapter/usda/parser.h"
 #include "scene_adapter/usda/utf8.h"
 #include "testUtil.h"
@@ -91,6 +92,25 @@ def Xform "W" (
     // permission and displayUnit require their identifier on the same line.
     EXPECT_EQ(errorOf("#usda 1.0\ndef \"W\" (\n    permission =\n    kind = \"x\"\n) {}\n"),
               "t.usda:4:5: expected an identifier after 'permission =' on line 3, found 'kind'");
+}
+
+TEST(OpenUsdGrammar, StringEscapesAsTfEscapeString) {
+    // Octal: one to three digits, one byte.
+    EXPECT_EQ(unescapeString(R"("invisib\154e")"), "invisible");
+    EXPECT_EQ(unescapeString(R"("a\012b")"), "a\nb");
+    EXPECT_EQ(unescapeString(R"("\0")"), std::string(1, '\0'));
+    EXPECT_EQ(unescapeString(R"("\1012")"), "A2");   // at most three digits
+    EXPECT_EQ(unescapeString(R"("\18")"), "\x01" "8");  // 8 is not octal
+    EXPECT_EQ(unescapeString(R"("\777")"), "\xFF");     // modulo 256
+    // Hex: every hex digit that follows, modulo 256.
+    EXPECT_EQ(unescapeString(R"("\x6c")"), "l");
+    EXPECT_EQ(unescapeString(R"("\x4142")"), "B");  // 0x4142 & 0xFF
+    EXPECT_EQ(unescapeString(R"("\x41g")"), "Ag");
+    EXPECT_EQ(unescapeString(R"("\xg")"), std::string("\0g", 2));
+    // The rest: C escapes, and any other character stands for itself.
+    EXPECT_EQ(unescapeString(R"("\a\b\f\n\r\t\v\\\"\'\q")"), "\a\b\f\n\r\t\v\\\"'q");
+    auto layer = parse("#usda 1.0\ndef \"W\" {\n    token visibility = \"invisib\\154e\"\n}\n");
+    EXPECT_EQ(*layer->prim("/W")->attribute("visibility")->defaultValue->getString(), "invisible");
 }
 
 }  // namespace

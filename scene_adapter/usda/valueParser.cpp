@@ -14,6 +14,22 @@ namespace {
 std::string quoted(const std::string& text) {
     return quoteText(text);
 }
+
+// Inside @@@...@@@ the only escape is \@@@ for @@@ (Sdf_EvalAssetPath; Sdf writes it when a
+// path holds "@@@").
+std::string unescapeTripleAt(const std::string& path) {
+    std::string out;
+    out.reserve(path.size());
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        if (path.compare(i, 4, "\\@@@") == 0) {
+            out += "@@@";
+            i += 3;
+        } else {
+            out += path[i];
+        }
+    }
+    return out;
+}
 }  // namespace
 
 AssetPath Parser::assetFromToken(const Token& t) const {
@@ -21,6 +37,7 @@ AssetPath Parser::assetFromToken(const Token& t) const {
     std::size_t q = s.size() >= 6 && s.substr(0, 3) == "@@@" ? 3 : 1;
     AssetPath a;
     a.authored = std::string(s.substr(q, s.size() - 2 * q));
+    if (q == 3) a.authored = unescapeTripleAt(a.authored);
     a.resolved = resolveAsset(a.authored, _anchor);
     a.anchored = anchorAsset(a.authored, _anchor);
     return a;

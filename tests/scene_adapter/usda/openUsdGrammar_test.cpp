@@ -113,5 +113,19 @@ TEST(OpenUsdGrammar, StringEscapesAsTfEscapeString) {
     EXPECT_EQ(*layer->prim("/W")->attribute("visibility")->defaultValue->getString(), "invisible");
 }
 
+TEST(OpenUsdGrammar, EscapedTripleAtInAssetPath) {
+    auto layer = parse(R"(#usda 1.0
+def "A" ( references = @@@./a\@@@b.usda@@@ ) {
+    asset t = @@@tex\@@@1.png@@@
+    asset u = @@@tex@1.png@@@
+}
+)");
+    const PrimSpec* a = layer->prim("/A");
+    ASSERT_EQ(a->references.explicitItems.size(), 1u);
+    EXPECT_EQ(a->references.explicitItems[0].assetPath, "./a@@@b.usda");
+    EXPECT_EQ(a->attribute("t")->defaultValue->getAsset()->authored, "tex@@@1.png");
+    EXPECT_EQ(a->attribute("u")->defaultValue->getAsset()->authored, "tex@1.png");
+}
+
 }  // namespace
 }  // namespace principled::usd

@@ -34,9 +34,12 @@ public:
     const Token& peek() const { return _next; }
     Token next() {
         Token t = _next;
+        _lastEnd = t.text.data() + t.text.size();
         _next = scan();
         return t;
     }
+    /// Just past the text of the token next() returned last (nullptr before the first).
+    const char* lastEnd() const { return _lastEnd; }
 
     const std::string& file() const { return _file; }
     SourceLocation location(const Token& t) const { return {_file, t.line, t.column}; }
@@ -60,6 +63,7 @@ private:
     std::size_t _lineStart = 0;
     int _line = 1;
     Token _next;
+    const char* _lastEnd = nullptr;
 };
 
 /// `text` in single quotes for an error message: bytes outside printable ASCII as \\xNN, cut

@@ -132,7 +132,7 @@ void Parser::parseLayerMetadata(Layer& layer) {
                            if (key == "subLayers")
                                parseSubLayers(layer);
                            else
-                               layer.metadata[std::string(key)] = parseGenericValue();
+                               layer.metadata[std::string(key)] = parseMetadataValue(key);
                        });
 }
 
@@ -229,7 +229,7 @@ void Parser::parsePrimMetadataEntry(PrimSpec& spec, ListOpKind op, std::string_v
         spec.metadata["variants"] = Value::dictionary(std::move(d), where);
     } else {
         std::string name(k == "doc" ? std::string_view("documentation") : k);
-        spec.metadata[name] = parseGenericValue();
+        spec.metadata[name] = parseMetadataValue(name);
     }
 }
 
@@ -422,7 +422,7 @@ void Parser::parsePropertyMetadata(Dictionary& metadata) {
     parseMetadataBlock(metadata, "documentation", "a property metadata name or ')'",
                        [&](ListOpKind, std::string_view key) {
                            std::string name(key == "doc" ? std::string_view("documentation") : key);
-                           metadata[name] = parseGenericValue();
+                           metadata[name] = parseMetadataValue(name);
                        });
 }
 

@@ -96,6 +96,13 @@ private:
     double parseNumber(const ValueType& type);
     double parseScalarNumber(const Token& t, bool integer, bool isUnsigned, bool isBool);
     Value parseGenericValue();
+    /// The value of metadata field `key`: parseGenericValue() for a registered field; for any
+    /// other, a value of any shape the grammar allows, kept as its text (typeName
+    /// "unregistered") when it is not one parseGenericValue() can hold.
+    Value parseMetadataValue(std::string_view key);
+    Value parseUnregisteredValue();
+    /// Consumes one value (atoms, tuples, lists, dictionaries) without building it.
+    void skipValue();
     Dictionary parseDictionary();
     AssetPath assetFromToken(const Token& t) const;
     static std::string pathFromToken(const Token& t);

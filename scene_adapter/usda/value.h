@@ -68,7 +68,9 @@ public:
     /// True when explicitly blocked (None) or empty.
     bool isNone() const { return _kind == Kind::None || _kind == Kind::Empty; }
     /// As authored without [] e.g. "point3f", "token", "matrix4d". Untyped metadata values
-    /// get "bool", "int", "double", "string", "asset", "path", "dictionary", "token".
+    /// get "bool", "int", "double", "string", "asset", "path", "dictionary", "token"; an
+    /// unregistered metadata field whose value no other kind holds (a tuple of strings, a
+    /// nested list...) is a String of typeName "unregistered" holding the text as authored.
     const std::string& typeName() const { return _typeName; }
     bool isArray() const { return _isArray; }
 

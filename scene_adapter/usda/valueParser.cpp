@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "scene_adapter/usda/assetResolver.h"
+#include "scene_adapter/usda/metadataFields.h"
 #include "scene_adapter/usda/parserImpl.h"
 
 namespace principled::usd::detail {
@@ -277,6 +278,44 @@ Value Parser::parseGenericValue() {
         }
     }
     fail("a value");
+}
+
+Value Parser::parseMetadataValue(std::string_view key) {
+    return isRegisteredMetadataField(key) ? parseGenericValue() : parseUnregisteredValue();
+}
+
+Value Parser::parseUnregisteredValue() {
+    const Lexer start = _lex;
+    try {
+        return parseGenericValue();
+    } catch (const ParseError&) {
+        _lex = start;  // a tuple of strings, a nested or mixed list...: keep the text
+    }
+    SourceLocation where = here();
+    const char* begin = peek().text.data();
+    skipValue();  // throws a located error if this is no value at all
+    return Value::string("unregistered", std::string(begin, _lex.lastEnd()), where);
+}
+
+void Parser::skipValue() {
+    DepthGuard guard(*this);
+    const Token& t = peek();
+    if (t.kind == TokenKind::String || t.kind == TokenKind::Asset || t.kind == TokenKind::Path ||
+        t.kind == TokenKind::Number || t.kind == TokenKind::Identifier) {
+        next();
+        return;
+    }
+    if (t.is('{')) {
+        parseDictionary();
+        return;
+    }
+    if (!t.is('(') && !t.is('[')) fail("a value");
+    const char close = t.is('(') ? ')' : ']';
+    next();
+    while (!accept(close)) {
+        skipValue();
+        if (!accept(',') && !peek().is(close)) fail(std::string("',' or '") + close + "'");
+    }
 }
 
 Dictionary Parser::parseDictionary() {

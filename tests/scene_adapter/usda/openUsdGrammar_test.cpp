@@ -127,5 +127,44 @@ def "A" ( references = @@@./a\@@@b.usda@@@ ) {
     EXPECT_EQ(a->attribute("u")->defaultValue->getAsset()->authored, "tex@1.png");
 }
 
+TEST(OpenUsdGrammar, UnregisteredMetadataOfAnyShape) {
+    auto layer = parse(R"(#usda 1.0
+(
+    myStudio:layerTags = [(a, "b"), [None]]
+)
+def Xform "W" (
+    myStudio:tags = ("hero", "lod0")
+    myStudio:ids = (a, b)
+    myStudio:grid = [[1, 2], [3, 4]]
+    myStudio:mixed = [1, "a"]
+    myStudio:shapes = [(1, 2), (1, 2, 3),]
+    myStudio:none = [None]
+    myStudio:numbers = [1, 2]
+)
+{
+    float a = 1 (myStudio:pair = ("x", 2))
+}
+)");
+    auto text = [](const Value& v) {
+        EXPECT_EQ(v.typeName(), "unregistered");
+        return v.getString().value_or("?");
+    };
+    EXPECT_EQ(text(*layer->field("myStudio:layerTags")), R"([(a, "b"), [None]])");
+    const PrimSpec* w = layer->prim("/W");
+    EXPECT_EQ(text(w->metadata.at("myStudio:tags")), R"(("hero", "lod0"))");
+    EXPECT_EQ(text(w->metadata.at("myStudio:ids")), "(a, b)");
+    EXPECT_EQ(text(w->metadata.at("myStudio:grid")), "[[1, 2], [3, 4]]");
+    EXPECT_EQ(text(w->metadata.at("myStudio:mixed")), R"([1, "a"])");
+    EXPECT_EQ(text(w->metadata.at("myStudio:shapes")), "[(1, 2), (1, 2, 3),]");
+    EXPECT_EQ(text(w->metadata.at("myStudio:none")), "[None]");
+    EXPECT_EQ(w->metadata.at("myStudio:numbers").size(), 2u);  // still a number array
+    EXPECT_EQ(text(w->attribute("a")->metadata.at("myStudio:pair")), R"(("x", 2))");
+    // Registered fields keep their checks; text that is no value at all is still an error.
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"W\" (\n    kind = [1, \"a\"]\n) {}\n"),
+              "t.usda:3:16: expected array elements of one type, found '\"a\"'");
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"W\" (\n    my:x = [1, (2, }]\n) {}\n"),
+              "t.usda:3:20: expected a value, found '}'");
+}
+
 }  // namespace
 }  // namespace principled::usd

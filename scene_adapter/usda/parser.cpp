@@ -4,7 +4,9 @@
 #include "scene_adapter/usda/parser.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 
 #include "scene_adapter/usda/assetResolver.h"
 #include "scene_adapter/usda/parserImpl.h"
@@ -12,6 +14,28 @@
 namespace principled::usd {
 
 namespace detail {
+
+namespace {
+constexpr std::string_view kNewestVersion = "1.1";
+
+// "M.m" or "M.m.p" (SdfUsdaData::ValidateLayerVersionString) as {M, m, p}; nullopt otherwise.
+std::optional<std::array<long, 3>> parseLayerVersion(std::string_view v) {
+    std::array<long, 3> parts{0, 0, 0};
+    for (int i = 0; i < 3; ++i) {
+        std::size_t digits = 0;
+        long n = 0;
+        while (digits < v.size() && v[digits] >= '0' && v[digits] <= '9' && digits < 9)
+            n = n * 10 + (v[digits++] - '0');
+        if (digits == 0) return std::nullopt;
+        parts[static_cast<std::size_t>(i)] = n;
+        v.remove_prefix(digits);
+        if (v.empty()) return i >= 1 ? std::optional(parts) : std::nullopt;
+        if (v[0] != '.') return std::nullopt;
+        v.remove_prefix(1);
+    }
+    return std::nullopt;
+}
+}  // namespace
 
 std::string_view Parser::checkHeader(std::string_view text, const std::string& file) {
     refuseBinary(text, file);
@@ -25,7 +49,15 @@ std::string_view Parser::checkHeader(std::string_view text, const std::string& f
     if (ok) {
         std::string_view version = first.substr(5);
         version.remove_prefix(std::min(version.find_first_not_of(" \t"), version.size()));
-        ok = version == "1.0";
+        // Every version from 1.0 to the newest we read (1.1, which OpenUSD writes for splines
+        // with tangent algorithms; a spline attribute is still refused where it is authored).
+        auto v = parseLayerVersion(version);
+        if (v && !((*v)[0] == 1 && ((*v)[1] == 0 || ((*v)[1] == 1 && (*v)[2] == 0))))
+            throw ParseError({file, 1, 1},
+                             "expected a USDA version from 1.0 to " + std::string(kNewestVersion) +
+                                 " (the versions this reader supports), found " +
+                                 quoteText(first));
+        ok = v.has_value();
     }
     if (!ok) {
         std::string found = body.empty()    ? "end of file"

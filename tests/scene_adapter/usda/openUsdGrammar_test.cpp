@@ -166,5 +166,18 @@ def Xform "W" (
               "t.usda:3:20: expected a value, found '}'");
 }
 
+TEST(OpenUsdGrammar, UsdaVersionsUpTo1_1) {
+    for (const char* header : {"#usda 1.0", "#usda 1.1", "#usda 1.0.3", "#usda  1.1 "})
+        EXPECT_NO_THROW(parse(std::string(header) + "\ndef \"W\" {}\n")) << header;
+    const std::string expected =
+        "expected a USDA version from 1.0 to 1.1 (the versions this reader supports), found ";
+    EXPECT_EQ(errorOf("#usda 1.2\n"), "t.usda:1:1: " + expected + "'#usda 1.2'");
+    EXPECT_EQ(errorOf("#usda 1.1.1\n"), "t.usda:1:1: " + expected + "'#usda 1.1.1'");
+    EXPECT_EQ(errorOf("#usda 0.9\n"), "t.usda:1:1: " + expected + "'#usda 0.9'");
+    EXPECT_EQ(errorOf("#usda 1.0 extra\n"),
+              "t.usda:1:1: expected '#usda 1.0', found '#usda 1.0 extra'");
+    EXPECT_EQ(errorOf("#usda 1\n"), "t.usda:1:1: expected '#usda 1.0', found '#usda 1'");
+}
+
 }  // namespace
 }  // namespace principled::usd

@@ -413,7 +413,9 @@ def "P" ( prefixSubstitutions = { "$ROOT": "/assets", "$V": "2" } ) {}
 TEST(Parser, HeaderAndBinaryRefusal) {
     EXPECT_NO_THROW(parse("#usda 1.0"));
     EXPECT_NO_THROW(parse("\xEF\xBB\xBF#usda 1.0\r\ndef \"A\" {}\r\n"));
-    EXPECT_EQ(errorOf("#usda 2.0\n"), "t.usda:1:1: expected '#usda 1.0', found '#usda 2.0'");
+    EXPECT_EQ(errorOf("#usda 2.0\n"),
+              "t.usda:1:1: expected a USDA version from 1.0 to 1.1 (the versions this reader "
+              "supports), found '#usda 2.0'");
     EXPECT_EQ(errorOf(""), "t.usda:1:1: expected '#usda 1.0', found end of file");
     try {
         parse(std::string("PXR-USDC\0\0\0", 11));

@@ -55,7 +55,8 @@ Value Parser::parseTypedValue(const ValueType* type, const std::string& typeName
         return Value::none(typeName, isArray, where);
     }
     const ValueType& t = *type;
-    if (t.scalar == ScalarType::Opaque) fail("no value for an opaque attribute");
+    if (t.scalar == ScalarType::Opaque)
+        fail("no value for an attribute of valueless type '" + typeName + "'");
     if (!isArray) {
         if (t.isNumeric()) {
             if (t.components == 1) return Value::number(typeName, parseNumber(t), where);

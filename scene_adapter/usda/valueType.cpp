@@ -23,6 +23,7 @@ constexpr std::array kTypes = {
     ValueType{"token", S::Token, 1, 0, false},
     ValueType{"asset", S::Asset, 1, 0, false},
     ValueType{"opaque", S::Opaque, 1, 0, false},
+    ValueType{"group", S::Opaque, 1, 0, false},  // valueless, as opaque (SdfOpaqueValue)
     ValueType{"pathExpression", S::PathExpression, 1, 0, false},
     ValueType{"int2", S::Int, 2, 0, false},
     ValueType{"int3", S::Int, 3, 0, false},

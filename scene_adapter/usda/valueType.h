@@ -22,7 +22,7 @@ enum class ScalarType : std::uint8_t {
     String,
     Token,
     Asset,
-    Opaque,
+    Opaque,  ///< opaque and group: declared, never given a value
     PathExpression,
 };
 

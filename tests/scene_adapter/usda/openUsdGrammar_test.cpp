@@ -179,5 +179,16 @@ TEST(OpenUsdGrammar, UsdaVersionsUpTo1_1) {
     EXPECT_EQ(errorOf("#usda 1\n"), "t.usda:1:1: expected '#usda 1.0', found '#usda 1'");
 }
 
+TEST(OpenUsdGrammar, GroupValueType) {
+    auto layer = parse("#usda 1.0\ndef Shader \"S\" {\n    group inputs:g\n    opaque inputs:o\n}\n");
+    const AttributeSpec* g = layer->prim("/S")->attribute("inputs:g");
+    ASSERT_NE(g, nullptr);
+    EXPECT_EQ(g->typeName, "group");
+    EXPECT_FALSE(g->defaultValue.has_value());
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"S\" {\n    group g = 1\n}\n"),
+              "t.usda:3:15: expected no value for an attribute of valueless type 'group', "
+              "found '1'");
+}
+
 }  // namespace
 }  // namespace principled::usd

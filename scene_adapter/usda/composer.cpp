@@ -715,18 +715,22 @@ void Composer::composePrim(Prim& prim, Node& index, const std::map<std::string, 
         attr->_custom = top.custom;
         attr->_location = top.location;
         std::size_t defaultAt = opinions.size(), samplesAt = opinions.size();
+        std::size_t animationBlockAt = opinions.size();
         std::vector<std::pair<const ListOp<PathItem>*, const SpecRef*>> connections;
         for (std::size_t i = 0; i < opinions.size(); ++i) {
             const AttributeSpec& a = *opinions[i].first;
             if (defaultAt == opinions.size() && a.defaultValue) defaultAt = i;
             if (samplesAt == opinions.size() && a.hasTimeSamples) samplesAt = i;
+            if (animationBlockAt == opinions.size() && a.animationBlock) animationBlockAt = i;
             if (a.hasConnections && a.connections) connections.push_back({a.connections.get(), opinions[i].second});
             for (const auto& [key, value] : a.metadata) composeField(attr->_metadata, key, value);
         }
         if (defaultAt < opinions.size()) attr->_default = *opinions[defaultAt].first->defaultValue;
         // Value resolution (UsdAttribute::Get): per opinion, time samples before the default;
-        // so samples win unless a strictly stronger opinion authored a default.
-        if (samplesAt < opinions.size() && samplesAt <= defaultAt) {
+        // so samples win unless a strictly stronger opinion authored a default or an
+        // AnimationBlock (which hides weaker samples but lets a weaker default through).
+        if (samplesAt < opinions.size() && samplesAt <= defaultAt &&
+            samplesAt <= animationBlockAt) {
             const LayerOffset& off = opinions[samplesAt].second->offset;
             for (const auto& [t, v] : opinions[samplesAt].first->timeSamples)
                 attr->_samples.emplace(off.apply(t), v);

@@ -72,6 +72,9 @@ struct AttributeSpec {
     bool custom = false;
     Variability variability = Variability::Varying;
     std::optional<Value> defaultValue;  ///< may hold None (a block)
+    /// `= AnimationBlock` (SdfAnimationBlock) in place of a default: weaker time samples are
+    /// blocked, weaker defaults still apply; this spec's own time samples still win.
+    bool animationBlock = false;
     bool hasTimeSamples = false;
     std::map<double, Value> timeSamples;  ///< None samples block the value at that time
     bool hasConnections = false;

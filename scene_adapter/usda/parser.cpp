@@ -409,11 +409,16 @@ void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
     } else if (peek().is('=')) {
         // One spec per property: a second value for it in the same prim is an error (Sdf), not
         // a silent override.
-        if (attr->defaultValue)
+        if (attr->defaultValue || attr->animationBlock)
             _lex.fail(nameTok, "a property given one value (" + quoteText(name) + " already has one, declared at " +
                                    std::to_string(attr->location.line) + ":" + std::to_string(attr->location.column) + ")");
         next();
-        attr->defaultValue = parseTypedValue(type, attr->typeName, isArray);
+        if (peek().isIdent("AnimationBlock")) {
+            next();
+            attr->animationBlock = true;
+        } else {
+            attr->defaultValue = parseTypedValue(type, attr->typeName, isArray);
+        }
     } else {
         // A declaration without a value ends its line (or opens its metadata).
         const Token& t = peek();

@@ -5,6 +5,7 @@
 
 #include "scene_adapter/usda/lexer.h"
 #include "scene_adapter/usda/parser.h"
+#include "scene_adapter/usda/stage.h"
 #include "scene_adapter/usda/utf8.h"
 #include "testUtil.h"
 
@@ -188,6 +189,38 @@ TEST(OpenUsdGrammar, GroupValueType) {
     EXPECT_EQ(errorOf("#usda 1.0\ndef \"S\" {\n    group g = 1\n}\n"),
               "t.usda:3:15: expected no value for an attribute of valueless type 'group', "
               "found '1'");
+}
+
+TEST(OpenUsdGrammar, AnimationBlockBlocksWeakerTimeSamplesOnly) {
+    auto stage = Stage::openString(R"(#usda 1.0
+def "Base" {
+    double a = 1
+    double a.timeSamples = { 1: 10, 2: 20 }
+    double b.timeSamples = { 1: 10 }
+    double c.timeSamples = { 1: 10 }
+}
+def "A" ( references = </Base> ) {
+    double a = AnimationBlock
+    double b = AnimationBlock
+    double b.timeSamples = { 1: 5 }
+    double c = AnimationBlock
+}
+)",
+                                   "t.usda");
+    const Prim* a = stage->prim("/A");
+    ASSERT_NE(a, nullptr);
+    // The block hides Base's samples and lets Base's default through.
+    EXPECT_TRUE(a->attribute("a")->timeSamples().empty());
+    EXPECT_EQ(a->attribute("a")->get(1.0).getDouble(), 1.0);
+    EXPECT_EQ(a->attribute("a")->get().getDouble(), 1.0);
+    // Samples in the blocking spec itself still win.
+    EXPECT_EQ(a->attribute("b")->get(1.0).getDouble(), 5.0);
+    // Nothing left: no value.
+    EXPECT_FALSE(a->attribute("c")->hasValue());
+    EXPECT_EQ(stage->prim("/Base")->attribute("a")->get(2.0).getDouble(), 20.0);
+    auto layer = parse("#usda 1.0\ndef \"W\" {\n    double a = AnimationBlock\n}\n");
+    EXPECT_TRUE(layer->prim("/W")->attribute("a")->animationBlock);
+    EXPECT_FALSE(layer->prim("/W")->attribute("a")->defaultValue.has_value());
 }
 
 }  // namespace

@@ -119,8 +119,12 @@ void Parser::parseNumericElement(const ValueType& type, std::vector<double>& out
             if (c > 0) expect(',');
             out.push_back(parseNumber(type));
         }
-        if (type.rows > 0) expect(')');
+        if (type.rows > 0) {
+            accept(',');  // a tuple may end in a comma (ListOf is list_tail in the grammar)
+            expect(')');
+        }
     }
+    accept(',');
     expect(')');
 }
 

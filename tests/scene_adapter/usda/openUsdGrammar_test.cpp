@@ -223,5 +223,21 @@ def "A" ( references = </Base> ) {
     EXPECT_FALSE(layer->prim("/W")->attribute("a")->defaultValue.has_value());
 }
 
+TEST(OpenUsdGrammar, TupleWithATrailingComma) {
+    auto layer = parse(R"(#usda 1.0
+def "W" {
+    float3 a = (1, 2, 3,)
+    float2[] b = [(1, 2,), (3, 4)]
+    matrix2d m = ((1, 0,), (0, 1,),)
+}
+)");
+    const PrimSpec* w = layer->prim("/W");
+    EXPECT_EQ(*w->attribute("a")->defaultValue->getTuple(), (std::vector<double>{1, 2, 3}));
+    EXPECT_EQ(*w->attribute("b")->defaultValue->numbers(), (std::vector<double>{1, 2, 3, 4}));
+    EXPECT_EQ(*w->attribute("m")->defaultValue->getTuple(), (std::vector<double>{1, 0, 0, 1}));
+    EXPECT_EQ(errorOf("#usda 1.0\ndef \"W\" {\n    float3 a = (1, 2,,)\n}\n"),
+              "t.usda:3:22: expected a number, found ','");
+}
+
 }  // namespace
 }  // namespace principled::usd

@@ -501,7 +501,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"WrongValueKind", "#usda 1.0\ndef \"A\" {\n  string s = 1\n}\n",
                  "t.usda:3:14: expected a quoted string, found '1'"},
         BadInput{"TupleArity", "#usda 1.0\ndef \"A\" {\n  float2 x = (1, 2, 3)\n}\n",
-                 "t.usda:3:19: expected ')', found ','"},
+                 "t.usda:3:21: expected ')', found '3'"},
         BadInput{"BadPrimName", "#usda 1.0\ndef \"a/b\" {}\n",
                  "t.usda:2:5: expected a valid prim name (an identifier), found '\"a/b\"'"},
         BadInput{"BadField", "#usda 1.0\ndef \"A\" {\n  float x.spline = 1\n}\n",

@@ -59,18 +59,29 @@ void Lexer::failHere(std::string_view expected, std::string_view found) const {
     throw ParseError(where, "expected " + std::string(expected) + ", found " + std::string(found));
 }
 
+std::size_t Lexer::lineBreakAt(std::size_t pos) const {
+    if (pos >= _text.size()) return 0;
+    if (_text[pos] == '\n') return 1;
+    if (_text[pos] != '\r') return 0;
+    return pos + 1 < _text.size() && _text[pos + 1] == '\n' ? 2 : 1;
+}
+
+void Lexer::newLine(std::size_t length) {
+    _pos += length;
+    ++_line;
+    _lineStart = _pos;
+}
+
 void Lexer::skipSpaceAndComments() {
     const std::size_t n = _text.size();
     while (_pos < n) {
         char c = _text[_pos];
-        if (c == '\n') {
-            ++_pos;
-            ++_line;
-            _lineStart = _pos;
-        } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+        if (std::size_t eol = lineBreakAt(_pos)) {
+            newLine(eol);
+        } else if (c == ' ' || c == '\t' || c == '\f' || c == '\v') {
             ++_pos;
         } else if (c == '#' || (c == '/' && _pos + 1 < n && _text[_pos + 1] == '/')) {
-            while (_pos < n && _text[_pos] != '\n') ++_pos;
+            while (_pos < n && !lineBreakAt(_pos)) ++_pos;
         } else if (c == '/' && _pos + 1 < n && _text[_pos + 1] == '*') {
             int line = _line, col = static_cast<int>(_pos - _lineStart) + 1;
             _pos += 2;
@@ -81,11 +92,10 @@ void Lexer::skipSpaceAndComments() {
                     closed = true;
                     break;
                 }
-                if (_text[_pos] == '\n') {
-                    ++_line;
-                    _lineStart = _pos + 1;
-                }
-                ++_pos;
+                if (std::size_t eol = lineBreakAt(_pos))
+                    newLine(eol);
+                else
+                    ++_pos;
             }
             if (!closed)
                 failHere("'*/' closing the comment opened at " + std::to_string(line) + ":" +
@@ -109,17 +119,16 @@ void Lexer::scanString(Token& t) {
         if (_pos >= n)
             failHere("'" + closing + "' closing the string opened at " + opened, "end of file");
         char c = _text[_pos];
-        if (c == '\\') {
-            _pos += 2;
+        if (c == '\\' && !lineBreakAt(_pos + 1)) {
+            _pos += 2;  // an escaped character (a line break is not escaped: see below)
             if (_pos > n) _pos = n;
             continue;
         }
-        if (c == '\n') {
+        if (c == '\\') ++_pos;
+        if (std::size_t eol = lineBreakAt(_pos)) {
             if (!triple)
                 failHere("'" + closing + "' closing the string opened at " + opened, "end of line");
-            ++_pos;
-            ++_line;
-            _lineStart = _pos;
+            newLine(eol);
             continue;
         }
         if (c == q) {
@@ -203,14 +212,15 @@ Token Lexer::scan() {
         const bool triple = _pos + 2 < n && _text[_pos + 1] == '@' && _text[_pos + 2] == '@';
         _pos += triple ? 3 : 1;
         for (;;) {
-            if (_pos >= n || (!triple && _text[_pos] == '\n'))
+            const std::size_t eol = lineBreakAt(_pos);
+            if (_pos >= n || (!triple && eol))
                 failHere(std::string(triple ? "'@@@'" : "'@'") +
                              " closing the asset path opened at " + std::to_string(t.line) + ":" +
                              std::to_string(t.column),
                          _pos >= n ? "end of file" : "end of line");
-            if (_text[_pos] == '\n') {
-                ++_line;
-                _lineStart = _pos + 1;
+            if (eol) {
+                newLine(eol);
+                continue;
             }
             if (triple && _text.compare(_pos, 3, "@@@") == 0 &&
                 !(_pos + 3 < n && _text[_pos + 3] == '@')) {
@@ -221,13 +231,13 @@ Token Lexer::scan() {
                 ++_pos;
                 break;
             }
-            if (triple && _text[_pos] == '\\') ++_pos;
+            if (triple && _text[_pos] == '\\' && !lineBreakAt(_pos + 1)) ++_pos;
             ++_pos;
         }
         t.kind = TokenKind::Asset;
     } else if (c == '<') {
         ++_pos;
-        while (_pos < n && _text[_pos] != '>' && _text[_pos] != '\n') ++_pos;
+        while (_pos < n && _text[_pos] != '>' && !lineBreakAt(_pos)) ++_pos;
         if (_pos >= n || _text[_pos] != '>')
             failHere("'>' closing the path opened at " + std::to_string(t.line) + ":" +
                          std::to_string(t.column),

@@ -52,6 +52,11 @@ public:
 private:
     Token scan();
     void skipSpaceAndComments();
+    /// Line breaks are "\r\n", "\n" and a lone "\r" (classic Mac; the grammar's Eol is
+    /// one<'\r', '\n'>): 2, 1 or 1; 0 when there is none at `pos`.
+    std::size_t lineBreakAt(std::size_t pos) const;
+    /// Moves past a line break of `length` bytes at _pos to the start of the next line.
+    void newLine(std::size_t length);
     [[noreturn]] void failHere(std::string_view expected, std::string_view found) const;
     void scanString(Token& t);
     /// An identifier from _pos: ASCII letters, digits, '_', ':' and UTF-8 characters.

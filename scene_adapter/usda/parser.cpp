@@ -41,8 +41,8 @@ std::string_view Parser::checkHeader(std::string_view text, const std::string& f
     refuseBinary(text, file);
     std::string_view body = text;
     if (body.substr(0, 3) == "\xEF\xBB\xBF") body.remove_prefix(3);  // UTF-8 byte order mark
-    std::string_view first = body.substr(0, body.find('\n'));
-    while (!first.empty() && (first.back() == '\r' || first.back() == ' ' || first.back() == '\t'))
+    std::string_view first = body.substr(0, body.find_first_of("\r\n"));
+    while (!first.empty() && (first.back() == ' ' || first.back() == '\t'))
         first.remove_suffix(1);
     bool ok =
         first.substr(0, 5) == "#usda" && first.size() > 5 && (first[5] == ' ' || first[5] == '\t');

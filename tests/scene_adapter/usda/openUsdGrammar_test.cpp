@@ -239,5 +239,26 @@ def "W" {
               "t.usda:3:22: expected a number, found ','");
 }
 
+TEST(OpenUsdGrammar, ClassicMacLineEnds) {
+    // A lone CR ends a line everywhere: the header, '#' and '//' comments, statements, and in
+    // line counting (also inside block comments and triple-quoted strings).
+    auto layer = parse(
+        "#usda 1.0\r( doc = \"\"\"a\rb\"\"\" )\r# comment\rdef Xform \"W\" // x\r{\r"
+        "    /* c\r c */ float a = 1\r    float b\r    float c = 2\r}\r");
+    const PrimSpec* w = layer->prim("/W");
+    ASSERT_NE(w, nullptr);
+    EXPECT_EQ(*w->attribute("a")->defaultValue->getDouble(), 1.0);
+    EXPECT_FALSE(w->attribute("b")->defaultValue.has_value());
+    EXPECT_EQ(*w->attribute("c")->defaultValue->getDouble(), 2.0);
+    EXPECT_EQ(w->attribute("c")->location.str(), "t.usda:10:5");
+    EXPECT_EQ(*layer->field("doc")->getString(), "a\rb");
+    EXPECT_EQ(errorOf("#usda 1.0\rdef \"W\" {\r    float a = x\r}\r"),
+              "t.usda:3:15: expected a number, found 'x'");
+    EXPECT_EQ(errorOf("#usda 1.0\rdef \"W\" {\r    string s = \"ab\rc\"\r}\r"),
+              "t.usda:3:19: expected '\"' closing the string opened at 3:16, found end of line");
+    EXPECT_EQ(errorOf("#usda 1.0\r\rdef \"W\" {\r\n}\r\n}"),
+              "t.usda:5:1: expected 'def', 'over' or 'class', found '}'");
+}
+
 }  // namespace
 }  // namespace principled::usd

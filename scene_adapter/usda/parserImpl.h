@@ -94,7 +94,10 @@ private:
     Value parseTypedValue(const ValueType* type, const std::string& typeName, bool isArray);
     void parseNumericElement(const ValueType& type, std::vector<double>& out);
     double parseNumber(const ValueType& type);
-    double parseScalarNumber(const Token& t, bool integer, bool isUnsigned, bool isBool);
+    /// A bool value token as 1 or 0 (numbers, true/false, yes/no, 1/0, quoted or not).
+    double parseBool(const Token& t);
+    /// A number token (or inf / nan); an integer type truncates a finite fraction.
+    double parseScalarNumber(const Token& t, bool integer, bool isUnsigned);
     Value parseGenericValue();
     /// The value of metadata field `key`: parseGenericValue() for a registered field; for any
     /// other, a value of any shape the grammar allows, kept as its text (typeName
@@ -104,6 +107,7 @@ private:
     /// Consumes one value (atoms, tuples, lists, dictionaries) without building it.
     void skipValue();
     Dictionary parseDictionary();
+    /// An @asset@ / @@@asset@@@ token, or a quoted string read as an asset path.
     AssetPath assetFromToken(const Token& t) const;
     static std::string pathFromToken(const Token& t);
 

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // Value grammar: typed values (scalars, tuples, matrices, arrays, strings, assets), numbers via
 // std::from_chars, untyped metadata values and dictionaries.
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <optional>
 
 #include "scene_adapter/usda/assetResolver.h"
 #include "scene_adapter/usda/metadataFields.h"
@@ -37,8 +39,12 @@ AssetPath Parser::assetFromToken(const Token& t) const {
     std::string_view s = t.text;
     std::size_t q = s.size() >= 6 && s.substr(0, 3) == "@@@" ? 3 : 1;
     AssetPath a;
-    a.authored = std::string(s.substr(q, s.size() - 2 * q));
-    if (q == 3) a.authored = unescapeTripleAt(a.authored);
+    if (t.kind == TokenKind::String) {
+        a.authored = unescapeString(t.text);  // _GetImpl<SdfAssetPath>: a string converts
+    } else {
+        a.authored = std::string(s.substr(q, s.size() - 2 * q));
+        if (q == 3) a.authored = unescapeTripleAt(a.authored);
+    }
     a.resolved = resolveAsset(a.authored, _anchor);
     a.anchored = anchorAsset(a.authored, _anchor);
     return a;
@@ -66,7 +72,8 @@ Value Parser::parseTypedValue(const ValueType* type, const std::string& typeName
             return Value::tuple(typeName, std::move(v), where);
         }
         if (t.scalar == ScalarType::Asset) {
-            if (peek().kind != TokenKind::Asset) fail("an asset path '@...@'");
+            if (peek().kind != TokenKind::Asset && peek().kind != TokenKind::String)
+                fail("an asset path '@...@'");
             return Value::asset(assetFromToken(next()), where);
         }
         return Value::string(typeName, expectString("a quoted string"), where);
@@ -85,7 +92,8 @@ Value Parser::parseTypedValue(const ValueType* type, const std::string& typeName
     if (t.scalar == ScalarType::Asset) {
         std::vector<AssetPath> v;
         while (!peek().is(']')) {
-            if (peek().kind != TokenKind::Asset) fail("an asset path '@...@' or ']'");
+            if (peek().kind != TokenKind::Asset && peek().kind != TokenKind::String)
+                fail("an asset path '@...@' or ']'");
             v.push_back(assetFromToken(next()));
             if (!accept(',') && !peek().is(']')) fail("',' or ']'");
         }
@@ -130,10 +138,23 @@ void Parser::parseNumericElement(const ValueType& type, std::vector<double>& out
 
 double Parser::parseNumber(const ValueType& type) {
     Token t = peek();
-    bool isBool = type.scalar == ScalarType::Bool;
-    if (t.kind != TokenKind::Number && t.kind != TokenKind::Identifier)
-        fail(type.isInteger() ? "an integer" : isBool ? "a bool" : "a number");
-    double v = parseScalarNumber(t, type.isInteger(), type.isUnsigned(), isBool);
+    if (type.scalar == ScalarType::Bool) {
+        double v = parseBool(t);
+        next();
+        return v;
+    }
+    const char* what = type.isInteger() ? "an integer" : "a number";
+    double v = 0.0;
+    if (t.kind == TokenKind::String && !type.isInteger()) {
+        // _GetImpl<floating>: the strings "inf", "-inf" and "nan" convert.
+        std::string s = unescapeString(t.text);
+        if (s != "inf" && s != "-inf" && s != "nan") fail(what);
+        v = s == "nan" ? std::nan("") : (s[0] == '-' ? -HUGE_VAL : HUGE_VAL);
+    } else if (t.kind == TokenKind::Number || t.kind == TokenKind::Identifier) {
+        v = parseScalarNumber(t, type.isInteger(), type.isUnsigned());
+    } else {
+        fail(what);
+    }
     // The declared type's range (USD rejects an int of 2^32 rather than wrapping it).
     double lo = 0.0, hi = 0.0;
     const char* range = nullptr;
@@ -150,20 +171,40 @@ double Parser::parseNumber(const ValueType& type) {
     return v;
 }
 
-double Parser::parseScalarNumber(const Token& t, bool integer, bool isUnsigned, bool isBool) {
-    const char* what = integer ? "an integer" : isBool ? "a bool" : "a number";
+namespace {
+// Sdf_BoolFromString (parserHelpers.cpp): true/false, yes/no, 1/0, in any case.
+std::optional<bool> boolFromString(std::string_view s) {
+    std::string lower(s);
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower == "true" || lower == "yes" || lower == "1") return true;
+    if (lower == "false" || lower == "no" || lower == "0") return false;
+    return std::nullopt;
+}
+}  // namespace
+
+double Parser::parseBool(const Token& t) {
+    // _GetImpl<bool> (parserHelpers.h): a number is true when nonzero (NaN included); strings
+    // and identifiers go through Sdf_BoolFromString.
+    if (t.kind == TokenKind::Number || t.isIdent("inf") || t.isIdent("nan"))
+        return parseScalarNumber(t, false, false) != 0.0 ? 1.0 : 0.0;
+    std::optional<bool> b;
+    if (t.kind == TokenKind::Identifier) b = boolFromString(t.text);
+    if (t.kind == TokenKind::String) b = boolFromString(unescapeString(t.text));
+    if (!b) _lex.fail(t, "a bool (a number, true/false, yes/no or 1/0)");
+    return *b ? 1.0 : 0.0;
+}
+
+double Parser::parseScalarNumber(const Token& t, bool integer, bool isUnsigned) {
+    const char* what = integer ? "an integer" : "a number";
     std::string_view s = t.text;
     if (t.kind == TokenKind::Identifier) {
-        if (isBool && s == "true") return 1.0;
-        if (isBool && s == "false") return 0.0;
-        if (!integer && !isBool && (s == "inf" || s == "nan"))
-            return s == "inf" ? HUGE_VAL : std::nan("");
+        if (!integer && (s == "inf" || s == "nan")) return s == "inf" ? HUGE_VAL : std::nan("");
         _lex.fail(t, what);
     }
     if (!s.empty() && s[0] == '+') s.remove_prefix(1);
     const char* first = s.data();
     const char* last = s.data() + s.size();
-    if (integer || isBool) {
+    if (integer) {
         std::int64_t i = 0;
         auto [p, ec] = std::from_chars(first, last, i);
         if (ec == std::errc() && p == last) {
@@ -187,7 +228,12 @@ double Parser::parseScalarNumber(const Token& t, bool integer, bool isUnsigned, 
         bool tiny = e != std::string_view::npos && e + 1 < s.size() && s[e + 1] == '-';
         d = tiny ? 0.0 : (neg ? -HUGE_VAL : HUGE_VAL);
     }
-    if ((integer || isBool) && (std::trunc(d) != d)) _lex.fail(t, what);
+    // _GetImpl<integral>: a finite number converts, truncated toward zero (its range is
+    // checked by the caller); inf and nan do not.
+    if (integer) {
+        if (!std::isfinite(d)) _lex.fail(t, "a finite number for an integer");
+        d = std::trunc(d);
+    }
     return d;
 }
 
@@ -204,7 +250,7 @@ Value Parser::parseGenericValue() {
             return Value::path(pathFromToken(next()), where);
         case TokenKind::Number: {
             bool isInt = t.text.find_first_of(".eEin") == std::string_view::npos;
-            double v = parseScalarNumber(t, false, false, false);
+            double v = parseScalarNumber(t, false, false);
             next();
             return Value::number(isInt ? "int" : "double", v, where);
         }

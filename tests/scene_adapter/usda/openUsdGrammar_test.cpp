@@ -3,6 +3,8 @@
 // we once refused or read wrongly (QA report on the USDA grammar); one test per finding.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "scene_adapter/usda/lexer.h"
 #include "scene_adapter/usda/parser.h"
 #include "scene_adapter/usda/stage.h"
@@ -258,6 +260,61 @@ TEST(OpenUsdGrammar, ClassicMacLineEnds) {
               "t.usda:3:19: expected '\"' closing the string opened at 3:16, found end of line");
     EXPECT_EQ(errorOf("#usda 1.0\r\rdef \"W\" {\r\n}\r\n}"),
               "t.usda:5:1: expected 'def', 'over' or 'class', found '}'");
+}
+
+TEST(OpenUsdGrammar, ValueConversionsOfSdfParserHelpers) {
+    auto layer = parse(R"(#usda 1.0
+def "A" {
+    bool t1 = True
+    bool t2 = "YES"
+    bool t3 = 2.5
+    bool t4 = nan
+    bool f1 = no
+    bool f2 = "0"
+    bool f3 = 0.0
+    bool[] bs = [true, FALSE, "yes", 0]
+    int i1 = 1.9
+    int i2 = -1.9
+    int i3 = 2.5e3
+    uint u = 7.5
+    int2 i4 = (1.5, -2.5)
+    float x = "-inf"
+    double y = "nan"
+    asset c = "tex.png"
+    asset[] cs = ["a.png", @b.png@]
+}
+)");
+    auto v = [&](std::string_view name) {
+        return *layer->prim("/A")->attribute(name)->defaultValue;
+    };
+    for (const char* name : {"t1", "t2", "t3", "t4"}) EXPECT_EQ(v(name).getDouble(), 1.0) << name;
+    for (const char* name : {"f1", "f2", "f3"}) EXPECT_EQ(v(name).getDouble(), 0.0) << name;
+    EXPECT_EQ(*v("bs").numbers(), (std::vector<double>{1, 0, 1, 0}));
+    EXPECT_EQ(v("i1").getInt(), 1);
+    EXPECT_EQ(v("i2").getInt(), -1);
+    EXPECT_EQ(v("i3").getInt(), 2500);
+    EXPECT_EQ(v("u").getInt(), 7);
+    EXPECT_EQ(*v("i4").getTuple(), (std::vector<double>{1, -2}));
+    EXPECT_EQ(v("x").getDouble(), -HUGE_VAL);
+    EXPECT_TRUE(std::isnan(*v("y").getDouble()));
+    EXPECT_EQ(v("c").getAsset()->authored, "tex.png");
+    ASSERT_EQ(v("cs").assets()->size(), 2u);
+    EXPECT_EQ((*v("cs").assets())[0].authored, "a.png");
+    // What does not convert is still an error.
+    auto err = [](const std::string& decl) {
+        return errorOf("#usda 1.0\ndef \"A\" {\n    " + decl + "\n}\n");
+    };
+    EXPECT_EQ(err("bool b = maybe"),
+              "t.usda:3:14: expected a bool (a number, true/false, yes/no or 1/0), found 'maybe'");
+    EXPECT_EQ(err("int i = 3e10"), "t.usda:3:13: expected an integer in [-2^31, 2^31 - 1] (int), "
+                                   "found '3e10'");
+    EXPECT_EQ(err("uint u = -1.5"),
+              "t.usda:3:14: expected an integer in [0, 2^32 - 1] (uint), found '-1.5'");
+    EXPECT_EQ(err("int i = inf"), "t.usda:3:13: expected an integer, found 'inf'");
+    EXPECT_EQ(err("int i = 1e999"),
+              "t.usda:3:13: expected a finite number for an integer, found '1e999'");
+    EXPECT_EQ(err("float f = \"one\""), "t.usda:3:15: expected a number, found '\"one\"'");
+    EXPECT_EQ(err("int i = \"1\""), "t.usda:3:13: expected an integer, found '\"1\"'");
 }
 
 }  // namespace

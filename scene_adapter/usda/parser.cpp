@@ -272,6 +272,7 @@ void Parser::parseReorder(std::optional<std::vector<std::string>>& names, bool) 
 
 void Parser::parsePrimBody(PrimSpec& spec) {
     SiblingNames seen;
+    PropertyIndex properties;
     for (;;) {
         const Token& t = peek();
         if (t.is('}')) {
@@ -295,12 +296,12 @@ void Parser::parsePrimBody(PrimSpec& spec) {
                 next();
                 parseReorder(spec.propertyOrder, false);
             } else if (peek().isIdent("rel")) {
-                parseRelationship(spec, ListOpKind::Reorder, false);
+                parseRelationship(spec, properties, ListOpKind::Reorder, false);
             } else {
-                parseProperty(spec, ListOpKind::Reorder);  // reorder <type> x.connect = [...]
+                parseProperty(spec, properties, ListOpKind::Reorder);  // reorder x.connect = [...]
             }
         } else if (t.kind == TokenKind::Identifier) {
-            parseProperty(spec);
+            parseProperty(spec, properties);
         } else {
             fail("a property, a child prim, 'variantSet' or '}'");
         }
@@ -340,7 +341,7 @@ void Parser::parseVariantSet(PrimSpec& spec) {
     }
 }
 
-void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
+void Parser::parseProperty(PrimSpec& spec, PropertyIndex& index, std::optional<ListOpKind> op) {
     if (!op) {
         op = listOpKeyword(peek());
         if (op) next();
@@ -362,7 +363,7 @@ void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
         next();
     }
     if (peek().isIdent("rel")) {
-        parseRelationship(spec, op, custom);
+        parseRelationship(spec, index, op, custom);
         return;
     }
     if (peek().kind != TokenKind::Identifier) fail("a value type name or 'rel'");
@@ -384,15 +385,13 @@ void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
             _lex.fail(f, "'connect' or 'timeSamples'");
         field = f.text;
     }
-    AttributeSpec* attr = nullptr;
-    for (auto it = spec.attributes.rbegin(); it != spec.attributes.rend(); ++it)
-        if (it->name == name) attr = &*it;
-    if (!attr) {
+    auto [slot, added] = index.attributes.try_emplace(name, spec.attributes.size());
+    if (added) {
         spec.attributes.emplace_back();
-        attr = &spec.attributes.back();
-        attr->name = name;
-        attr->location = where;
+        spec.attributes.back().name = name;
+        spec.attributes.back().location = where;
     }
+    AttributeSpec* attr = &spec.attributes[slot->second];
     attr->typeName = std::string(typeTok.text);
     attr->isArray = isArray;
     attr->custom = attr->custom || custom;
@@ -429,7 +428,8 @@ void Parser::parseProperty(PrimSpec& spec, std::optional<ListOpKind> op) {
     if (peek().is('(')) parsePropertyMetadata(attr->metadata);
 }
 
-void Parser::parseRelationship(PrimSpec& spec, std::optional<ListOpKind> op, bool custom) {
+void Parser::parseRelationship(PrimSpec& spec, PropertyIndex& index,
+                               std::optional<ListOpKind> op, bool custom) {
     SourceLocation where = here();
     next();  // rel
     Token nameTok = expectIdent("a relationship name");
@@ -438,15 +438,13 @@ void Parser::parseRelationship(PrimSpec& spec, std::optional<ListOpKind> op, boo
         Token f = expectIdent("'default'");
         if (f.text != "default") _lex.fail(f, "'default'");
     }
-    RelationshipSpec* rel = nullptr;
-    for (auto& r : spec.relationships)
-        if (r.name == name) rel = &r;
-    if (!rel) {
+    auto [slot, added] = index.relationships.try_emplace(name, spec.relationships.size());
+    if (added) {
         spec.relationships.emplace_back();
-        rel = &spec.relationships.back();
-        rel->name = name;
-        rel->location = where;
+        spec.relationships.back().name = name;
+        spec.relationships.back().location = where;
     }
+    RelationshipSpec* rel = &spec.relationships[slot->second];
     rel->custom = rel->custom || custom;
     if (accept('=')) {
         rel->targets.set(op.value_or(ListOpKind::Explicit), parsePathList());

@@ -80,8 +80,15 @@ private:
     void parsePrimBody(PrimSpec& spec);
     void parseVariantSet(PrimSpec& spec);
     void parseReorder(std::optional<std::vector<std::string>>& names, bool root);
-    void parseProperty(PrimSpec& spec, std::optional<ListOpKind> op = std::nullopt);
-    void parseRelationship(PrimSpec& spec, std::optional<ListOpKind> op, bool custom);
+    /// Positions in spec.attributes / spec.relationships of the properties parsed so far in
+    /// one prim body, by name: each statement finds its property in O(1), not by a scan.
+    struct PropertyIndex {
+        std::unordered_map<std::string, std::size_t> attributes, relationships;
+    };
+    void parseProperty(PrimSpec& spec, PropertyIndex& index,
+                       std::optional<ListOpKind> op = std::nullopt);
+    void parseRelationship(PrimSpec& spec, PropertyIndex& index, std::optional<ListOpKind> op,
+                           bool custom);
     void parsePropertyMetadata(Dictionary& metadata);
     void parseTimeSamples(AttributeSpec& attr, const ValueType* type);
 

@@ -183,7 +183,8 @@ TEST(OpenUsdGrammar, UsdaVersionsUpTo1_1) {
 }
 
 TEST(OpenUsdGrammar, GroupValueType) {
-    auto layer = parse("#usda 1.0\ndef Shader \"S\" {\n    group inputs:g\n    opaque inputs:o\n}\n");
+    auto layer =
+        parse("#usda 1.0\ndef Shader \"S\" {\n    group inputs:g\n    opaque inputs:o\n}\n");
     const AttributeSpec* g = layer->prim("/S")->attribute("inputs:g");
     ASSERT_NE(g, nullptr);
     EXPECT_EQ(g->typeName, "group");
@@ -315,6 +316,39 @@ def "A" {
               "t.usda:3:13: expected a finite number for an integer, found '1e999'");
     EXPECT_EQ(err("float f = \"one\""), "t.usda:3:15: expected a number, found '\"one\"'");
     EXPECT_EQ(err("int i = \"1\""), "t.usda:3:13: expected an integer, found '\"1\"'");
+}
+
+TEST(OpenUsdGrammar, FiftyThousandPropertiesOnOnePrim) {
+    // Each statement finds its property through a hash map (the scan of every earlier property
+    // made this quadratic: 50k took 14 s). Correctness only; no timing here.
+    constexpr int kCount = 50000;
+    std::string text = "#usda 1.0\ndef \"A\" {\n";
+    for (int i = 0; i < kCount; ++i) {
+        const std::string n = std::to_string(i);
+        text += "float a" + n + " = " + n + "\nrel r" + n + " = </A>\n";
+    }
+    // Later statements about earlier properties reach the same specs.
+    text += "float a7.timeSamples = { 1: 2 }\nfloat a7.connect = </A.a8>\n";
+    text += "rel r9 (doc = \"d\")\n}\n";
+    auto layer = parse(text);
+    const PrimSpec* a = layer->prim("/A");
+    ASSERT_EQ(a->attributes.size(), static_cast<std::size_t>(kCount));
+    ASSERT_EQ(a->relationships.size(), static_cast<std::size_t>(kCount));
+    for (int i = 0; i < kCount; i += 4999) {
+        const AttributeSpec& attr = a->attributes[static_cast<std::size_t>(i)];
+        EXPECT_EQ(attr.name, "a" + std::to_string(i));
+        EXPECT_EQ(*attr.defaultValue->getDouble(), static_cast<double>(i));
+        EXPECT_EQ(a->relationships[static_cast<std::size_t>(i)].name, "r" + std::to_string(i));
+    }
+    const AttributeSpec& a7 = a->attributes[7];
+    EXPECT_EQ(*a7.defaultValue->getDouble(), 7.0);
+    EXPECT_EQ(a7.timeSamples.at(1.0).getDouble(), 2.0);
+    EXPECT_TRUE(a7.hasConnections);
+    EXPECT_EQ(*a->relationships[9].metadata.at("documentation").getString(), "d");
+    EXPECT_TRUE(a->relationships[9].hasTargets);
+    EXPECT_NE(errorOf("#usda 1.0\ndef \"A\" {\n float x = 1\n float y = 2\n float x = 3\n}\n")
+                  .find("t.usda:5:8: expected a property given one value"),
+              std::string::npos);
 }
 
 }  // namespace

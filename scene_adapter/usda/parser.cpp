@@ -212,7 +212,11 @@ std::unique_ptr<PrimSpec> Parser::parsePrim(const SiblingNames& seen) {
     spec->specifier = kw.text == "def"     ? Specifier::Def
                       : kw.text == "class" ? Specifier::Class
                                            : Specifier::Over;
-    if (peek().kind == TokenKind::Identifier) spec->typeName = std::string(next().text);
+    if (peek().kind == TokenKind::Identifier) {
+        spec->typeName = std::string(next().text);
+        while (accept('.'))  // PrimTypeName = list<Identifier, Dot>: "Foo.Bar"
+            spec->typeName += "." + std::string(expectIdent("a type name after '.'").text);
+    }
     if (peek().kind != TokenKind::String) fail("a quoted prim name");
     Token nameTok = peek();
     spec->name = expectString("a quoted prim name");
@@ -392,7 +396,7 @@ void Parser::parseProperty(PrimSpec& spec, PropertyIndex& index, std::optional<L
         spec.attributes.back().location = where;
     }
     AttributeSpec* attr = &spec.attributes[slot->second];
-    attr->typeName = std::string(typeTok.text);
+    attr->typeName = std::string(type->name);  // a legacy alias ("Vec3f") as its Sdf name
     attr->isArray = isArray;
     attr->custom = attr->custom || custom;
     if (variability != Variability::Varying) attr->variability = variability;

@@ -404,7 +404,7 @@ Dictionary Parser::parseDictionary() {
             SourceLocation where = here();
             d[key] = Value::dictionary(parseDictionary(), where);
         } else if (const ValueType* type = findValueType(typeTok.text)) {
-            d[key] = parseTypedValue(type, std::string(typeTok.text), isArray);
+            d[key] = parseTypedValue(type, std::string(type->name), isArray);
         } else {
             _lex.fail(typeTok, "a value type name");
         }

@@ -66,11 +66,43 @@ constexpr std::array kTypes = {
     ValueType{"matrix4d", S::Double, 16, 4, false},
     ValueType{"frame4d", S::Double, 16, 4, false},
 };
+
+// Legacy names Sdf still reads ("Backwards compatibility" in sdf/parserHelpers.cpp) -> the
+// type they stand for. As there, NormalFloat/Normal read as vectors and VectorFloat/Vector as
+// normals (the roles are swapped in OpenUSD's table; the values are the same three numbers).
+struct Alias {
+    std::string_view legacy, name;
+};
+constexpr std::array kAliases = {
+    Alias{"Vec2i", "int2"},           Alias{"Vec2h", "half2"},
+    Alias{"Vec2f", "float2"},         Alias{"Vec2d", "double2"},
+    Alias{"Vec3i", "int3"},           Alias{"Vec3h", "half3"},
+    Alias{"Vec3f", "float3"},         Alias{"Vec3d", "double3"},
+    Alias{"Vec4i", "int4"},           Alias{"Vec4h", "half4"},
+    Alias{"Vec4f", "float4"},         Alias{"Vec4d", "double4"},
+    Alias{"PointFloat", "point3f"},   Alias{"Point", "point3d"},
+    Alias{"NormalFloat", "vector3f"}, Alias{"Normal", "vector3d"},
+    Alias{"VectorFloat", "normal3f"}, Alias{"Vector", "normal3d"},
+    Alias{"ColorFloat", "color3f"},   Alias{"Color", "color3d"},
+    Alias{"Quath", "quath"},          Alias{"Quatf", "quatf"},
+    Alias{"Quatd", "quatd"},          Alias{"Matrix2d", "matrix2d"},
+    Alias{"Matrix3d", "matrix3d"},    Alias{"Matrix4d", "matrix4d"},
+    Alias{"Frame", "frame4d"},        Alias{"Transform", "matrix4d"},
+    Alias{"PointIndex", "int"},       Alias{"EdgeIndex", "int"},
+    Alias{"FaceIndex", "int"},        Alias{"Schema", "token"},
+};
+
+const ValueType* findCanonical(std::string_view name) {
+    for (const ValueType& t : kTypes)
+        if (t.name == name) return &t;
+    return nullptr;
+}
 }  // namespace
 
 const ValueType* findValueType(std::string_view name) {
-    for (const ValueType& t : kTypes)
-        if (t.name == name) return &t;
+    if (const ValueType* t = findCanonical(name)) return t;
+    for (const Alias& a : kAliases)
+        if (a.legacy == name) return findCanonical(a.name);
     return nullptr;
 }
 

@@ -50,7 +50,8 @@ struct ValueType {
     }
 };
 
-/// The type named `name` (without []), or nullptr for an unknown name.
+/// The type named `name` (without []), or nullptr for an unknown name. A legacy alias
+/// ("Vec3f", "Color", "Transform", ...) gives the type it stands for (its name is the Sdf one).
 const ValueType* findValueType(std::string_view name);
 
 }  // namespace principled::usd

@@ -102,9 +102,9 @@ TEST(OpenUsdGrammar, StringEscapesAsTfEscapeString) {
     EXPECT_EQ(unescapeString(R"("invisib\154e")"), "invisible");
     EXPECT_EQ(unescapeString(R"("a\012b")"), "a\nb");
     EXPECT_EQ(unescapeString(R"("\0")"), std::string(1, '\0'));
-    EXPECT_EQ(unescapeString(R"("\1012")"), "A2");   // at most three digits
-    EXPECT_EQ(unescapeString(R"("\18")"), "\x01" "8");  // 8 is not octal
-    EXPECT_EQ(unescapeString(R"("\777")"), "\xFF");     // modulo 256
+    EXPECT_EQ(unescapeString(R"("\1012")"), "A2");                     // at most three digits
+    EXPECT_EQ(unescapeString(R"("\18")"), std::string("\x01") + "8");  // 8 is not octal
+    EXPECT_EQ(unescapeString(R"("\777")"), "\xFF");                    // modulo 256
     // Hex: every hex digit that follows, modulo 256.
     EXPECT_EQ(unescapeString(R"("\x6c")"), "l");
     EXPECT_EQ(unescapeString(R"("\x4142")"), "B");  // 0x4142 & 0xFF
@@ -307,8 +307,9 @@ def "A" {
     };
     EXPECT_EQ(err("bool b = maybe"),
               "t.usda:3:14: expected a bool (a number, true/false, yes/no or 1/0), found 'maybe'");
-    EXPECT_EQ(err("int i = 3e10"), "t.usda:3:13: expected an integer in [-2^31, 2^31 - 1] (int), "
-                                   "found '3e10'");
+    EXPECT_EQ(err("int i = 3e10"),
+              "t.usda:3:13: expected an integer in [-2^31, 2^31 - 1] (int), "
+              "found '3e10'");
     EXPECT_EQ(err("uint u = -1.5"),
               "t.usda:3:14: expected an integer in [0, 2^32 - 1] (uint), found '-1.5'");
     EXPECT_EQ(err("int i = inf"), "t.usda:3:13: expected an integer, found 'inf'");
@@ -349,6 +350,34 @@ TEST(OpenUsdGrammar, FiftyThousandPropertiesOnOnePrim) {
     EXPECT_NE(errorOf("#usda 1.0\ndef \"A\" {\n float x = 1\n float y = 2\n float x = 3\n}\n")
                   .find("t.usda:5:8: expected a property given one value"),
               std::string::npos);
+}
+
+TEST(OpenUsdGrammar, LegacyTypeAliasesAndDottedPrimTypeNames) {
+    auto layer = parse(R"(#usda 1.0
+def Foo.Bar "A" (customData = { Vec3f v = (1, 2, 3) }) {
+    Vec3f a = (1, 2, 3)
+    Color[] c = [(0.5, 0.5, 0.5)]
+    Matrix4d m = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1))
+    Transform t = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1))
+    PointIndex i = 3
+    NormalFloat n = (0, 1, 0)
+    Schema s = "x"
+}
+)");
+    const PrimSpec* a = layer->prim("/A");
+    EXPECT_EQ(a->typeName, "Foo.Bar");
+    EXPECT_EQ(a->attribute("a")->typeName, "float3");
+    EXPECT_EQ(a->attribute("c")->typeName, "color3d");
+    EXPECT_TRUE(a->attribute("c")->isArray);
+    EXPECT_EQ(a->attribute("m")->typeName, "matrix4d");
+    EXPECT_EQ(a->attribute("t")->typeName, "matrix4d");
+    EXPECT_EQ(a->attribute("i")->typeName, "int");
+    EXPECT_EQ(a->attribute("n")->typeName, "vector3f");  // as OpenUSD's table (roles swapped)
+    EXPECT_EQ(a->attribute("s")->typeName, "token");
+    EXPECT_EQ(a->attribute("a")->defaultValue->typeName(), "float3");
+    EXPECT_EQ(a->metadata.at("customData").find("v")->typeName(), "float3");
+    EXPECT_EQ(errorOf("#usda 1.0\ndef Foo. \"A\" {}\n"),
+              "t.usda:2:10: expected a type name after '.', found '\"A\"'");
 }
 
 }  // namespace
